@@ -1,0 +1,31 @@
+// corofem: command-line harness. Exit status: 0 success, 1 did not converge or numerical fault,
+// 2 bad input (scene, mesh, arguments, unwritable output).
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "core/errors.hpp"
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    return corofem::dispatch(args);
+  } catch (const corofem::InputError& e) {
+    std::cerr << "corofem: error: " << e.what() << "\n";
+    return 2;
+  } catch (const corofem::NumericalFault& e) {
+    std::cerr << "corofem: numerical fault: " << e.what() << "\n";
+    return 1;
+  } catch (const corofem::NotConverged& e) {
+    std::cerr << "corofem: did not converge: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "corofem: error: out of memory\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "corofem: internal error: " << e.what() << "\n";
+    return 3;
+  }
+}

@@ -1,0 +1,20 @@
+#pragma once
+// Whole-or-nothing output: write to a temporary file beside the target, then rename over it.
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <string>
+
+namespace corofem {
+
+/// Calls write(stream) on a temporary file in the target's folder and renames it to `path` only if
+/// writing succeeded. Throws InputError naming `path` if it cannot be written; no partial file is
+/// left behind in either case.
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& write);
+
+/// Throws InputError if a file cannot be created in the folder of `path` (checked before long runs,
+/// so an unwritable output is reported before the work, not after).
+void check_writable(const std::filesystem::path& path);
+
+}  // namespace corofem

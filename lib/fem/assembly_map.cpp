@@ -1,0 +1,26 @@
+#include "fem/assembly_map.hpp"
+
+#include <algorithm>
+
+namespace corofem {
+
+BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map) {
+  std::vector<std::vector<int>> columns(mesh.num_vertices());
+  for (const Tet& t : mesh.tets)
+    for (int a : t)
+      for (int b : t) columns[a].push_back(b);
+  for (auto& c : columns) {
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+  }
+  BrcMatrix k = make_brc_pattern(mesh.num_vertices(), columns);
+  map.block.resize(mesh.tets.size());
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) map.block[e][4 * a + b] = k.find(mesh.tets[e][a], mesh.tets[e][b]);
+  map.diagonal.resize(mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v) map.diagonal[v] = k.find(v, v);
+  return k;
+}
+
+}  // namespace corofem

@@ -1,0 +1,20 @@
+#pragma once
+// The vertex-pair pattern of a tet mesh and, for every (element, vertex pair), the index of its
+// destination block, so that per-step assembly writes without searching (paper 4.2).
+#include <array>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "sparse/brc_matrix.hpp"
+
+namespace corofem {
+
+struct AssemblyMap {
+  std::vector<std::array<int, 16>> block;  ///< block[e][4a+b] = block index of (tet[a], tet[b])
+  std::vector<int> diagonal;               ///< block index of (v, v) per vertex
+};
+
+/// Zero matrix with one block per pair of vertices sharing an element, and its assembly map.
+BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map);
+
+}  // namespace corofem

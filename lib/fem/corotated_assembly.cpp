@@ -1,0 +1,47 @@
+#include "fem/corotated_assembly.hpp"
+
+namespace corofem {
+
+void assemble_corotated(const std::vector<ElementRest>& elements, const std::vector<Tet>& tets,
+                        const AssemblyMap& map, const std::vector<Mat3>& rotations, BrcMatrix& k,
+                        Eigen::VectorXd& f0) {
+  k.set_zero();
+  f0.setZero(3 * static_cast<Eigen::Index>(k.block_rows));
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const Mat3& q = rotations[e];
+    const Mat12& ke = elements[e].stiffness;
+    const auto& blocks = map.block[e];
+    for (int a = 0; a < 4; ++a) {
+      f0.segment<3>(3 * tets[e][a]) += q * elements[e].stiffness_times_rest.segment<3>(3 * a);
+      // K_e is symmetric, so Ktilde_ba = Ktilde_ab^T: rotate the 10 blocks with b >= a only.
+      for (int b = a; b < 4; ++b) {
+        const Mat3 rotated = q * ke.block<3, 3>(3 * a, 3 * b) * q.transpose();
+        k.block(blocks[4 * a + b]) += rotated;
+        if (b != a) k.block(blocks[4 * b + a]) += rotated.transpose();
+      }
+    }
+  }
+}
+
+Eigen::VectorXd internal_forces(const std::vector<ElementRest>& elements, const TetMesh& mesh,
+                                const std::vector<Mat3>& rotations,
+                                const Eigen::VectorXd& displacement) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.num_vertices());
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const Tet& t = mesh.tets[e];
+    const Mat3& q = rotations[e];
+    const Mat3 q_minus_i = q.transpose() - Mat3::Identity();
+    const Vec3 u0 = displacement.segment<3>(3 * t[0]);
+    Vec12 strain_displacement;  // Q^T p_e - x_e up to a translation
+    strain_displacement.segment<3>(0).setZero();
+    for (int b = 1; b < 4; ++b)
+      strain_displacement.segment<3>(3 * b) =
+          q_minus_i * (mesh.rest[t[b]] - mesh.rest[t[0]]) +
+          q.transpose() * (displacement.segment<3>(3 * t[b]) - u0);
+    const Vec12 local = elements[e].stiffness * strain_displacement;
+    for (int a = 0; a < 4; ++a) f.segment<3>(3 * t[a]) += q * local.segment<3>(3 * a);
+  }
+  return f;
+}
+
+}  // namespace corofem

@@ -1,0 +1,27 @@
+#pragma once
+// Corotated assembly (paper section 2): Ktilde_e = Q_e K_e Q_e^T and f0_e = Q_e K_e x_e, written
+// into the BRC matrix through the stored block indices. Q_e = I gives the small-strain system.
+#include <Eigen/Core>
+#include <vector>
+
+#include "fem/assembly_map.hpp"
+#include "fem/element_rest.hpp"
+
+namespace corofem {
+
+/// Overwrites K's values with sum_e Q_e K_e Q_e^T and f0 with sum_e Q_e K_e x_e.
+/// `rotations` holds Qhat_e per element (the rotation taking the rest element to the deformed one).
+void assemble_corotated(const std::vector<ElementRest>& elements, const std::vector<Tet>& tets,
+                        const AssemblyMap& map, const std::vector<Mat3>& rotations, BrcMatrix& k,
+                        Eigen::VectorXd& f0);
+
+/// Elastic internal force, element by element: f_int = sum_e Q_e K_e (Q_e^T p_e - x_e), p = x + u.
+/// Equals Ktilde p - f0 of the assembled system, but is evaluated from vertex-0 offsets as
+/// (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0) (K_e annihilates the dropped translation), so it keeps
+/// full relative accuracy where Ktilde p - f0 cancels terms of size |K||x| >> |f|.
+/// Zero for any rigid motion of the rest mesh.
+Eigen::VectorXd internal_forces(const std::vector<ElementRest>& elements, const TetMesh& mesh,
+                                const std::vector<Mat3>& rotations,
+                                const Eigen::VectorXd& displacement);
+
+}  // namespace corofem

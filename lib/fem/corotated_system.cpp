@@ -1,0 +1,41 @@
+#include "fem/corotated_system.hpp"
+
+#include <Eigen/LU>
+
+#include "core/errors.hpp"
+#include "fem/corotated_assembly.hpp"
+
+namespace corofem {
+
+void linearize(FeProblem& problem, RotationExtractor& extractor,
+               const std::vector<Vec3>& positions, std::vector<Mat3>& rotations,
+               Eigen::VectorXd& f0, PhaseClock& clock) {
+  clock.time("rotate", [&] { extractor.extract(positions, rotations); });
+  clock.time("assemble", [&] {
+    assemble_corotated(problem.elements, problem.mesh.tets, problem.assembly, rotations,
+                       problem.stiffness, f0);
+  });
+}
+
+int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions) {
+  int inverted = 0;
+  for (int e = 0; e < problem.mesh.num_tets(); ++e) {
+    const Mat3 f =
+        deformation_gradient(problem.elements[e].rest_edge_inverse, positions, problem.mesh.tets[e]);
+    if (f.determinant() <= 0) ++inverted;
+  }
+  return inverted;
+}
+
+void check_finite(const FeProblem& problem, const Eigen::VectorXd& u, const std::string& where) {
+  if (u.allFinite()) return;
+  for (int e = 0; e < problem.mesh.num_tets(); ++e)
+    for (int v : problem.mesh.tets[e])
+      if (!u.segment<3>(3 * v).allFinite())
+        throw NumericalFault("non-finite displacement at " + where + ", first at element " +
+                             std::to_string(problem.mesh.element_tags[e]) + " (node " +
+                             std::to_string(problem.mesh.node_tags[v]) + ")");
+  throw NumericalFault("non-finite displacement at " + where);
+}
+
+}  // namespace corofem

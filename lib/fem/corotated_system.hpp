@@ -1,0 +1,22 @@
+#pragma once
+// One linearization of the corotated problem at the current positions: rotate, assemble, and the
+// checks every step needs (non-finite state, inverted elements).
+#include "fem/fe_problem.hpp"
+#include "fem/simulation_result.hpp"
+#include "rotation/rotation_extractor.hpp"
+
+namespace corofem {
+
+/// Extracts rotations at `positions` (warm-started from `rotations`) and assembles Ktilde into
+/// problem.stiffness and f0. Phases "rotate" and "assemble" are timed on `clock`.
+void linearize(FeProblem& problem, RotationExtractor& extractor,
+               const std::vector<Vec3>& positions, std::vector<Mat3>& rotations,
+               Eigen::VectorXd& f0, PhaseClock& clock);
+
+/// Number of elements with det F <= 0 at `positions`.
+int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);
+
+/// Throws NumericalFault naming `where` and the first element touching a non-finite DOF.
+void check_finite(const FeProblem& problem, const Eigen::VectorXd& u, const std::string& where);
+
+}  // namespace corofem

@@ -1,0 +1,27 @@
+#pragma once
+// Prescribed DOF values imposed symmetrically: known columns move to the right-hand side, the
+// rows and columns of fixed DOFs become identity, so A stays symmetric positive definite.
+#include <Eigen/Core>
+#include <vector>
+
+#include "sparse/brc_matrix.hpp"
+
+namespace corofem {
+
+struct DirichletConditions {
+  std::vector<char> fixed;  ///< per DOF: 1 if prescribed
+  Eigen::VectorXd value;    ///< prescribed value where fixed (ignored elsewhere)
+
+  static DirichletConditions none(int num_dofs);
+  void fix_vertex(int v, const Eigen::Vector3d& displacement = Eigen::Vector3d::Zero());
+  int num_fixed() const;
+  bool any() const { return num_fixed() > 0; }
+};
+
+/// Applies the conditions to A x = b in place.
+void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd& b);
+
+/// Euclidean norm of v over the free DOFs only.
+double free_norm(const DirichletConditions& bc, const Eigen::VectorXd& v);
+
+}  // namespace corofem

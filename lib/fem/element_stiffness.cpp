@@ -1,0 +1,32 @@
+#include "fem/element_stiffness.hpp"
+
+#include <Eigen/LU>
+
+namespace corofem {
+
+Mat3 rest_edge_inverse(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3) {
+  Mat3 dm;
+  dm << x1 - x0, x2 - x0, x3 - x0;
+  return dm.inverse();
+}
+
+Mat12 element_stiffness(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
+                        const Material& material) {
+  const Mat3 dm_inv = rest_edge_inverse(x0, x1, x2, x3);
+  const double volume = std::abs(signed_volume(x0, x1, x2, x3));
+  Vec3 g[4];
+  g[1] = dm_inv.row(0).transpose();
+  g[2] = dm_inv.row(1).transpose();
+  g[3] = dm_inv.row(2).transpose();
+  g[0] = -(g[1] + g[2] + g[3]);
+  const double lambda = material.lame_lambda(), mu = material.lame_mu();
+  Mat12 k;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b)
+      k.block<3, 3>(3 * a, 3 * b) =
+          volume * (lambda * g[a] * g[b].transpose() + mu * g[b] * g[a].transpose() +
+                    mu * g[a].dot(g[b]) * Mat3::Identity());
+  return k;
+}
+
+}  // namespace corofem

@@ -1,0 +1,62 @@
+#include "fem/implicit_euler.hpp"
+
+#include "fem/corotated_assembly.hpp"
+#include "fem/corotated_system.hpp"
+#include "rotation/polar_decomposition.hpp"
+
+namespace corofem {
+
+SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
+                               LinearSolver& solver, const DynamicOptions& options,
+                               const std::function<void(const StepState&)>& on_step) {
+  SimulationResult result;
+  PhaseClock clock(result.timings_ms);
+  IdentityExtractor small_strain;
+  RotationExtractor& rotate = options.corotational ? extractor : small_strain;
+  const int n = problem.num_dofs();
+  const double dt = options.dt;
+  result.displacement = Eigen::VectorXd::Zero(n);
+  result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
+  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), f0;
+  DirichletConditions bc = problem.dirichlet;
+  bc.value.setZero();  // supports hold still: zero velocity
+  for (int step = 1; step <= options.steps; ++step) {
+    const auto p = problem.positions(result.displacement);
+    result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
+    linearize(problem, rotate, p, result.rotations, f0, clock);
+    Eigen::VectorXd b =
+        problem.mass.cwiseProduct(velocity) +
+        dt * (problem.external_force -
+              internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement));
+    // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks.
+    BrcMatrix system = problem.stiffness;
+    const double k_scale = dt * options.rayleigh_beta + dt * dt;
+    for (double& value : system.values) value *= k_scale;
+    for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
+      auto block = system.block(problem.assembly.diagonal[v]);
+      for (int c = 0; c < 3; ++c) block(c, c) += (1 + dt * options.rayleigh_alpha) * problem.mass[3 * v + c];
+    }
+    apply_dirichlet(bc, system, b);
+    clock.time("solve", [&] {
+      solver.set_matrix(system);
+      result.linear_iterations += solver.solve(b, velocity).iterations;
+    });
+    result.displacement += dt * velocity;
+    check_finite(problem, result.displacement, "step " + std::to_string(step));
+    result.steps = step;
+    if (on_step) on_step({step, result.displacement, velocity, result.rotations});
+  }
+  // Equilibrium residual of the final state (how far from static rest the run ended).
+  clock.time("rotate",
+             [&] { rotate.extract(problem.positions(result.displacement), result.rotations); });
+  const Eigen::VectorXd r =
+      problem.external_force -
+      internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement);
+  const double f_norm = free_norm(problem.dirichlet, problem.external_force);
+  result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
+  result.iterations = options.steps;
+  result.converged = true;
+  return result;
+}
+
+}  // namespace corofem

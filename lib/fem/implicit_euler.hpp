@@ -1,0 +1,36 @@
+#pragma once
+// Dynamics M u'' + C u' + Ktilde u = f + f0 (paper eq. 2) by linearly implicit Euler with lumped
+// mass and Rayleigh damping C = alpha M + beta Ktilde. Per step, with rotations from the current
+// positions p:  (M + dt C + dt^2 Ktilde) v' = M v + dt (f + f0 - Ktilde p),  p' = p + dt v',
+// with f0 - Ktilde p = -f_int(u) evaluated element-wise (see internal_forces).
+#include <functional>
+
+#include "fem/fe_problem.hpp"
+#include "fem/simulation_result.hpp"
+#include "rotation/rotation_extractor.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace corofem {
+
+struct DynamicOptions {
+  bool corotational = true;
+  double dt = 0.01;
+  int steps = 1;
+  double rayleigh_alpha = 0;  ///< mass-proportional damping (1/s)
+  double rayleigh_beta = 0;   ///< stiffness-proportional damping (s)
+};
+
+/// State after each step, for records that follow a run (flutter, energy, VTU frames).
+struct StepState {
+  int step;
+  const Eigen::VectorXd& displacement;
+  const Eigen::VectorXd& velocity;
+  const std::vector<Mat3>& rotations;
+};
+
+/// Fixed DOFs keep zero velocity. Throws NumericalFault naming the step on NaN/inf.
+SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
+                               LinearSolver& solver, const DynamicOptions& options,
+                               const std::function<void(const StepState&)>& on_step = {});
+
+}  // namespace corofem

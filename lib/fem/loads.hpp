@@ -1,0 +1,20 @@
+#pragma once
+// Lumped mass and external loads, as DOF vectors (index 3*vertex + component).
+#include <Eigen/Core>
+#include <vector>
+
+#include "fem/material.hpp"
+
+namespace corofem {
+
+/// Lumped mass per DOF: each vertex gets rho V / 4 from every element around it.
+Eigen::VectorXd lumped_mass(const TetMesh& mesh, const std::vector<Material>& materials);
+
+/// Body load rho g V / 4 per vertex per element.
+Eigen::VectorXd gravity_load(const TetMesh& mesh, const std::vector<Material>& materials,
+                             const Vec3& gravity);
+
+/// Adds `total` spread equally over `vertices` to `f`.
+void add_spread_force(Eigen::VectorXd& f, const std::vector<int>& vertices, const Vec3& total);
+
+}  // namespace corofem

@@ -1,0 +1,24 @@
+#pragma once
+// Static equilibrium f_int(u) = f_ext. Linear: one solve with Ktilde = K. Corotational: the load in
+// increments; per increment iterate {extract rotations at x + u, assemble Ktilde and f0, solve
+// Ktilde u = f + f0 - Ktilde x} until |f - f_int(u)| / |f| < tolerance (the rotations are lagged,
+// the standard corotational fixed point; each solve is exact for the current rotations).
+#include "fem/fe_problem.hpp"
+#include "fem/simulation_result.hpp"
+#include "rotation/rotation_extractor.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace corofem {
+
+struct StaticOptions {
+  bool corotational = true;
+  int load_steps = 1;
+  double tolerance = 1e-8;
+  int max_iterations = 100;  ///< per increment
+};
+
+/// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).
+SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
+                              LinearSolver& solver, const StaticOptions& options);
+
+}  // namespace corofem

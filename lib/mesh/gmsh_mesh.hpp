@@ -1,0 +1,19 @@
+#pragma once
+// Meshes through gmsh: volume meshes gmsh reads (.msh v2/v4) and closed surfaces (.stl) filled with
+// tets (Delaunay, the recipe of the models' README).
+#include <filesystem>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace corofem {
+
+/// Reads the linear tets of a volume mesh; node and element tags are kept. Throws InputError
+/// naming the file: missing or unreadable, not parseable, no tets, higher-order or non-tet volume
+/// elements (names the element type found), or a failed validate_mesh.
+TetMesh read_volume_mesh(const std::filesystem::path& file);
+
+/// Tetrahedralizes the volume enclosed by a closed triangle surface, keeping the surface triangles
+/// as the boundary, with gmsh's Mesh.MeshSizeMax = `size`. Throws InputError naming the file.
+TetMesh tetrahedralize_surface(const std::filesystem::path& file, double size);
+
+}  // namespace corofem

@@ -1,0 +1,17 @@
+#pragma once
+// VTK XML unstructured grid (.vtu, ASCII) for ParaView: rest points, point data "displacement"
+// (apply Warp By Vector to see the deformed shape), cell data "rotation_angle" (rad).
+#include <filesystem>
+#include <vector>
+
+#include "fem/element_stiffness.hpp"
+
+namespace corofem {
+
+void write_vtu(const std::filesystem::path& file, const TetMesh& mesh,
+               const Eigen::VectorXd& displacement, const std::vector<Mat3>& rotations);
+
+/// Angle (rad) of a rotation; of -Q for a reflection.
+double rotation_angle(const Mat3& q);
+
+}  // namespace corofem

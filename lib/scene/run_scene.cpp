@@ -1,0 +1,105 @@
+#include "scene/run_scene.hpp"
+
+#include <Eigen/LU>
+#include <chrono>
+#include <ostream>
+
+#include "core/context.hpp"
+#include "fem/implicit_euler.hpp"
+#include "fem/static_solver.hpp"
+#include "report/vtu_writer.hpp"
+#include "rotation/quaternion.hpp"
+#include "scene/scene_problem.hpp"
+
+namespace corofem {
+
+SceneRun run_scene(const Scene& scene, std::ostream* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed_ms = [&] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  };
+  if (progress) *progress << "corofem: building '" << scene.name << "'\n";
+  MeshValidation validation;
+  FeProblem problem = build_problem(scene, &validation);
+  const double setup_ms = elapsed_ms();
+  if (progress)
+    *progress << "corofem: " << problem.mesh.num_tets() << " tets, " << problem.mesh.num_vertices()
+              << " vertices; " << scene.analysis.type << " " << scene.analysis.formulation
+              << " analysis\n";
+  const AnalysisSpec& a = scene.analysis;
+  const bool corotational = a.formulation == "corotational";
+  auto extractor = make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh);
+  auto solver = make_cholmod_solver();
+  SimulationResult result;
+  if (a.type == "static") {
+    result = solve_static(problem, *extractor, *solver,
+                          {corotational, a.load_steps, a.tolerance, a.max_iterations});
+  } else {
+    const int every = std::max(1, a.steps / 10);
+    result = solve_dynamic(problem, *extractor, *solver,
+                           {corotational, a.dt, a.steps, a.rayleigh_alpha, a.rayleigh_beta},
+                           [&](const StepState& s) {
+                             if (progress && (s.step % every == 0 || s.step == a.steps))
+                               *progress << "corofem: step " << s.step << "/" << a.steps << "\n";
+                           });
+  }
+  result.timings_ms["setup"] = setup_ms;
+  result.timings_ms["total"] = elapsed_ms();
+
+  nlohmann::json r;
+  r["producer"] = "corofem run";
+  r["context"] = run_context();
+  r["scene"] = scene.raw;
+  r["scene_file"] = scene.name;
+  r["mesh"] = {{"vertices", problem.mesh.num_vertices()},
+               {"tets", problem.mesh.num_tets()},
+               {"reoriented_tets", validation.reoriented},
+               {"unused_vertices_removed", validation.unused_removed}};
+  r["analysis"] = {{"type", a.type},
+                   {"formulation", a.formulation},
+                   {"rotation", corotational ? a.rotation : "none"},
+                   {"solver", solver->name()}};
+  r["converged"] = result.converged;
+  if (!result.converged) r["message"] = result.message;
+  r["iterations"] = result.iterations;
+  r["steps"] = result.steps;
+  r["linear_iterations"] = result.linear_iterations;
+  r["residual"] = result.residual;
+  r["inverted_max"] = result.inverted_max;
+  r["timings_ms"] = result.timings_ms;
+  r["node_tags"] = problem.mesh.node_tags;
+  nlohmann::json rest = nlohmann::json::array(), disp = nlohmann::json::array();
+  for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
+    const Vec3& x = problem.mesh.rest[v];
+    rest.push_back({x.x(), x.y(), x.z()});
+    disp.push_back({result.displacement[3 * v], result.displacement[3 * v + 1],
+                    result.displacement[3 * v + 2]});
+  }
+  r["rest"] = std::move(rest);
+  r["displacement"] = std::move(disp);
+  if (scene.output.rotations) {
+    // Rotations of the final displacement (not the lagged ones of the last solve).
+    std::vector<Mat3> final_rotations = result.rotations;
+    extractor->extract(problem.positions(result.displacement), final_rotations);
+    nlohmann::json quats = nlohmann::json::array(), reflected = nlohmann::json::array();
+    for (int e = 0; e < problem.mesh.num_tets(); ++e) {
+      const auto q = to_quaternion(final_rotations[e]);
+      quats.push_back({q.w(), q.x(), q.y(), q.z()});
+      if (final_rotations[e].determinant() < 0) reflected.push_back(problem.mesh.element_tags[e]);
+    }
+    r["element_tags"] = problem.mesh.element_tags;
+    r["rotations"] = std::move(quats);
+    r["reflected_elements"] = std::move(reflected);
+  }
+  if (scene.output.vtu) {
+    write_vtu(*scene.output.vtu, problem.mesh, result.displacement, result.rotations);
+    r["vtu"] = scene.output.vtu->string();
+  }
+  if (progress)
+    *progress << "corofem: " << (result.converged ? "converged" : "did not converge") << ", "
+              << result.iterations << " iterations, residual " << result.residual << ", "
+              << result.timings_ms["total"] << " ms\n";
+  return {std::move(r), result.converged};
+}
+
+}  // namespace corofem

@@ -1,0 +1,195 @@
+#include "scene/scene.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "rotation/rotation_extractor.hpp"
+#include "scene/json_fields.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace corofem {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr long long kMaxBoxTets = 20'000'000;  // beyond this a box would not fit in memory
+
+AxisBox read_box(const nlohmann::json& value, const std::string& path, const std::string& file) {
+  if (!value.is_array() || value.size() != 2)
+    throw InputError("scene '" + file + "': " + path + " must be [[x0,y0,z0],[x1,y1,z1]]");
+  AxisBox box{json_vec3(value[0], path + "[0]", file), json_vec3(value[1], path + "[1]", file)};
+  if ((box.lo.array() > box.hi.array()).any())
+    throw InputError("scene '" + file + "': " + path + " has a lower corner above its upper corner");
+  return box;
+}
+
+template <class F>
+void for_each_entry(JsonFields& parent, const std::string& key, F&& read) {
+  const nlohmann::json* list = parent.get(key);
+  if (!list) return;
+  if (!list->is_array())
+    throw InputError("scene '" + parent.file() + "': " + parent.path_of(key) + " must be an array");
+  for (std::size_t i = 0; i < list->size(); ++i)
+    read(JsonFields((*list)[i], parent.path_of(key) + "[" + std::to_string(i) + "]", parent.file()));
+}
+
+std::string one_of(JsonFields& f, const std::string& key, const std::string& fallback,
+                   const std::vector<std::string>& allowed) {
+  std::string value = f.string(key, fallback);
+  for (const auto& a : allowed)
+    if (a == value) return value;
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+  f.fail(key, "one of: " + list + " (got '" + value + "')");
+}
+
+MeshSpec read_mesh(JsonFields f, const fs::path& base) {
+  MeshSpec m;
+  const int sources = f.has("file") + f.has("surface") + f.has("box");
+  if (sources != 1) f.fail("file", "given alone: a mesh is exactly one of file, surface+size, box+cells");
+  if (f.has("file")) {
+    m.kind = MeshSpec::Kind::File;
+    m.path = base / f.string("file");
+  } else if (f.has("surface")) {
+    m.kind = MeshSpec::Kind::Surface;
+    m.path = base / f.string("surface");
+    m.size = f.number("size");
+    if (!(m.size > 0)) f.fail("size", "> 0");
+  } else {
+    m.kind = MeshSpec::Kind::Box;
+    m.box = f.vec3("box");
+    if (!(m.box.minCoeff() > 0)) f.fail("box", "positive extents");
+    const nlohmann::json& cells = f.require("cells");
+    if (!cells.is_array() || cells.size() != 3) f.fail("cells", "an array of 3 integers");
+    long long total = 6;
+    for (int i = 0; i < 3; ++i) {
+      if (!cells[i].is_number_integer() || cells[i].get<long long>() < 1 ||
+          cells[i].get<long long>() > 100000)
+        f.fail("cells", "3 integers in [1, 100000]");
+      m.cells[i] = cells[i].get<int>();
+      total *= m.cells[i];
+    }
+    if (total > kMaxBoxTets) f.fail("cells", "at most " + std::to_string(kMaxBoxTets) + " tets in all");
+  }
+  f.reject_unknown_keys();
+  return m;
+}
+
+void check_material(JsonFields& f, const std::string& key, double value) {
+  if (key == "young" && !(value > 0)) f.fail(key, "> 0");
+  if (key == "poisson" && !(value > -1 && value < 0.5)) f.fail(key, "in (-1, 0.5)");
+  if (key == "density" && !(value > 0)) f.fail(key, "> 0");
+}
+
+void read_material(JsonFields f, Scene& s) {
+  for (const char* key : {"young", "poisson"}) {
+    const double v = f.number(key);
+    check_material(f, key, v);
+    (std::string(key) == "young" ? s.material.young : s.material.poisson) = v;
+  }
+  s.material.density = f.number("density", 0.0);
+  if (f.has("density")) check_material(f, "density", s.material.density);
+  for_each_entry(f, "regions", [&](JsonFields r) {
+    MaterialRegion region;
+    region.box = read_box(r.require("box"), r.path_of("box"), r.file());
+    for (const char* key : {"young", "poisson", "density"}) {
+      if (!r.has(key)) continue;
+      const double v = r.number(key);
+      check_material(r, key, v);
+      (std::string(key) == "young" ? region.young
+                                   : std::string(key) == "poisson" ? region.poisson : region.density) = v;
+    }
+    r.reject_unknown_keys();
+    s.regions.push_back(region);
+  });
+  f.reject_unknown_keys();
+}
+
+void read_analysis(JsonFields f, AnalysisSpec& a) {
+  a.type = one_of(f, "type", a.type, {"static", "dynamic"});
+  a.formulation = one_of(f, "formulation", a.formulation, {"linear", "corotational"});
+  a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
+  a.solver = one_of(f, "solver", a.solver, linear_solver_names());
+  a.levels = f.integer("levels", a.levels);
+  if (a.levels < 1 || a.levels > 16) f.fail("levels", "in [1, 16]");
+  a.vcycles = f.integer("vcycles", a.vcycles);
+  if (a.vcycles < 0 || a.vcycles > 1000) f.fail("vcycles", "in [0, 1000]");
+  a.smoothing = f.integer("smoothing", a.smoothing);
+  if (a.smoothing < 1 || a.smoothing > 100) f.fail("smoothing", "in [1, 100]");
+  a.dt = f.number("dt", a.dt);
+  if (!(a.dt > 0)) f.fail("dt", "> 0");
+  a.steps = f.integer("steps", a.steps);
+  if (a.steps < 1 || a.steps > 10'000'000) f.fail("steps", "in [1, 10000000]");
+  a.load_steps = f.integer("load_steps", a.load_steps);
+  if (a.load_steps < 1 || a.load_steps > 100000) f.fail("load_steps", "in [1, 100000]");
+  a.tolerance = f.number("tolerance", a.tolerance);
+  if (!(a.tolerance > 0 && a.tolerance < 1)) f.fail("tolerance", "in (0, 1)");
+  a.max_iterations = f.integer("max_iterations", a.max_iterations);
+  if (a.max_iterations < 1 || a.max_iterations > 100000) f.fail("max_iterations", "in [1, 100000]");
+  if (const nlohmann::json* damping = f.get("rayleigh")) {
+    JsonFields d(*damping, f.path_of("rayleigh"), f.file());
+    a.rayleigh_alpha = d.number("alpha", 0.0);
+    a.rayleigh_beta = d.number("beta", 0.0);
+    if (a.rayleigh_alpha < 0) d.fail("alpha", ">= 0");
+    if (a.rayleigh_beta < 0) d.fail("beta", ">= 0");
+    d.reject_unknown_keys();
+  }
+  if (a.levels > 1 && a.solver == "cholmod")
+    f.fail("levels", "1 with solver 'cholmod' (levels belong to multigrid solvers)");
+  f.reject_unknown_keys();
+}
+
+}  // namespace
+
+Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const std::string& name) {
+  Scene s;
+  s.name = name;
+  s.raw = json;
+  JsonFields top(json, "", name);
+  s.mesh = read_mesh(top.object("mesh"), base_dir);
+  read_material(top.object("material"), s);
+  for_each_entry(top, "fixed", [&](JsonFields f) {
+    s.fixed.push_back(read_box(f.require("box"), f.path_of("box"), f.file()));
+    f.reject_unknown_keys();
+  });
+  s.gravity = top.vec3("gravity", Vec3::Zero());
+  for_each_entry(top, "forces", [&](JsonFields f) {
+    ForceSpec force;
+    force.box = read_box(f.require("box"), f.path_of("box"), f.file());
+    force.total = f.vec3("total");
+    f.reject_unknown_keys();
+    s.forces.push_back(force);
+  });
+  if (const nlohmann::json* analysis = top.get("analysis"))
+    read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
+  if (const nlohmann::json* output = top.get("output")) {
+    JsonFields o(*output, "output", name);
+    s.output.rotations = o.boolean("rotations", false);
+    if (o.has("vtu")) s.output.vtu = base_dir / o.string("vtu");
+    o.reject_unknown_keys();
+  }
+  top.reject_unknown_keys();
+  const bool needs_mass = s.analysis.type == "dynamic" || s.gravity.norm() > 0;
+  if (needs_mass && !(s.material.density > 0))
+    throw InputError("scene '" + name + "': material.density is required for " +
+                     (s.analysis.type == "dynamic" ? "a dynamic analysis" : "gravity"));
+  return s;
+}
+
+Scene load_scene(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+    throw InputError("scene file '" + file.string() + "' does not exist or is not a file");
+  std::ifstream in(file);
+  if (!in) throw InputError("scene file '" + file.string() + "' cannot be read");
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("scene '" + file.string() + "' is not valid JSON: " + e.what());
+  }
+  return parse_scene(json, file.parent_path(), file.string());
+}
+
+}  // namespace corofem

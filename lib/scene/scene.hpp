@@ -1,0 +1,71 @@
+#pragma once
+// A scene: what to simulate and how (README "Scene format"). Parsing validates every key and
+// range; the harness builds nothing a scene does not ask for.
+#include <array>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fem/material.hpp"
+#include "mesh/vertex_selection.hpp"
+
+namespace corofem {
+
+struct MeshSpec {
+  enum class Kind { File, Surface, Box } kind = Kind::Box;
+  std::filesystem::path path;  ///< File, Surface: resolved against the scene's folder
+  double size = 0;             ///< Surface: gmsh Mesh.MeshSizeMax
+  Vec3 box = Vec3::Ones();     ///< Box: extents
+  std::array<int, 3> cells{1, 1, 1};
+};
+
+struct ForceSpec {
+  AxisBox box;
+  Vec3 total = Vec3::Zero();
+};
+
+struct AnalysisSpec {
+  std::string type = "static";              ///< static | dynamic
+  std::string formulation = "corotational"; ///< linear | corotational
+  std::string rotation = "polar";           ///< an extractor name (rotation_method_names())
+  std::string solver = "cholmod";
+  int levels = 1;
+  int vcycles = 0;          ///< 0: iterate to tolerance
+  int smoothing = 1;
+  double dt = 0.01;
+  int steps = 1;
+  int load_steps = 1;
+  double tolerance = 1e-8;
+  int max_iterations = 100;
+  double rayleigh_alpha = 0, rayleigh_beta = 0;
+};
+
+struct OutputSpec {
+  bool rotations = false;
+  std::optional<std::filesystem::path> vtu;  ///< resolved against the scene's folder
+};
+
+struct Scene {
+  std::string name;  ///< file name, for messages
+  MeshSpec mesh;
+  Material material;
+  std::vector<MaterialRegion> regions;
+  std::vector<AxisBox> fixed;
+  Vec3 gravity = Vec3::Zero();
+  std::vector<ForceSpec> forces;
+  AnalysisSpec analysis;
+  OutputSpec output;
+  nlohmann::json raw;  ///< the scene as given, copied into results
+};
+
+/// Parses and validates; relative paths resolve against `base_dir`. Throws InputError naming
+/// `name` and the key.
+Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& base_dir,
+                  const std::string& name);
+
+/// Reads a scene file (InputError for a missing file or invalid JSON, with line and column).
+Scene load_scene(const std::filesystem::path& file);
+
+}  // namespace corofem

@@ -1,0 +1,75 @@
+#include "scene/scene_problem.hpp"
+
+#include <Eigen/SVD>
+
+#include "core/errors.hpp"
+#include "fem/loads.hpp"
+#include "mesh/box_mesh.hpp"
+
+namespace corofem {
+
+TetMesh load_scene_mesh(const MeshSpec& spec) {
+  switch (spec.kind) {
+    case MeshSpec::Kind::File:
+      return read_volume_mesh(spec.path);
+    case MeshSpec::Kind::Surface:
+      return tetrahedralize_surface(spec.path, spec.size);
+    case MeshSpec::Kind::Box:
+      break;
+  }
+  return make_box_mesh(spec.box, spec.cells);
+}
+
+namespace {
+
+/// Dimension of the affine hull of the points (0 for one point, 1 for collinear, ...).
+int affine_rank(const std::vector<Vec3>& points) {
+  if (points.size() < 2) return 0;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::MatrixXd centered(points.size(), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) centered.row(i) = (points[i] - mean).transpose();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(centered);
+  const auto s = svd.singularValues();
+  int rank = 0;
+  for (int i = 0; i < 3; ++i) rank += s[i] > 1e-9 * s[0];
+  return rank;
+}
+
+}  // namespace
+
+FeProblem build_problem(const Scene& scene, MeshValidation* validation) {
+  TetMesh mesh = load_scene_mesh(scene.mesh);
+  if (validation) *validation = validate_mesh(mesh);  // idempotent; reports what reading changed
+  auto materials = materials_per_element(mesh, scene.material, scene.regions);
+  FeProblem problem = make_fe_problem(std::move(mesh), std::move(materials));
+  const auto& rest = problem.mesh.rest;
+  std::vector<Vec3> fixed_points;
+  for (std::size_t i = 0; i < scene.fixed.size(); ++i) {
+    const auto vertices = vertices_in_box(rest, scene.fixed[i]);
+    if (vertices.empty())
+      throw InputError("scene '" + scene.name + "': fixed[" + std::to_string(i) +
+                       "].box selects no vertex of the mesh");
+    for (int v : vertices) {
+      problem.dirichlet.fix_vertex(v);
+      fixed_points.push_back(rest[v]);
+    }
+  }
+  if (scene.analysis.type == "static" && affine_rank(fixed_points) < 2)
+    throw InputError("scene '" + scene.name + "': fixed leaves rigid motions free (" +
+                     std::to_string(fixed_points.size()) +
+                     " fixed vertices; a static analysis needs at least 3 non-collinear ones)");
+  if (scene.gravity.norm() > 0)
+    problem.external_force += gravity_load(problem.mesh, problem.materials, scene.gravity);
+  for (std::size_t i = 0; i < scene.forces.size(); ++i) {
+    const auto vertices = vertices_in_box(rest, scene.forces[i].box);
+    if (vertices.empty())
+      throw InputError("scene '" + scene.name + "': forces[" + std::to_string(i) +
+                       "].box selects no vertex of the mesh");
+    add_spread_force(problem.external_force, vertices, scene.forces[i].total);
+  }
+  return problem;
+}
+
+}  // namespace corofem

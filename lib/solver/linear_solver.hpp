@@ -1,0 +1,33 @@
+#pragma once
+// The linear solver behind every step: A x = b with A symmetric positive definite in BRC form.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sparse/brc_matrix.hpp"
+
+namespace corofem {
+
+struct SolveStats {
+  int iterations = 0;      ///< V-cycles or CG iterations; 1 for a direct solve
+  double residual = 0;     ///< |b - A x| / |b| reached
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  virtual std::string name() const = 0;
+  /// Takes new values of A (the pattern stays that of the first call).
+  virtual void set_matrix(const BrcMatrix& a) = 0;
+  /// x holds the initial guess on entry (ignored by direct solvers).
+  virtual SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+};
+
+/// Scene names of the available solvers.
+std::vector<std::string> linear_solver_names();
+
+/// CHOLMOD: symbolic analysis at the first matrix, numeric refactorization at every later one.
+std::unique_ptr<LinearSolver> make_cholmod_solver();
+
+}  // namespace corofem

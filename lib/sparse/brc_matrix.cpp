@@ -1,0 +1,55 @@
+#include "sparse/brc_matrix.hpp"
+
+#include <algorithm>
+
+namespace corofem {
+
+int BrcMatrix::find(int i, int j) const {
+  auto first = col_index.begin() + row_start[i];
+  auto last = col_index.begin() + row_start[i + 1];
+  auto it = std::lower_bound(first, last, j);
+  return (it != last && *it == j) ? static_cast<int>(it - col_index.begin()) : -1;
+}
+
+void BrcMatrix::set_zero() { std::fill(values.begin(), values.end(), 0.0); }
+
+void BrcMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y.resize(3 * block_rows);
+  const double* v = values.data();
+  const double* xs = x.data();
+  for (int i = 0; i < block_rows; ++i) {
+    double y0 = 0, y1 = 0, y2 = 0;
+    for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const double* b = v + 9 * k;
+      const double* xj = xs + 3 * col_index[k];
+      y0 += b[0] * xj[0] + b[1] * xj[1] + b[2] * xj[2];
+      y1 += b[3] * xj[0] + b[4] * xj[1] + b[5] * xj[2];
+      y2 += b[6] * xj[0] + b[7] * xj[1] + b[8] * xj[2];
+    }
+    y[3 * i] = y0;
+    y[3 * i + 1] = y1;
+    y[3 * i + 2] = y2;
+  }
+}
+
+Eigen::VectorXd BrcMatrix::operator*(const Eigen::VectorXd& x) const {
+  Eigen::VectorXd y;
+  multiply(x, y);
+  return y;
+}
+
+BrcMatrix make_brc_pattern(int block_cols, const std::vector<std::vector<int>>& columns_per_row) {
+  BrcMatrix m;
+  m.block_rows = static_cast<int>(columns_per_row.size());
+  m.block_cols = block_cols;
+  m.row_start.reserve(m.block_rows + 1);
+  m.row_start.push_back(0);
+  for (const auto& cols : columns_per_row) {
+    m.col_index.insert(m.col_index.end(), cols.begin(), cols.end());
+    m.row_start.push_back(static_cast<int>(m.col_index.size()));
+  }
+  m.values.assign(9 * m.col_index.size(), 0.0);
+  return m;
+}
+
+}  // namespace corofem

@@ -1,0 +1,42 @@
+#include "cholmod_solver.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <stdexcept>
+
+namespace corofem::reference {
+
+struct CholmodSolver::Impl {
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  bool analyzed = false;
+};
+
+CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
+CholmodSolver::~CholmodSolver() = default;
+CholmodSolver::CholmodSolver(CholmodSolver&&) noexcept = default;
+CholmodSolver& CholmodSolver::operator=(CholmodSolver&&) noexcept = default;
+
+void CholmodSolver::analyze(const Eigen::SparseMatrix<double>& a) {
+  impl_->llt.analyzePattern(a);
+  impl_->analyzed = true;
+}
+
+void CholmodSolver::factorize(const Eigen::SparseMatrix<double>& a) {
+  if (!impl_->analyzed) analyze(a);
+  impl_->llt.factorize(a);
+  if (impl_->llt.info() != Eigen::Success)
+    throw std::runtime_error("CHOLMOD: matrix is not positive definite (factorization failed)");
+}
+
+Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const {
+  Eigen::VectorXd x = impl_->llt.solve(b);
+  if (impl_->llt.info() != Eigen::Success) throw std::runtime_error("CHOLMOD: solve failed");
+  return x;
+}
+
+Eigen::VectorXd cholmod_solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b) {
+  CholmodSolver solver;
+  solver.factorize(a);
+  return solver.solve(b);
+}
+
+}  // namespace corofem::reference

@@ -1,0 +1,31 @@
+#pragma once
+// Direct sparse Cholesky by CHOLMOD (through Eigen's CholmodSupport): the oracle every iterative
+// solve is checked against, and the coarsest-level solver of multigrid.
+#include <Eigen/SparseCore>
+#include <memory>
+
+namespace corofem::reference {
+
+class CholmodSolver {
+ public:
+  CholmodSolver();
+  ~CholmodSolver();
+  CholmodSolver(CholmodSolver&&) noexcept;
+  CholmodSolver& operator=(CholmodSolver&&) noexcept;
+
+  /// Symbolic analysis (fill-reducing ordering); needed once per pattern.
+  void analyze(const Eigen::SparseMatrix<double>& a);
+  /// Numeric factorization of a symmetric positive definite A with the analyzed pattern; only the
+  /// lower triangle is read. Throws std::runtime_error if A is not positive definite.
+  void factorize(const Eigen::SparseMatrix<double>& a);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// One-shot solve of A x = b (A symmetric positive definite).
+Eigen::VectorXd cholmod_solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b);
+
+}  // namespace corofem::reference

@@ -1,0 +1,133 @@
+// Corotated assembly and internal forces: rigid invariance, rotation equivariance, and the BRC
+// assembly against an Eigen matrix built from triplets.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <random>
+
+#include "fem/corotated_assembly.hpp"
+#include "fem/fe_problem.hpp"
+#include "mesh/box_mesh.hpp"
+#include "rotation/polar_decomposition.hpp"
+#include "sparse/brc_to_eigen.hpp"
+
+namespace corofem {
+namespace {
+
+Mat3 random_rotation(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+  return q.normalized().toRotationMatrix();
+}
+
+FeProblem small_box() {
+  TetMesh mesh = make_box_mesh({1.0, 0.5, 0.3}, {4, 3, 2});
+  std::vector<Material> m(mesh.tets.size(), Material{1e5, 0.35, 1000});
+  return make_fe_problem(std::move(mesh), std::move(m));
+}
+
+std::vector<Mat3> polar_rotations(const FeProblem& p, const std::vector<Vec3>& positions) {
+  PolarExtractor polar(p.mesh);
+  std::vector<Mat3> r(p.mesh.tets.size(), Mat3::Identity());
+  polar.extract(positions, r);
+  return r;
+}
+
+Eigen::VectorXd displacement(const FeProblem& p, const std::vector<Vec3>& positions) {
+  Eigen::VectorXd u(p.num_dofs());
+  for (int v = 0; v < p.mesh.num_vertices(); ++v) u.segment<3>(3 * v) = positions[v] - p.mesh.rest[v];
+  return u;
+}
+
+TEST(CorotatedAssembly, RigidMotionGivesZeroForce) {
+  FeProblem p = small_box();
+  std::mt19937 rng(7);
+  double scale = 0;  // force scale: |K_e| times the mesh size
+  for (const auto& e : p.elements) scale = std::max(scale, e.stiffness.norm());
+  for (int trial = 0; trial < 5; ++trial) {
+    const Mat3 r = random_rotation(rng);
+    const Vec3 t(3, -2, 5);
+    std::vector<Vec3> moved(p.mesh.rest.size());
+    for (std::size_t v = 0; v < moved.size(); ++v) moved[v] = r * p.mesh.rest[v] + t;
+    const auto rotations = polar_rotations(p, moved);
+    const Eigen::VectorXd f = internal_forces(p.elements, p.mesh, rotations, displacement(p, moved));
+    // Forces are K (Q^T p - x) with Q^T p - x = O(eps * |x|): relative 1e-12 of |K| |x|.
+    EXPECT_LT(f.lpNorm<Eigen::Infinity>(), 1e-12 * scale * 6.0) << "trial " << trial;
+    // Assembled form Ktilde p - f0 agrees.
+    Eigen::VectorXd f0;
+    assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
+    Eigen::VectorXd pos(3 * moved.size());
+    for (std::size_t v = 0; v < moved.size(); ++v) pos.segment<3>(3 * v) = moved[v];
+    EXPECT_LT((p.stiffness * pos - f0).lpNorm<Eigen::Infinity>(), 1e-12 * scale * 6.0);
+  }
+}
+
+TEST(CorotatedAssembly, ForcesAreRotationEquivariant) {
+  FeProblem p = small_box();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  std::vector<Vec3> deformed(p.mesh.rest.size());
+  for (std::size_t v = 0; v < deformed.size(); ++v)
+    deformed[v] = p.mesh.rest[v] + Vec3(u(rng), u(rng), u(rng)) +
+                  0.3 * Vec3(p.mesh.rest[v].y(), -p.mesh.rest[v].x(), 0.1);
+  const Eigen::VectorXd f =
+      internal_forces(p.elements, p.mesh, polar_rotations(p, deformed), displacement(p, deformed));
+  const Mat3 r = random_rotation(rng);
+  std::vector<Vec3> rotated(deformed.size());
+  for (std::size_t v = 0; v < deformed.size(); ++v) rotated[v] = r * deformed[v] + Vec3(1, 2, 3);
+  const Eigen::VectorXd g =
+      internal_forces(p.elements, p.mesh, polar_rotations(p, rotated), displacement(p, rotated));
+  double worst = 0;
+  for (int v = 0; v < p.mesh.num_vertices(); ++v)
+    worst = std::max(worst, (g.segment<3>(3 * v) - r * f.segment<3>(3 * v)).norm());
+  EXPECT_LT(worst, 1e-12 * f.lpNorm<Eigen::Infinity>());
+}
+
+TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmv) {
+  FeProblem p = small_box();
+  std::mt19937 rng(3);
+  std::vector<Mat3> rotations(p.mesh.tets.size());
+  for (auto& q : rotations) q = random_rotation(rng);
+  Eigen::VectorXd f0;
+  assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
+  // Oracle: dense 12x12 Q K Q^T per element scattered as triplets.
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd f0_ref = Eigen::VectorXd::Zero(p.num_dofs());
+  for (int e = 0; e < p.mesh.num_tets(); ++e) {
+    Mat12 q = Mat12::Zero();
+    for (int a = 0; a < 4; ++a) q.block<3, 3>(3 * a, 3 * a) = rotations[e];
+    const Mat12 kt = q * p.elements[e].stiffness * q.transpose();
+    Vec12 x;
+    for (int a = 0; a < 4; ++a) x.segment<3>(3 * a) = p.mesh.rest[p.mesh.tets[e][a]];
+    const Vec12 f0e = q * (p.elements[e].stiffness * x);
+    for (int a = 0; a < 4; ++a) {
+      f0_ref.segment<3>(3 * p.mesh.tets[e][a]) += f0e.segment<3>(3 * a);
+      for (int b = 0; b < 4; ++b)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            triplets.emplace_back(3 * p.mesh.tets[e][a] + r, 3 * p.mesh.tets[e][b] + c,
+                                  kt(3 * a + r, 3 * b + c));
+    }
+  }
+  Eigen::SparseMatrix<double> ref(p.num_dofs(), p.num_dofs());
+  ref.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
+  // Same sums in a different order: round-off of a few ulps of |K|.
+  EXPECT_LT((ours - ref).norm(), 1e-14 * ref.norm());
+  EXPECT_LT((f0 - f0_ref).norm(), 1e-14 * f0_ref.norm());
+  Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
+  const Eigen::VectorXd y_ref = ref * x;
+  EXPECT_LT((p.stiffness * x - y_ref).norm(), 1e-14 * ref.norm() * x.norm());
+}
+
+TEST(BrcMatrix, FindReturnsMinusOneOutsidePattern) {
+  FeProblem p = small_box();
+  EXPECT_GE(p.stiffness.find(0, 0), 0);
+  EXPECT_EQ(p.stiffness.find(0, p.mesh.num_vertices() - 1), -1);
+  for (int e = 0; e < p.mesh.num_tets(); ++e)
+    for (int a = 0; a < 16; ++a) ASSERT_GE(p.assembly.block[e][a], 0);
+}
+
+}  // namespace
+}  // namespace corofem

@@ -1,0 +1,193 @@
+// gmsh reading: .msh v2 and v4 with tags kept, reorientation of inverted tets, removal of unused
+// nodes, clear errors for every bad file, and STL tetrahedralization (cube, and the models).
+#include <gtest/gtest.h>
+
+#include "core/errors.hpp"
+#include "mesh/gmsh_mesh.hpp"
+#include "test_support.hpp"
+
+namespace corofem {
+namespace {
+
+using test::TempDir;
+using test::write_text;
+
+// Tet 100 is given inverted (10 12 11 13); node 99 is used by no tet; element 7 is a triangle.
+const char* kMshV2 = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+6
+10 0 0 0
+11 1 0 0
+12 0 1 0
+13 0 0 1
+14 1 1 1
+99 5 5 5
+$EndNodes
+$Elements
+3
+100 4 2 0 1 10 12 11 13
+101 4 2 0 1 11 12 13 14
+7 2 2 0 1 10 11 12
+$EndElements
+)";
+
+const char* kMshV4 = R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Entities
+0 0 0 1
+1 0 0 0 1 1 1 0 0
+$EndEntities
+$Nodes
+1 5 10 14
+3 1 0 5
+10
+11
+12
+13
+14
+0 0 0
+1 0 0
+0 1 0
+0 0 1
+1 1 1
+$EndNodes
+$Elements
+1 2 100 101
+3 1 4 2
+100 10 11 12 13
+101 11 12 13 14
+$EndElements
+)";
+
+double total_volume(const TetMesh& m) {
+  double v = 0;
+  for (const Tet& t : m.tets) {
+    const double s = signed_volume(m.rest[t[0]], m.rest[t[1]], m.rest[t[2]], m.rest[t[3]]);
+    EXPECT_GT(s, 0);
+    v += s;
+  }
+  return v;
+}
+
+TEST(GmshMesh, ReadsV2KeepsTagsReorientsAndDropsUnusedNodes) {
+  TempDir dir;
+  write_text(dir / "two.msh", kMshV2);
+  const TetMesh m = read_volume_mesh(dir / "two.msh");
+  EXPECT_EQ(m.num_tets(), 2);
+  EXPECT_EQ(m.num_vertices(), 5);
+  EXPECT_EQ(m.element_tags, (std::vector<std::size_t>{100, 101}));
+  EXPECT_EQ(m.node_tags, (std::vector<std::size_t>{10, 11, 12, 13, 14}));
+  EXPECT_NEAR(total_volume(m), 1.0 / 6 + 1.0 / 3, 1e-15);
+}
+
+TEST(GmshMesh, ReadsV4) {
+  TempDir dir;
+  write_text(dir / "two.msh", kMshV4);
+  const TetMesh m = read_volume_mesh(dir / "two.msh");
+  EXPECT_EQ(m.num_tets(), 2);
+  EXPECT_EQ(m.element_tags, (std::vector<std::size_t>{100, 101}));
+  EXPECT_EQ(m.node_tags, (std::vector<std::size_t>{10, 11, 12, 13, 14}));
+  EXPECT_NEAR(total_volume(m), 1.0 / 6 + 1.0 / 3, 1e-15);
+}
+
+void expect_input_error(const std::filesystem::path& file, const std::string& fragment) {
+  try {
+    read_volume_mesh(file);
+    ADD_FAILURE() << "no error for " << file;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(file.string()), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
+}
+
+TEST(GmshMesh, BadFilesGiveErrorsNamingFileAndFault) {
+  TempDir dir;
+  expect_input_error(dir / "missing.msh", "does not exist");
+  write_text(dir / "empty.msh", "");
+  expect_input_error(dir / "empty.msh", "empty");
+  std::string tet10 = kMshV2;
+  tet10.replace(tet10.find("$Elements"), std::string::npos,
+                "$Elements\n1\n5 11 2 0 1 10 11 12 13 10 11 12 13 14 99\n$EndElements\n");
+  write_text(dir / "tet10.msh", tet10);
+  expect_input_error(dir / "tet10.msh", "not linear tets");
+  std::string surface_only = kMshV2;
+  surface_only.replace(surface_only.find("$Elements"), std::string::npos,
+                       "$Elements\n1\n7 2 2 0 1 10 11 12\n$EndElements\n");
+  write_text(dir / "surface.msh", surface_only);
+  expect_input_error(dir / "surface.msh", "no tetrahedra");
+  std::string flat = kMshV2;
+  flat.replace(flat.find("13 0 0 1"), 8, "13 1 1 0");
+  write_text(dir / "flat.msh", flat);
+  expect_input_error(dir / "flat.msh", "element 100");
+  std::string nan = kMshV2;
+  nan.replace(nan.find("14 1 1 1"), 8, "14 nan 1 1");
+  write_text(dir / "nan.msh", nan);
+  try {
+    read_volume_mesh(dir / "nan.msh");
+    ADD_FAILURE() << "no error for NaN coordinate";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nan.msh"), std::string::npos) << e.what();
+  }
+  std::string truncated = kMshV4;
+  write_text(dir / "truncated.msh", truncated.substr(0, truncated.size() / 2));
+  EXPECT_THROW(read_volume_mesh(dir / "truncated.msh"), InputError);
+}
+
+// Unit cube, each face split into n x n squares of 2 outward triangles (gmsh keeps the surface
+// triangles, so they set the interior size too).
+std::string cube_stl(int n) {
+  std::string s = "solid cube\n";
+  auto point = [](const Vec3& p) {
+    return "vertex " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+           std::to_string(p.z()) + "\n";
+  };
+  auto tri = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    s += "facet normal 0 0 0\nouter loop\n" + point(a) + point(b) + point(c) + "endloop\nendfacet\n";
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const Vec3 normal = (side ? 1.0 : -1.0) * Vec3::Unit(axis);
+      const Vec3 eu = Vec3::Unit((axis + 1) % 3), ev = Vec3::Unit((axis + 2) % 3);
+      const bool flip = eu.cross(ev).dot(normal) < 0;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const Vec3 o = side * Vec3::Unit(axis) + (double(i) / n) * eu + (double(j) / n) * ev;
+          const Vec3 a = o, b = o + eu / n, c = o + (eu + ev) / n, d = o + ev / n;
+          if (flip) {
+            tri(a, c, b);
+            tri(a, d, c);
+          } else {
+            tri(a, b, c);
+            tri(a, c, d);
+          }
+        }
+    }
+  return s + "endsolid cube\n";
+}
+
+TEST(GmshMesh, TetrahedralizesClosedSurface) {
+  TempDir dir;
+  write_text(dir / "cube.stl", cube_stl(4));
+  const TetMesh m = tetrahedralize_surface(dir / "cube.stl", 0.25);
+  EXPECT_GT(m.num_tets(), 100);
+  // The surface triangles are kept, so the volume is the cube's to round-off.
+  EXPECT_NEAR(total_volume(m), 1.0, 1e-12);
+}
+
+TEST(GmshMesh, TetrahedralizesModelSurfaceWhenAvailable) {
+  const auto models = test::models_dir();
+  if (models.empty() || !std::filesystem::exists(models / "bunny_L2.stl"))
+    GTEST_SKIP() << "models folder not available (set COROFEM_MODELS)";
+  const TetMesh m = tetrahedralize_surface(models / "bunny_L2.stl", 0.18579);
+  // The models README: ~170 tets, ~76 vertices at this size (counts vary by gmsh run).
+  EXPECT_GT(m.num_tets(), 100);
+  EXPECT_LT(m.num_tets(), 300);
+  EXPECT_GT(total_volume(m), 0);
+}
+
+}  // namespace
+}  // namespace corofem

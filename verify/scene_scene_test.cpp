@@ -1,0 +1,87 @@
+// Scene parsing: defaults, path resolution, and an error naming the key for every kind of bad
+// value.
+#include <gtest/gtest.h>
+
+#include "core/errors.hpp"
+#include "scene/scene.hpp"
+
+namespace corofem {
+namespace {
+
+nlohmann::json minimal() {
+  return nlohmann::json::parse(R"({
+    "mesh": {"box": [1, 0.1, 0.1], "cells": [4, 1, 1]},
+    "material": {"young": 1e6, "poisson": 0.3},
+    "fixed": [{"box": [[0, 0, 0], [0, 0.1, 0.1]]}]
+  })");
+}
+
+TEST(Scene, MinimalSceneGetsDefaults) {
+  const Scene s = parse_scene(minimal(), "/base", "s.json");
+  EXPECT_EQ(s.mesh.kind, MeshSpec::Kind::Box);
+  EXPECT_EQ(s.analysis.type, "static");
+  EXPECT_EQ(s.analysis.formulation, "corotational");
+  EXPECT_EQ(s.analysis.rotation, "polar");
+  EXPECT_EQ(s.fixed.size(), 1u);
+}
+
+TEST(Scene, RelativePathsResolveAgainstSceneFolder) {
+  auto j = minimal();
+  j["mesh"] = {{"file", "meshes/a.msh"}};
+  j["output"] = {{"vtu", "out/r.vtu"}};
+  const Scene s = parse_scene(j, "/base/dir", "s.json");
+  EXPECT_EQ(s.mesh.path, std::filesystem::path("/base/dir/meshes/a.msh"));
+  EXPECT_EQ(*s.output.vtu, std::filesystem::path("/base/dir/out/r.vtu"));
+}
+
+struct BadCase {
+  const char* name;
+  const char* patch;    // JSON merge patch applied to the minimal scene
+  const char* fragment; // must appear in the message
+};
+
+class BadScenes : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadScenes, ErrorNamesTheKey) {
+  auto j = minimal();
+  j.merge_patch(nlohmann::json::parse(GetParam().patch));
+  try {
+    parse_scene(j, "/", "bad.json");
+    ADD_FAILURE() << "accepted " << GetParam().patch;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.json"), std::string::npos) << what;
+    EXPECT_NE(what.find(GetParam().fragment), std::string::npos) << what;
+  }
+}
+
+const BadCase kBadCases[] = {
+    {"UnknownTopKey", R"({"meshh": 1})", "meshh is not a known key"},
+    {"UnknownNestedKey", R"({"analysis": {"dtt": 1}})", "analysis.dtt is not a known key"},
+    {"YoungNotPositive", R"({"material": {"young": 0}})", "material.young must be > 0"},
+    {"PoissonTooHigh", R"({"material": {"poisson": 0.5}})", "material.poisson must be in (-1, 0.5)"},
+    {"PoissonWrongType", R"({"material": {"poisson": "0.3"}})", "material.poisson must be a number"},
+    {"DensityNegative", R"({"material": {"density": -1}})", "material.density must be > 0"},
+    {"DtZero", R"({"analysis": {"dt": 0}})", "analysis.dt must be > 0"},
+    {"StepsNotInteger", R"({"analysis": {"steps": 1.5}})", "analysis.steps must be an integer"},
+    {"UnknownType", R"({"analysis": {"type": "modal"}})", "analysis.type must be one of"},
+    {"UnknownRotation", R"({"analysis": {"rotation": "magic"}})", "analysis.rotation must be one of"},
+    {"UnknownSolver", R"({"analysis": {"solver": "magic"}})", "analysis.solver must be one of"},
+    {"BoxInverted", R"({"fixed": [{"box": [[1, 0, 0], [0, 1, 1]]}]})", "fixed[0].box has a lower corner"},
+    {"ForceWithoutTotal", R"({"forces": [{"box": [[0, 0, 0], [1, 1, 1]]}]})", "forces[0].total is required"},
+    {"GravityShort", R"({"gravity": [0, -9.81]})", "gravity must be an array of 3 numbers"},
+    {"CellsZero", R"({"mesh": {"cells": [0, 1, 1]}})", "mesh.cells must be 3 integers"},
+    {"CellsHuge", R"({"mesh": {"cells": [100000, 100000, 100000]}})", "mesh.cells must be at most"},
+    {"TwoMeshSources", R"({"mesh": {"file": "a.msh"}})", "mesh.file must be given alone"},
+    {"SurfaceWithoutSize", R"({"mesh": {"box": null, "cells": null, "surface": "a.stl"}})", "mesh.size is required"},
+    {"GravityNeedsDensity", R"({"gravity": [0, 0, -9.81]})", "material.density is required"},
+    {"DynamicNeedsDensity", R"({"analysis": {"type": "dynamic"}})", "material.density is required"},
+    {"OutputRotationsType", R"({"output": {"rotations": 1}})", "output.rotations must be true or false"},
+    {"LevelsWithCholmod", R"({"analysis": {"levels": 3}})", "analysis.levels must be 1 with solver"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Cases, BadScenes, ::testing::ValuesIn(kBadCases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace corofem

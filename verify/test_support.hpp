@@ -1,0 +1,42 @@
+#pragma once
+// Helpers shared by the gates: temporary folders, running the CLI, small meshes, tolerances.
+#include <filesystem>
+#include <string>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace corofem::test {
+
+/// A fresh empty folder under the system temp dir, removed at destruction.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct CliResult {
+  int exit_code;
+  std::string out, err;
+};
+
+/// Runs the corofem binary with `args` (a shell-quoted string).
+CliResult run_cli(const std::string& args);
+
+void write_text(const std::filesystem::path& file, const std::string& text);
+std::string read_text(const std::filesystem::path& file);
+
+/// The models folder (COROFEM_MODELS, else ../shared/models beside the source tree), or empty.
+std::filesystem::path models_dir();
+
+/// True when COROFEM_FULL=1: the full sweep instead of the fast default.
+bool full_sweep();
+
+/// Source tree root (for scene files in bench/scenes).
+std::filesystem::path source_dir();
+
+}  // namespace corofem::test
