@@ -1,1 +1,36 @@
-int main(){}
+// corofem_bench: Google Benchmark driver. Adds the build's provenance to the JSON context so
+// every record says what produced it; `--models DIR` names the bunny/horse/dragon folder.
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "core/build_info.hpp"
+#include "core/context.hpp"
+
+int main(int argc, char** argv) {
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--models") == 0 && i + 1 < argc) {
+      corofem::bench::set_models_dir(argv[++i]);
+    } else if (std::strncmp(argv[i], "--models=", 9) == 0) {
+      corofem::bench::set_models_dir(argv[i] + 9);
+    } else {
+      args.push_back(argv[i]);
+    }
+  }
+  int count = static_cast<int>(args.size());
+  benchmark::Initialize(&count, args.data());
+  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 2;
+  const auto context = corofem::run_context();
+  for (const char* key : {"commit", "compiler", "flags", "build_type", "cpu"})
+    benchmark::AddCustomContext(std::string("corofem_") + key, context[key].get<std::string>());
+  benchmark::AddCustomContext("corofem_models", corofem::bench::models_dir().empty()
+                                                    ? "procedural"
+                                                    : corofem::bench::models_dir().string());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -59,6 +59,8 @@ struct BadRun {
   const char* fragment;   // in stderr
 };
 
+void PrintTo(const BadRun& c, std::ostream* os) { *os << c.name; }
+
 class CliBadInput : public ::testing::TestWithParam<BadRun> {};
 
 TEST_P(CliBadInput, ExitsTwoNamesTheFaultAndWritesNothing) {

@@ -40,6 +40,8 @@ struct BadCase {
   const char* fragment; // must appear in the message
 };
 
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
 class BadScenes : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadScenes, ErrorNamesTheKey) {

@@ -1,0 +1,61 @@
+#include "bench_support.hpp"
+
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "mesh/box_mesh.hpp"
+#include "mesh/gmsh_mesh.hpp"
+
+namespace corofem::bench {
+namespace {
+std::filesystem::path g_models;
+
+struct PaperModel {
+  const char* surface;
+  double size;                // gmsh MeshSizeMax of the models README
+  std::array<int, 3> cells;   // procedural stand-in: 6 * nx * ny * nz tets
+};
+
+const std::map<std::string, PaperModel> kModels = {
+    {"bunny", {"bunny_L0.stl", 0.045098, {19, 10, 10}}},   // 11400 tets (paper 11241)
+    {"horse", {"horse_L0.stl", 0.018747, {26, 15, 14}}},   // 32760 tets (paper 33689)
+    {"dragon", {"dragon_L0.stl", 0.0163, {28, 20, 20}}},   // 67200 tets (paper 67309)
+};
+}  // namespace
+
+void set_models_dir(const std::filesystem::path& dir) { g_models = dir; }
+const std::filesystem::path& models_dir() { return g_models; }
+
+FeProblem& paper_problem(const std::string& model) {
+  static std::map<std::string, std::unique_ptr<FeProblem>> cache;
+  auto& slot = cache[model];
+  if (slot) return *slot;
+  const PaperModel& spec = kModels.at(model);
+  TetMesh mesh;
+  if (!g_models.empty()) {
+    std::cerr << "corofem_bench: tetrahedralizing " << spec.surface << "\n";
+    mesh = tetrahedralize_surface(g_models / spec.surface, spec.size);
+  } else {
+    const auto& c = spec.cells;
+    mesh = make_box_mesh(Vec3(c[0], c[1], c[2]) * 0.05, c);
+  }
+  std::vector<Material> materials(mesh.tets.size(), Material{1e5, 0.3, 1000});
+  slot = std::make_unique<FeProblem>(make_fe_problem(std::move(mesh), std::move(materials)));
+  return *slot;
+}
+
+Eigen::VectorXd bent_displacement(const FeProblem& problem) {
+  const auto box = bounding_box(problem.mesh.rest);
+  const Vec3 extent = box[1] - box[0];
+  Eigen::VectorXd u(problem.num_dofs());
+  for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
+    const Vec3 x = problem.mesh.rest[v] - box[0];
+    const double s = x.x() / extent.x();                        // 0..1 along the long axis
+    const Eigen::AngleAxisd bend(0.8 * s, Vec3::UnitY()), twist(1.2 * s, Vec3::UnitX());
+    u.segment<3>(3 * v) = (twist * bend * x) * (1 + 0.1 * s) - x;
+  }
+  return u;
+}
+
+}  // namespace corofem::bench

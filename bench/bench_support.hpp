@@ -1,0 +1,22 @@
+#pragma once
+// Shared fixtures of the benchmarks: the paper-sized meshes, built once per process.
+#include <filesystem>
+#include <string>
+
+#include "fem/fe_problem.hpp"
+
+namespace corofem::bench {
+
+void set_models_dir(const std::filesystem::path& dir);
+const std::filesystem::path& models_dir();
+
+/// Paper-sized problems by name: "bunny" (~11k tets), "horse" (~34k), "dragon" (~67k). With a
+/// models folder the surfaces are tetrahedralized at the sizes of the models' README; without,
+/// boxes of about the same tet counts. Cached: built once per process.
+FeProblem& paper_problem(const std::string& model);
+
+/// A deformed state of the problem: a bend and twist large enough to rotate elements by tens
+/// of degrees (a "real frame" stand-in until the simulated frames of the rotation issue).
+Eigen::VectorXd bent_displacement(const FeProblem& problem);
+
+}  // namespace corofem::bench
