@@ -1,15 +1,22 @@
 #include "rotation/polar_decomposition.hpp"
 
+#include "rotation/svd_rotation.hpp"
+
 #include <Eigen/LU>
 #include <cmath>
 
 namespace corofem {
 
-Mat3 polar_rotation(const Mat3& f, const Mat3& fallback) {
+Mat3 polar_rotation(const Mat3& f, const Mat3& fallback, int* iterations) {
   Mat3 x = f;
+  if (iterations) *iterations = 0;
   for (int it = 0; it < 30; ++it) {
     const double det = x.determinant();
-    if (!std::isfinite(det) || std::abs(det) <= 1e-14 * std::pow(x.norm(), 3)) return fallback;
+    if (!std::isfinite(det) || std::abs(det) <= 1e-14 * std::pow(x.norm(), 3)) {
+      if (iterations) *iterations = -1;
+      return fallback;
+    }
+    if (iterations) *iterations = it + 1;
     const Mat3 inv_t = x.inverse().transpose();
     // Frobenius-norm scaling gamma = sqrt(|X^-1| / |X|) (Higham 1986) speeds up the first steps.
     const double gamma = std::sqrt(inv_t.norm() / x.norm());
@@ -21,20 +28,24 @@ Mat3 polar_rotation(const Mat3& f, const Mat3& fallback) {
   return x;
 }
 
-PolarExtractor::PolarExtractor(const TetMesh& mesh) : mesh_(mesh) {
-  rest_edge_inverse_.reserve(mesh.tets.size());
-  for (const Tet& t : mesh.tets)
-    rest_edge_inverse_.push_back(
-        rest_edge_inverse(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]));
-}
+PolarExtractor::PolarExtractor(const TetMesh& mesh)
+    : mesh_(mesh), rest_edge_inverse_(rest_edge_inverses(mesh)) {}
 
 void PolarExtractor::extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) {
-  for (int e = 0; e < mesh_.num_tets(); ++e)
+  stats_.iterations.resize(mesh_.tets.size());
+  stats_.fallbacks = 0;
+  for (int e = 0; e < mesh_.num_tets(); ++e) {
+    int iterations = 0;
     rotations[e] = polar_rotation(
-        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e]);
+        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e],
+        &iterations);
+    stats_.iterations[e] = static_cast<std::uint8_t>(iterations);
+    stats_.fallbacks += iterations < 0;
+  }
 }
 
 void IdentityExtractor::extract(const std::vector<Vec3>&, std::vector<Mat3>& rotations) {
+  stats_.iterations.assign(rotations.size(), 0);
   for (Mat3& q : rotations) q.setIdentity();
 }
 

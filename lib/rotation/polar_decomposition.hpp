@@ -7,9 +7,10 @@
 
 namespace corofem {
 
-/// Orthogonal factor of F; `fallback` is returned when F is singular (no polar factor exists).
-/// Converges quadratically; stops at |X_{k+1} - X_k|_F <= 1e-15 |X_k|_F or 30 iterations.
-Mat3 polar_rotation(const Mat3& f, const Mat3& fallback);
+/// Orthogonal factor of F; `fallback` is returned when F is singular (no polar factor exists;
+/// *iterations = -1 then). Converges quadratically; stops at |X_{k+1} - X_k|_F <= 1e-15 |X_k|_F
+/// or 30 iterations.
+Mat3 polar_rotation(const Mat3& f, const Mat3& fallback, int* iterations = nullptr);
 
 class PolarExtractor : public RotationExtractor {
  public:

@@ -1,12 +1,30 @@
 #pragma once
-// Per-element rotation extraction: one interface, many methods (PAPER_NOTES section 2).
+// Per-element rotation extraction: one interface, every method (PAPER_NOTES section 2).
+#include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "fem/element_rest.hpp"
 
 namespace corofem {
+
+/// Tunables of the iterative extractors; written into every record that uses them.
+struct RotationParams {
+  double newton_tolerance = 1e-9;  ///< energy-newton: |grad_q E| / (4 a) + |q.q - 1| (a ~ element size^2 V)
+  int newton_max_iterations = 20;
+  int mueller_iterations = 10;     ///< mueller2016: iteration cap (early exit at |omega| < 1e-14)
+  int smoothing_passes = 1;        ///< polar-smoothed: passes of 1-ring averaging
+
+  nlohmann::json to_json() const;
+};
+
+/// What the last extract() did, per element.
+struct ExtractionStats {
+  std::vector<std::uint8_t> iterations;  ///< iterations per element (0 for closed-form methods)
+  int fallbacks = 0;  ///< elements handed to a fallback (singular Newton Hessian, singular F)
+};
 
 class RotationExtractor {
  public:
@@ -15,14 +33,19 @@ class RotationExtractor {
   /// Rotations Qhat_e taking each rest element to its deformed shape at `positions`.
   /// On entry `rotations` holds the previous step's values (warm start; identity at first).
   virtual void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) = 0;
+  const ExtractionStats& stats() const { return stats_; }
+
+ protected:
+  ExtractionStats stats_;
 };
 
 /// Scene names of the available extractors.
 std::vector<std::string> rotation_method_names();
 
-/// Builds the named extractor for `mesh` (rest data precomputed once). Throws InputError naming
-/// `analysis.rotation` for an unknown name.
+/// Builds the named extractor for `mesh` (rest data precomputed once; the mesh must outlive it).
+/// Throws InputError naming `analysis.rotation` for an unknown name.
 std::unique_ptr<RotationExtractor> make_rotation_extractor(const std::string& name,
-                                                           const TetMesh& mesh);
+                                                           const TetMesh& mesh,
+                                                           const RotationParams& params = {});
 
 }  // namespace corofem

@@ -1,6 +1,7 @@
 #include "scene/run_scene.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <chrono>
 #include <ostream>
 
@@ -28,7 +29,8 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
               << " analysis\n";
   const AnalysisSpec& a = scene.analysis;
   const bool corotational = a.formulation == "corotational";
-  auto extractor = make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh);
+  auto extractor =
+      make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
   auto solver = make_cholmod_solver();
   SimulationResult result;
   if (a.type == "static") {
@@ -58,6 +60,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   r["analysis"] = {{"type", a.type},
                    {"formulation", a.formulation},
                    {"rotation", corotational ? a.rotation : "none"},
+                   {"rotation_params", a.rotation_params.to_json()},
                    {"solver", solver->name()}};
   r["converged"] = result.converged;
   if (!result.converged) r["message"] = result.message;
@@ -67,6 +70,12 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   r["residual"] = result.residual;
   r["inverted_max"] = result.inverted_max;
   r["timings_ms"] = result.timings_ms;
+  r["rotation_stats"] = {{"last_fallbacks", extractor->stats().fallbacks},
+                         {"last_iterations_max",
+                          extractor->stats().iterations.empty()
+                              ? 0
+                              : *std::max_element(extractor->stats().iterations.begin(),
+                                                  extractor->stats().iterations.end())}};
   r["node_tags"] = problem.mesh.node_tags;
   nlohmann::json rest = nlohmann::json::array(), disp = nlohmann::json::array();
   for (int v = 0; v < problem.mesh.num_vertices(); ++v) {

@@ -135,6 +135,19 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     if (a.rayleigh_beta < 0) d.fail("beta", ">= 0");
     d.reject_unknown_keys();
   }
+  if (const nlohmann::json* params = f.get("rotation_params")) {
+    JsonFields r(*params, f.path_of("rotation_params"), f.file());
+    RotationParams& p = a.rotation_params;
+    p.newton_tolerance = r.number("newton_tolerance", p.newton_tolerance);
+    if (!(p.newton_tolerance > 0 && p.newton_tolerance < 1)) r.fail("newton_tolerance", "in (0, 1)");
+    p.newton_max_iterations = r.integer("newton_max_iterations", p.newton_max_iterations);
+    if (p.newton_max_iterations < 1 || p.newton_max_iterations > 100) r.fail("newton_max_iterations", "in [1, 100]");
+    p.mueller_iterations = r.integer("mueller_iterations", p.mueller_iterations);
+    if (p.mueller_iterations < 1 || p.mueller_iterations > 200) r.fail("mueller_iterations", "in [1, 200]");
+    p.smoothing_passes = r.integer("smoothing_passes", p.smoothing_passes);
+    if (p.smoothing_passes < 0 || p.smoothing_passes > 100) r.fail("smoothing_passes", "in [0, 100]");
+    r.reject_unknown_keys();
+  }
   if (a.levels > 1 && a.solver == "cholmod")
     f.fail("levels", "1 with solver 'cholmod' (levels belong to multigrid solvers)");
   f.reject_unknown_keys();

@@ -10,6 +10,7 @@
 
 #include "fem/material.hpp"
 #include "mesh/vertex_selection.hpp"
+#include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
 
@@ -30,6 +31,7 @@ struct AnalysisSpec {
   std::string type = "static";              ///< static | dynamic
   std::string formulation = "corotational"; ///< linear | corotational
   std::string rotation = "polar";           ///< an extractor name (rotation_method_names())
+  RotationParams rotation_params;
   std::string solver = "cholmod";
   int levels = 1;
   int vcycles = 0;          ///< 0: iterate to tolerance

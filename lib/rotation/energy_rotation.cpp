@@ -1,0 +1,146 @@
+#include "rotation/energy_rotation.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+
+#include "exact_rotation.hpp"
+#include "rotation/polar_decomposition.hpp"
+
+namespace corofem {
+
+Eigen::Matrix4d horn_matrix(const Mat3& m) {
+  // Coefficients of tr(R(q)^T M) = sum_ij R_ij(q) M_ij, R(q) the rotation matrix of unit q.
+  Eigen::Matrix4d n;
+  n(0, 0) = m(0, 0) + m(1, 1) + m(2, 2);
+  n(1, 1) = m(0, 0) - m(1, 1) - m(2, 2);
+  n(2, 2) = -m(0, 0) + m(1, 1) - m(2, 2);
+  n(3, 3) = -m(0, 0) - m(1, 1) + m(2, 2);
+  n(0, 1) = n(1, 0) = m(2, 1) - m(1, 2);
+  n(0, 2) = n(2, 0) = m(0, 2) - m(2, 0);
+  n(0, 3) = n(3, 0) = m(1, 0) - m(0, 1);
+  n(1, 2) = n(2, 1) = m(0, 1) + m(1, 0);
+  n(1, 3) = n(3, 1) = m(0, 2) + m(2, 0);
+  n(2, 3) = n(3, 2) = m(1, 2) + m(2, 1);
+  return n;
+}
+
+std::vector<QuadraturePoints> rest_quadrature(const TetMesh& mesh) {
+  std::vector<QuadraturePoints> rest;
+  rest.reserve(mesh.tets.size());
+  for (const Tet& t : mesh.tets) {
+    const std::array<Vec3, 4> v{mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]};
+    rest.push_back(quadrature_points(v, signed_volume(v[0], v[1], v[2], v[3])));
+  }
+  return rest;
+}
+
+Mat3 deformed_moment(const QuadraturePoints& rest, const Tet& tet, const std::vector<Vec3>& positions,
+                     double& a) {
+  const Vec3 p[4] = {positions[tet[0]], positions[tet[1]], positions[tet[2]], positions[tet[3]]};
+  const Vec3 centroid = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+  Mat3 s = Mat3::Zero();
+  a = 0;
+  for (int g = 0; g < 4; ++g) {
+    Vec3 z = -centroid;
+    for (int v = 0; v < 4; ++v) z += (v == g ? kQuadratureA : kQuadratureB) * p[v];
+    s.noalias() += z * rest.offset[g].transpose();
+    a += z.squaredNorm();
+  }
+  s *= rest.weight;
+  a *= rest.weight;
+  return s;
+}
+
+Mat3 energy_exact_rotation(const Mat3& s) {
+  const double det = s.determinant();
+  const double scale = s.squaredNorm() * s.norm();  // |S|^3
+  if (det > 1e-6 * scale) return polar_rotation(s, Mat3::Identity());
+  return reference::rotation_factor_svd(s);
+}
+
+NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, double tolerance,
+                                     int max_iterations) {
+  using Vec4 = Eigen::Vector4d;
+  using Mat4 = Eigen::Matrix4d;
+  NewtonOutcome out;
+  const Mat4 n = horn_matrix(s.transpose());
+  // The paper's q describes Q^T: start from the conjugate of the warm rotation's quaternion.
+  const Eigen::Quaterniond start(warm);
+  Vec4 q(start.w(), -start.x(), -start.y(), -start.z());
+  double lambda = 2 * q.dot(n * q) - 2 * a * q.squaredNorm();
+  bool converged = false;
+  for (int it = 0;; ++it) {
+    const Vec4 nq = n * q;
+    const double q2 = q.squaredNorm();
+    const Vec4 grad = 4 * a * q2 * q - 4 * nq + 2 * lambda * q;  // eq. (5)
+    const double constraint = q2 - 1;                             // eq. (6)
+    if (grad.norm() / (4 * a) + std::abs(constraint) < tolerance) {
+      converged = true;
+      break;
+    }
+    if (it == max_iterations) break;
+    Eigen::Matrix<double, 5, 5> kkt;
+    kkt.topLeftCorner<4, 4>() =
+        4 * a * (q2 * Mat4::Identity() + 2 * q * q.transpose()) - 4 * n +
+        2 * lambda * Mat4::Identity();                           // eq. (7)
+    kkt.topRightCorner<4, 1>() = 2 * q;                          // eq. (8)
+    kkt.bottomLeftCorner<1, 4>() = 2 * q.transpose();
+    kkt(4, 4) = 0;
+    Eigen::Matrix<double, 5, 1> rhs;
+    rhs << -grad, -constraint;
+    const Eigen::PartialPivLU<Eigen::Matrix<double, 5, 5>> lu(kkt);
+    const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
+    if (!(pivots.minCoeff() > 1e-12 * pivots.maxCoeff())) break;  // singular: minimizer not unique
+    const Eigen::Matrix<double, 5, 1> step = lu.solve(rhs);
+    q += step.head<4>();
+    lambda += step[4];
+    out.iterations = it + 1;
+  }
+  if (converged) {
+    // A minimizer has a positive definite Hessian (see header); a saddle does not.
+    const Mat4 hessian = 4 * a * (q.squaredNorm() * Mat4::Identity() + 2 * q * q.transpose()) -
+                         4 * n + 2 * lambda * Mat4::Identity();
+    converged = Eigen::LLT<Mat4>(hessian).info() == Eigen::Success;
+  }
+  if (!converged) {
+    out.fell_back = true;
+    out.rotation = energy_exact_rotation(s);
+    return out;
+  }
+  q.normalize();
+  out.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix().transpose();
+  return out;
+}
+
+EnergyNewtonExtractor::EnergyNewtonExtractor(const TetMesh& mesh, const RotationParams& params)
+    : mesh_(mesh), params_(params), rest_(rest_quadrature(mesh)) {}
+
+void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
+                                    std::vector<Mat3>& rotations) {
+  stats_.iterations.resize(mesh_.tets.size());
+  stats_.fallbacks = 0;
+  for (int e = 0; e < mesh_.num_tets(); ++e) {
+    double a = 0;
+    const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
+    const NewtonOutcome r = energy_newton_rotation(s, a, rotations[e], params_.newton_tolerance,
+                                                   params_.newton_max_iterations);
+    rotations[e] = r.rotation;
+    stats_.iterations[e] = static_cast<std::uint8_t>(r.iterations);
+    stats_.fallbacks += r.fell_back;
+  }
+}
+
+EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
+    : mesh_(mesh), rest_(rest_quadrature(mesh)) {}
+
+void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
+                                   std::vector<Mat3>& rotations) {
+  stats_.iterations.assign(mesh_.tets.size(), 0);
+  for (int e = 0; e < mesh_.num_tets(); ++e) {
+    double a = 0;
+    rotations[e] = energy_exact_rotation(deformed_moment(rest_[e], mesh_.tets[e], positions, a));
+  }
+}
+
+}  // namespace corofem

@@ -1,0 +1,41 @@
+#include "rotation/mueller2016.hpp"
+
+#include <Eigen/Geometry>
+
+#include "rotation/svd_rotation.hpp"
+
+namespace corofem {
+
+Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, int& iterations) {
+  Eigen::Quaterniond q(warm);
+  q.normalize();
+  iterations = 0;
+  for (int it = 0; it < max_iterations; ++it) {
+    const Mat3 r = q.toRotationMatrix();
+    const Vec3 numerator = r.col(0).cross(a.col(0)) + r.col(1).cross(a.col(1)) + r.col(2).cross(a.col(2));
+    const double denominator = std::abs(r.col(0).dot(a.col(0)) + r.col(1).dot(a.col(1)) + r.col(2).dot(a.col(2))) + 1e-9;
+    const Vec3 omega = numerator / denominator;
+    const double angle = omega.norm();
+    if (angle < 1e-14) break;
+    q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle)) * q;
+    q.normalize();
+    iterations = it + 1;
+  }
+  return q.toRotationMatrix();
+}
+
+Mueller2016Extractor::Mueller2016Extractor(const TetMesh& mesh, const RotationParams& params)
+    : mesh_(mesh), params_(params), rest_edge_inverse_(rest_edge_inverses(mesh)) {}
+
+void Mueller2016Extractor::extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) {
+  stats_.iterations.resize(mesh_.tets.size());
+  for (int e = 0; e < mesh_.num_tets(); ++e) {
+    int iterations = 0;
+    rotations[e] = mueller2016_rotation(
+        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e],
+        params_.mueller_iterations, iterations);
+    stats_.iterations[e] = static_cast<std::uint8_t>(iterations);
+  }
+}
+
+}  // namespace corofem

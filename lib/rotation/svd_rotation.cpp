@@ -1,0 +1,27 @@
+#include "rotation/svd_rotation.hpp"
+
+#include "exact_rotation.hpp"
+
+namespace corofem {
+
+std::vector<Mat3> rest_edge_inverses(const TetMesh& mesh) {
+  std::vector<Mat3> inverses;
+  inverses.reserve(mesh.tets.size());
+  for (const Tet& t : mesh.tets)
+    inverses.push_back(
+        rest_edge_inverse(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]));
+  return inverses;
+}
+
+InversionAwareSvdExtractor::InversionAwareSvdExtractor(const TetMesh& mesh)
+    : mesh_(mesh), rest_edge_inverse_(rest_edge_inverses(mesh)) {}
+
+void InversionAwareSvdExtractor::extract(const std::vector<Vec3>& positions,
+                                         std::vector<Mat3>& rotations) {
+  stats_.iterations.assign(mesh_.tets.size(), 0);
+  for (int e = 0; e < mesh_.num_tets(); ++e)
+    rotations[e] = reference::rotation_factor_svd(
+        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]));
+}
+
+}  // namespace corofem

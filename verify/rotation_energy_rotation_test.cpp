@@ -1,0 +1,183 @@
+// The paper's energy minimization against exact oracles: Horn's matrix, the quadrature against
+// the closed form, and Newton / closed form / SVD / Horn / brute force on a catalogue of >= 1000
+// elements: regular, skinny, flat, stretched 10x, compressed to 0.1x, sheared, and inverted.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <random>
+
+#include "exact_rotation.hpp"
+#include "rotation/energy_rotation.hpp"
+
+namespace corofem {
+namespace {
+
+using reference::brute_force_minimize;
+using reference::rotation_factor_horn;
+using reference::rotation_factor_svd;
+
+// |A - B|_F = 2 sqrt(2) sin(theta / 2) for rotations; acos of the trace would lose half the digits
+// near theta = 0 (acos(1 - d) ~ sqrt(2 d) resolves no better than 2e-8 rad).
+double angle_between(const Mat3& a, const Mat3& b) {
+  return 2 * std::asin(std::min(1.0, (a - b).norm() / (2 * std::sqrt(2.0))));
+}
+
+Mat3 random_rotation(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+}
+
+/// One test element: rest vertices and a deformation gradient.
+struct Case {
+  std::array<Vec3, 4> rest;
+  Mat3 f;
+  std::string kind;
+};
+
+std::vector<Case> catalogue(int per_kind, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1), pos(0.2, 1);
+  std::vector<Case> cases;
+  const char* kinds[] = {"regular", "skinny", "flat", "stretched", "compressed", "sheared", "inverted", "inverted-symmetric"};
+  for (const char* kind : kinds) {
+    for (int i = 0; i < per_kind; ++i) {
+      Case c;
+      c.kind = kind;
+      // Rest shape: regular tet, or a needle / sliver by scaling one or two axes.
+      std::array<Vec3, 4> base{Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)};
+      Vec3 shape(1, 1, 1);
+      if (c.kind == "skinny") shape = Vec3(1, 0.05, 0.05);
+      if (c.kind == "flat") shape = Vec3(1, 1, 0.02);
+      const Mat3 orient = random_rotation(rng);
+      // The symmetric inverted kind keeps the exact regular tet (isotropic C), so that two
+      // singular values of S = F C tie and the minimizer is a whole circle of rotations.
+      const double noise = c.kind == "inverted-symmetric" ? 0.0 : 0.2;
+      for (int a = 0; a < 4; ++a)
+        c.rest[a] = orient * shape.cwiseProduct(base[a] + noise * Vec3(u(rng), u(rng), u(rng)));
+      if (signed_volume(c.rest[0], c.rest[1], c.rest[2], c.rest[3]) < 0) std::swap(c.rest[2], c.rest[3]);
+      // Deformation: a random rotation times a stretch of the requested kind.
+      const Mat3 r = random_rotation(rng), v = random_rotation(rng);
+      Vec3 stretch(pos(rng) + 0.5, pos(rng) + 0.5, pos(rng) + 0.5);
+      if (c.kind == "stretched") stretch[0] = 10;
+      if (c.kind == "compressed") stretch[0] = 0.1;
+      if (c.kind == "inverted") stretch[2] = -pos(rng);
+      if (c.kind == "inverted-symmetric") stretch = Vec3(1.5, 0.5, -0.5);  // two equal |sigma|
+      Mat3 f = r * v * stretch.asDiagonal() * v.transpose();
+      if (c.kind == "sheared") f(0, 1) += 3 * u(rng);
+      c.f = f;
+      cases.push_back(c);
+    }
+  }
+  return cases;
+}
+
+/// Deformed vertices for F, rest centroid kept in place.
+std::array<Vec3, 4> deform(const Case& c) {
+  std::array<Vec3, 4> p;
+  for (int a = 0; a < 4; ++a) p[a] = c.f * c.rest[a] + Vec3(0.3, -0.2, 0.1);
+  return p;
+}
+
+TEST(HornMatrix, QuadraticFormIsTraceOfRotatedMatrix) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n;
+  for (int i = 0; i < 100; ++i) {
+    Mat3 m;
+    for (int k = 0; k < 9; ++k) m(k / 3, k % 3) = n(rng);
+    const Eigen::Quaterniond q = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+    const Eigen::Vector4d c(q.w(), q.x(), q.y(), q.z());
+    EXPECT_NEAR(c.dot(horn_matrix(m) * c), (q.toRotationMatrix().transpose() * m).trace(), 1e-13 * m.norm());
+  }
+}
+
+TEST(RotationEnergy, QuadratureEqualsClosedForm) {
+  for (const Case& c : catalogue(20, 9)) {
+    const double volume = signed_volume(c.rest[0], c.rest[1], c.rest[2], c.rest[3]);
+    const auto rest = quadrature_points(c.rest, volume);
+    const auto deformed = quadrature_points(deform(c), volume);
+    // Closed form from PAPER_NOTES: C = (V/20) sum_i y_i y_i^T over vertex offsets y_i;
+    // E(Q) = tr(F C F^T) + tr(C) - 2 tr(Q^T F C).
+    const Vec3 c0 = 0.25 * (c.rest[0] + c.rest[1] + c.rest[2] + c.rest[3]);
+    Mat3 cm = Mat3::Zero();
+    for (const Vec3& x : c.rest) cm += (x - c0) * (x - c0).transpose();
+    cm *= volume / 20;
+    std::mt19937 rng(3);
+    for (int trial = 0; trial < 5; ++trial) {
+      const Mat3 q = random_rotation(rng);
+      const double closed = (c.f * cm * c.f.transpose()).trace() + cm.trace() - 2 * (q.transpose() * c.f * cm).trace();
+      const double quadrature = rotation_energy(q, rest, deformed);
+      const double scale = (c.f * cm * c.f.transpose()).trace() + cm.trace();
+      EXPECT_NEAR(quadrature, closed, 1e-13 * scale) << c.kind;
+    }
+  }
+}
+
+TEST(RotationEnergy, NewtonExactSvdHornAndBruteForceAgree) {
+  // 8 kinds x 130 = 1040 elements (fast default); the full sweep doubles it.
+  const char* full = std::getenv("COROFEM_FULL");
+  const auto cases = catalogue(full && std::string(full) == "1" ? 260 : 130, 21);
+  ASSERT_GE(cases.size(), 1000u);
+  int unique = 0, ambiguous = 0, newton_fallbacks = 0;
+  double worst_newton = 0, worst_refs = 0, worst_brute = 0, worst_ambiguous_energy = 0;
+  std::mt19937 rng(77);
+  for (const Case& c : cases) {
+    const double volume = signed_volume(c.rest[0], c.rest[1], c.rest[2], c.rest[3]);
+    const auto rest = quadrature_points(c.rest, volume);
+    const std::array<Vec3, 4> moved = deform(c);
+    const auto deformed = quadrature_points(moved, volume);
+    const std::vector<Vec3> positions(moved.begin(), moved.end());
+    double a = 0;
+    const Mat3 s = deformed_moment(rest, Tet{0, 1, 2, 3}, positions, a);
+    const Mat3 exact = energy_exact_rotation(s);
+    // Warm start within 0.3 rad of the answer, as from a previous time step.
+    const Mat3 warm = Eigen::AngleAxisd(0.3, Vec3::Random().normalized()).toRotationMatrix() * exact;
+    const NewtonOutcome newton = energy_newton_rotation(s, a, warm, 1e-14, 30);
+    newton_fallbacks += newton.fell_back;
+    const Mat3 svd = rotation_factor_svd(s);
+    const Mat3 horn = rotation_factor_horn(s).toRotationMatrix();
+    auto energy = [&](const Mat3& q) { return rotation_energy(q, rest, deformed); };
+    const Mat3 brute = brute_force_minimize(energy, 4000, rng());
+    // Uniqueness: the gap between N's two largest eigenvalues (the minimizer is unique iff > 0).
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(horn_matrix(s));
+    const double gap = eig.eigenvalues()[3] - eig.eigenvalues()[2];
+    const double e_exact = energy(exact);
+    const double e_scale = a + rest.weight * 4;  // energy scale, >= the constant terms
+    EXPECT_LE(e_exact, energy(brute) + 1e-12 * e_scale) << c.kind;
+    if (gap > 1e-6 * s.norm()) {
+      ++unique;
+      worst_newton = std::max(worst_newton, angle_between(newton.rotation, exact));
+      worst_refs = std::max({worst_refs, angle_between(svd, exact), angle_between(horn, exact)});
+      // Brute force resolves the angle to ~sqrt(eps e_scale / gap): compare energies, and
+      // angles only where the well is steep.
+      if (gap > 1e-2 * s.norm()) worst_brute = std::max(worst_brute, angle_between(brute, exact));
+    } else {
+      ++ambiguous;
+      for (const Mat3& q : {newton.rotation, svd, horn})
+        worst_ambiguous_energy = std::max(worst_ambiguous_energy, std::abs(energy(q) - e_exact) / e_scale);
+    }
+  }
+  std::cout << "[ energy ] " << unique << " unique, " << ambiguous << " ambiguous; newton-exact "
+            << worst_newton << " rad, svd/horn-exact " << worst_refs << " rad, brute-exact "
+            << worst_brute << " rad; ambiguous energy spread " << worst_ambiguous_energy
+            << "; newton fallbacks " << newton_fallbacks << "\n";
+  EXPECT_GT(unique, 900);
+  EXPECT_GT(ambiguous, 0);  // the inverted-symmetric kind must exercise the non-unique case
+  EXPECT_LT(worst_newton, 1e-10);
+  EXPECT_LT(worst_refs, 1e-10);
+  EXPECT_LT(worst_brute, 1e-5);
+  EXPECT_LT(worst_ambiguous_energy, 1e-12);
+}
+
+TEST(RotationEnergy, NewtonDetectsSingularHessianAndFallsBack) {
+  // F = diag(1.5, 0.5, -0.5) with isotropic C: S has singular values 1.5, 0.5, 0.5 and det < 0,
+  // so a whole circle of rotations minimizes E; Newton must not divide by zero.
+  const Mat3 s = Vec3(1.5, 0.5, -0.5).asDiagonal();
+  const NewtonOutcome out = energy_newton_rotation(s, 2.75, Mat3::Identity(), 1e-12, 20);
+  EXPECT_TRUE(out.rotation.allFinite());
+  EXPECT_NEAR(out.rotation.determinant(), 1.0, 1e-12);
+  EXPECT_NEAR((out.rotation.transpose() * s).trace(), (rotation_factor_svd(s).transpose() * s).trace(), 1e-12);
+}
+
+}  // namespace
+}  // namespace corofem
