@@ -4,7 +4,12 @@
 #include <map>
 #include <memory>
 
+#include "fem/implicit_euler.hpp"
+#include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/vertex_selection.hpp"
+#include "rotation/rotation_extractor.hpp"
+#include "solver/linear_solver.hpp"
 #include "mesh/gmsh_mesh.hpp"
 
 namespace corofem::bench {
@@ -43,6 +48,26 @@ FeProblem& paper_problem(const std::string& model) {
   std::vector<Material> materials(mesh.tets.size(), Material{1e5, 0.3, 1000});
   slot = std::make_unique<FeProblem>(make_fe_problem(std::move(mesh), std::move(materials)));
   return *slot;
+}
+
+const SimulatedFrames& simulated_frames(const std::string& model) {
+  static std::map<std::string, SimulatedFrames> cache;
+  if (auto it = cache.find(model); it != cache.end()) return it->second;
+  FeProblem p = paper_problem(model);  // a copy: loads and supports are this simulation's own
+  const auto box = bounding_box(p.mesh.rest);
+  const double reach = 0.02 * (box[1] - box[0]).x();
+  for (int v : vertices_in_box(p.mesh.rest, {box[0], Vec3(box[0].x() + reach, box[1].y(), box[1].z())}))
+    p.dirichlet.fix_vertex(v);
+  p.external_force = gravity_load(p.mesh, p.materials, Vec3(0, 0, -9.81));
+  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto solver = make_cholmod_solver();
+  SimulatedFrames frames;
+  std::cerr << "corofem_bench: simulating 8 steps of " << model << " for rotation frames\n";
+  solve_dynamic(p, *polar, *solver, {true, 0.01, 8, 0, 0}, [&](const StepState& s) {
+    if (s.step == 7) frames.previous = s.displacement;
+    if (s.step == 8) frames.current = s.displacement;
+  });
+  return cache[model] = std::move(frames);
 }
 
 Eigen::VectorXd bent_displacement(const FeProblem& problem) {

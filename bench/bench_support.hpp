@@ -15,6 +15,16 @@ const std::filesystem::path& models_dir();
 /// boxes of about the same tet counts. Cached: built once per process.
 FeProblem& paper_problem(const std::string& model);
 
+/// Two consecutive frames of a real simulation of the problem: a soft body (E = 1e5 Pa) fixed at
+/// its x-min face, sagging under gravity with implicit Euler (dt = 0.01 s, polar rotations,
+/// CHOLMOD); `previous` is step 7 and `current` step 8. The rotation change between the two
+/// frames is what a warm start has to cover; the rotation benchmark reports it.
+/// Cached per model.
+struct SimulatedFrames {
+  Eigen::VectorXd previous, current;
+};
+const SimulatedFrames& simulated_frames(const std::string& model);
+
 /// A deformed state of the problem: a bend and twist large enough to rotate elements by tens
 /// of degrees (a "real frame" stand-in until the simulated frames of the rotation issue).
 Eigen::VectorXd bent_displacement(const FeProblem& problem);

@@ -54,8 +54,8 @@ Mat3 deformed_moment(const QuadraturePoints& rest, const Tet& tet, const std::ve
 
 Mat3 energy_exact_rotation(const Mat3& s) {
   const double det = s.determinant();
-  const double scale = s.squaredNorm() * s.norm();  // |S|^3
-  if (det > 1e-6 * scale) return polar_rotation(s, Mat3::Identity());
+  const double norm = s.norm();
+  if (det > 1e-6 * norm * norm * norm) return polar_rotation(s, Mat3::Identity());
   return reference::rotation_factor_svd(s);
 }
 
@@ -80,19 +80,35 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
       break;
     }
     if (it == max_iterations) break;
-    Eigen::Matrix<double, 5, 5> kkt;
-    kkt.topLeftCorner<4, 4>() =
-        4 * a * (q2 * Mat4::Identity() + 2 * q * q.transpose()) - 4 * n +
-        2 * lambda * Mat4::Identity();                           // eq. (7)
-    kkt.topRightCorner<4, 1>() = 2 * q;                          // eq. (8)
-    kkt.bottomLeftCorner<1, 4>() = 2 * q.transpose();
-    kkt(4, 4) = 0;
-    Eigen::Matrix<double, 5, 1> rhs;
-    rhs << -grad, -constraint;
-    const Eigen::PartialPivLU<Eigen::Matrix<double, 5, 5>> lu(kkt);
-    const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
-    if (!(pivots.minCoeff() > 1e-12 * pivots.maxCoeff())) break;  // singular: minimizer not unique
-    const Eigen::Matrix<double, 5, 1> step = lu.solve(rhs);
+    // Bordered Newton system of eqs. (7), (8): [H 2q; 2q^T 0] [dq; dl] = -[g; c]. Near a
+    // minimizer H is positive definite: Cholesky, two solves, and the Schur complement in dl.
+    // Elsewhere (indefinite or singular H) the general 5x5 LU decides, or declares it singular.
+    const Mat4 hessian = 4 * a * (q2 * Mat4::Identity() + 2 * q * q.transpose()) - 4 * n +
+                         2 * lambda * Mat4::Identity();
+    Vec4 dq;
+    double dl;
+    const Eigen::LLT<Mat4> llt(hessian);
+    if (llt.info() == Eigen::Success) {
+      const Vec4 hg = llt.solve(grad), hq = llt.solve(q);
+      dl = (constraint - 2 * q.dot(hg)) / (4 * q.dot(hq));
+      dq = -(hg + 2 * dl * hq);
+    } else {
+      Eigen::Matrix<double, 5, 5> kkt;
+      kkt.topLeftCorner<4, 4>() = hessian;
+      kkt.topRightCorner<4, 1>() = 2 * q;
+      kkt.bottomLeftCorner<1, 4>() = 2 * q.transpose();
+      kkt(4, 4) = 0;
+      Eigen::Matrix<double, 5, 1> rhs;
+      rhs << -grad, -constraint;
+      const Eigen::PartialPivLU<Eigen::Matrix<double, 5, 5>> lu(kkt);
+      const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
+      if (!(pivots.minCoeff() > 1e-12 * pivots.maxCoeff())) break;  // singular: not unique
+      const Eigen::Matrix<double, 5, 1> step = lu.solve(rhs);
+      dq = step.head<4>();
+      dl = step[4];
+    }
+    if (!dq.allFinite()) break;
+    const Eigen::Matrix<double, 5, 1> step = (Eigen::Matrix<double, 5, 1>() << dq, dl).finished();
     q += step.head<4>();
     lambda += step[4];
     out.iterations = it + 1;

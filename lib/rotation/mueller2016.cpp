@@ -6,7 +6,8 @@
 
 namespace corofem {
 
-Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, int& iterations) {
+Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, double tolerance,
+                          int& iterations) {
   Eigen::Quaterniond q(warm);
   q.normalize();
   iterations = 0;
@@ -16,7 +17,7 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, i
     const double denominator = std::abs(r.col(0).dot(a.col(0)) + r.col(1).dot(a.col(1)) + r.col(2).dot(a.col(2))) + 1e-9;
     const Vec3 omega = numerator / denominator;
     const double angle = omega.norm();
-    if (angle < 1e-14) break;
+    if (angle < tolerance) break;
     q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle)) * q;
     q.normalize();
     iterations = it + 1;
@@ -33,7 +34,7 @@ void Mueller2016Extractor::extract(const std::vector<Vec3>& positions, std::vect
     int iterations = 0;
     rotations[e] = mueller2016_rotation(
         deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e],
-        params_.mueller_iterations, iterations);
+        params_.mueller_iterations, params_.mueller_tolerance, iterations);
     stats_.iterations[e] = static_cast<std::uint8_t>(iterations);
   }
 }

@@ -2,13 +2,14 @@
 // "mueller2016": Mueller, Bender, Chentanez and Macklin, "A Robust Method to Extract the
 // Rotational Part of Deformations" (2016). Warm-started from the previous rotation R = [r1 r2 r3],
 // iterate omega = sum_i r_i x a_i / (|sum_i r_i . a_i| + 1e-9), q <- exp(omega) q, for the columns
-// a_i of F, until |omega| < 1e-14 or the iteration cap. Always a proper rotation.
+// a_i of F, until |omega| < tolerance or the iteration cap. Always a proper rotation.
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
 
 /// One element: returns the rotation and sets the iterations taken.
-Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, int& iterations);
+Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, double tolerance,
+                          int& iterations);
 
 class Mueller2016Extractor : public RotationExtractor {
  public:

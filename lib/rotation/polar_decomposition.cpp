@@ -10,20 +10,27 @@ namespace corofem {
 Mat3 polar_rotation(const Mat3& f, const Mat3& fallback, int* iterations) {
   Mat3 x = f;
   if (iterations) *iterations = 0;
+  double norm = x.norm();
   for (int it = 0; it < 30; ++it) {
     const double det = x.determinant();
-    if (!std::isfinite(det) || std::abs(det) <= 1e-14 * std::pow(x.norm(), 3)) {
+    if (!std::isfinite(det) || std::abs(det) <= 1e-14 * norm * norm * norm) {
       if (iterations) *iterations = -1;
       return fallback;
     }
     if (iterations) *iterations = it + 1;
-    const Mat3 inv_t = x.inverse().transpose();
+    // X^{-T} = cofactor(X) / det X.
+    Mat3 inv_t;
+    inv_t.col(0) = x.col(1).cross(x.col(2));
+    inv_t.col(1) = x.col(2).cross(x.col(0));
+    inv_t.col(2) = x.col(0).cross(x.col(1));
+    inv_t /= det;
     // Frobenius-norm scaling gamma = sqrt(|X^-1| / |X|) (Higham 1986) speeds up the first steps.
-    const double gamma = std::sqrt(inv_t.norm() / x.norm());
+    const double gamma = std::sqrt(inv_t.norm() / norm);
     const Mat3 next = 0.5 * (gamma * x + inv_t / gamma);
     const double change = (next - x).norm();
     x = next;
-    if (change <= 1e-15 * x.norm()) break;
+    norm = x.norm();
+    if (change <= 1e-15 * norm) break;
   }
   return x;
 }

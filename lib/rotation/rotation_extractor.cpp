@@ -14,6 +14,7 @@ nlohmann::json RotationParams::to_json() const {
   return {{"newton_tolerance", newton_tolerance},
           {"newton_max_iterations", newton_max_iterations},
           {"mueller_iterations", mueller_iterations},
+          {"mueller_tolerance", mueller_tolerance},
           {"smoothing_passes", smoothing_passes}};
 }
 

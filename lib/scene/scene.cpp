@@ -144,6 +144,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     if (p.newton_max_iterations < 1 || p.newton_max_iterations > 100) r.fail("newton_max_iterations", "in [1, 100]");
     p.mueller_iterations = r.integer("mueller_iterations", p.mueller_iterations);
     if (p.mueller_iterations < 1 || p.mueller_iterations > 200) r.fail("mueller_iterations", "in [1, 200]");
+    p.mueller_tolerance = r.number("mueller_tolerance", p.mueller_tolerance);
+    if (!(p.mueller_tolerance > 0 && p.mueller_tolerance < 1)) r.fail("mueller_tolerance", "in (0, 1)");
     p.smoothing_passes = r.integer("smoothing_passes", p.smoothing_passes);
     if (p.smoothing_passes < 0 || p.smoothing_passes > 100) r.fail("smoothing_passes", "in [0, 100]");
     r.reject_unknown_keys();
