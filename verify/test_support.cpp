@@ -62,4 +62,34 @@ bool full_sweep() {
   return env && std::string(env) == "1";
 }
 
+std::string cube_stl(int n) {
+  std::string s = "solid cube\n";
+  auto point = [](const Vec3& p) {
+    return "vertex " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+           std::to_string(p.z()) + "\n";
+  };
+  auto tri = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    s += "facet normal 0 0 0\nouter loop\n" + point(a) + point(b) + point(c) + "endloop\nendfacet\n";
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const Vec3 normal = (side ? 1.0 : -1.0) * Vec3::Unit(axis);
+      const Vec3 eu = Vec3::Unit((axis + 1) % 3), ev = Vec3::Unit((axis + 2) % 3);
+      const bool flip = eu.cross(ev).dot(normal) < 0;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const Vec3 o = side * Vec3::Unit(axis) + (double(i) / n) * eu + (double(j) / n) * ev;
+          const Vec3 a = o, b = o + eu / n, c = o + (eu + ev) / n, d = o + ev / n;
+          if (flip) {
+            tri(a, c, b);
+            tri(a, d, c);
+          } else {
+            tri(a, b, c);
+            tri(a, c, d);
+          }
+        }
+    }
+  return s + "endsolid cube\n";
+}
+
 }  // namespace corofem::test

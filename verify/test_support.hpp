@@ -36,6 +36,10 @@ std::filesystem::path models_dir();
 /// True when COROFEM_FULL=1: the full sweep instead of the fast default.
 bool full_sweep();
 
+/// Unit cube surface as ASCII STL, each face split into n x n squares of 2 outward triangles
+/// (gmsh keeps the surface triangles, so they set the interior size too).
+std::string cube_stl(int n);
+
 /// Source tree root (for scene files in bench/scenes).
 std::filesystem::path source_dir();
 

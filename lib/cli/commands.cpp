@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "scene/export_matrices.hpp"
 #include "scene/run_scene.hpp"
 
 namespace corofem {
@@ -16,6 +17,9 @@ Usage: corofem <command> [options]
 
 Commands:
   run SCENE.json --out RESULT.json   static or dynamic run of one scene
+  export-matrices SCENE.json --out DIR
+                                     Matrix Market files of every level's system matrix
+                                     and transfer operator, and levels.json
   help [COMMAND]                     this text, or a command's
 
 Exit status: 0 success, 1 did not converge or numerical fault, 2 bad input.
@@ -28,6 +32,14 @@ displacement (input node order), converged, iterations, residual, timings_ms, th
 context (commit, compiler, flags, machine); with output.rotations also element_tags and rotations
 (unit quaternions [w,x,y,z] of the final state). Progress goes to stderr.
 Exit status: 0 converged, 1 did not converge or NaN/inf, 2 bad input (nothing is written).
+)";
+
+const char* kExportHelp = R"(Usage: corofem export-matrices SCENE.json --out DIR
+
+Runs the scene's first linear solve through the multigrid hierarchy of analysis.levels (1 for
+cholmod scenes) and writes, for each level h, A<h>.mtx (3n_h x 3n_h) and R<h>.mtx (3n_{h+1} x 3n_h,
+level h to h+1) in Matrix Market coordinate real general, DOF index 3*vertex+component, and
+levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver computed it.
 )";
 
 /// Options of the form --key value, plus positional arguments.
@@ -79,6 +91,20 @@ int run_command(const std::vector<std::string>& args) {
   return 0;
 }
 
+int export_command(const std::vector<std::string>& args) {
+  ParsedArgs parsed = parse_args(args, {"--out"}, {});
+  if (parsed.help) {
+    std::cout << kExportHelp;
+    return 0;
+  }
+  if (parsed.positional.size() != 1)
+    throw InputError("export-matrices needs exactly one SCENE.json (see --help)");
+  if (!parsed.options.count("--out")) throw InputError("export-matrices needs --out DIR");
+  export_matrices(load_scene(parsed.positional[0]), parsed.options["--out"]);
+  std::cerr << "corofem: matrices written to " << parsed.options["--out"] << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int dispatch(const std::vector<std::string>& args) {
@@ -91,6 +117,7 @@ int dispatch(const std::vector<std::string>& args) {
   std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "help") rest = {"--help"};
   if (command == "run") return run_command(rest);
+  if (command == "export-matrices") return export_command(rest);
   throw InputError("unknown command '" + command + "' (see corofem --help)");
 }
 

@@ -11,6 +11,7 @@
 #include "report/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
 #include "scene/scene_problem.hpp"
+#include "solver/solver_factory.hpp"
 
 namespace corofem {
 
@@ -31,7 +32,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   const bool corotational = a.formulation == "corotational";
   auto extractor =
       make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
-  auto solver = make_cholmod_solver();
+  auto solver = make_linear_solver(a, problem);
   SimulationResult result;
   if (a.type == "static") {
     result = solve_static(problem, *extractor, *solver,
@@ -62,6 +63,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                    {"rotation", corotational ? a.rotation : "none"},
                    {"rotation_params", a.rotation_params.to_json()},
                    {"solver", solver->name()}};
+  if (a.solver != "cholmod") r["analysis"]["multigrid"] = multigrid_params(a).to_json();
   r["converged"] = result.converged;
   if (!result.converged) r["message"] = result.message;
   r["iterations"] = result.iterations;

@@ -32,7 +32,8 @@ struct AnalysisSpec {
   std::string formulation = "corotational"; ///< linear | corotational
   std::string rotation = "polar";           ///< an extractor name (rotation_method_names())
   RotationParams rotation_params;
-  std::string solver = "cholmod";
+  std::string solver = "cholmod";           ///< cholmod | multigrid | mgpcg
+  std::string galerkin = "stream";          ///< naive | stream | reuse (multigrid coarse operators)
   int levels = 1;
   int vcycles = 0;          ///< 0: iterate to tolerance
   int smoothing = 1;

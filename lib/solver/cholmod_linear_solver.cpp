@@ -41,8 +41,6 @@ class CholmodLinearSolver : public LinearSolver {
 
 }  // namespace
 
-std::vector<std::string> linear_solver_names() { return {"cholmod"}; }
-
 std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<CholmodLinearSolver>(); }
 
 }  // namespace corofem

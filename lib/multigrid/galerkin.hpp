@@ -1,0 +1,66 @@
+#pragma once
+// Galerkin coarse operators E = R A R^T on BRC matrices (paper section 4.3). A block of E is a sum
+// of (scalar weight) x (3x3 block of A), since R = Rs (x) I3. Three ways to compute the values of
+// E's precomputed pattern, all proven equal to the oracles in reference/:
+//  - naive: eq. (9) entry by entry of E, intersecting the sorted index sets S_l^A and S_j^R;
+//  - stream: Algorithm 1, a control and a data stream aligned with A's blocks (GalerkinStream);
+//  - reuse: the row-wise triple product of production AMG codes writing into E's known pattern
+//    through a marker array (the stronger baseline).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "multigrid/transfer.hpp"
+#include "sparse/brc_matrix.hpp"
+
+namespace corofem {
+
+/// Block pattern of R A R^T (values zero).
+BrcMatrix galerkin_pattern(const BrcMatrix& a, const Transfer& t);
+
+/// Eq. (9): E_ij = sum_{l in S_i^R} R_il sum_{k in S_l^A cap S_j^R} A_lk R_jk.
+void galerkin_naive(const BrcMatrix& a, const Transfer& t, BrcMatrix& e);
+
+/// Row-wise triple product into E's pattern, a marker array mapping column j to its slot.
+class GalerkinReuse {
+ public:
+  explicit GalerkinReuse(int coarse) : slot_(coarse, -1) {}
+  void apply(const BrcMatrix& a, const Transfer& t, BrcMatrix& e);
+
+ private:
+  std::vector<int> slot_;
+};
+
+/// Algorithm 1. Built once per hierarchy (R does not change). Control stream: one byte per block
+/// of A in storage order, top bit 1 = advance to the next block of A, low 7 bits = number p
+/// (0..127) of (weight, destination) pairs to process with it; a block scattered more than 127
+/// times gets continuation bytes with the top bit 0. Data stream: the pairs (R_il R_jk, index of
+/// block E_ij). The numeric phase is one sequential pass; only the writes into E scatter.
+class GalerkinStream {
+ public:
+#pragma pack(push, 1)
+  struct Pair {
+    double weight;
+    std::uint32_t destination;  ///< block index in E
+  };
+#pragma pack(pop)
+
+  GalerkinStream() = default;
+  GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e);
+  /// E = R A R^T (E is zeroed first; A must have the pattern the stream was built for).
+  void apply(const BrcMatrix& a, BrcMatrix& e) const;
+
+  std::size_t num_pairs() const { return data_.size(); }
+  std::size_t bytes() const { return control_.size() + data_.size() * sizeof(Pair); }
+  const std::vector<std::uint8_t>& control() const { return control_; }
+
+ private:
+  std::vector<std::uint8_t> control_;
+  std::vector<Pair> data_;
+};
+
+/// Method names for scenes and benchmarks: "naive", "stream", "reuse".
+enum class GalerkinMethod { Naive, Stream, Reuse };
+GalerkinMethod galerkin_method(const std::string& name);
+
+}  // namespace corofem

@@ -1,0 +1,37 @@
+#pragma once
+// A multigrid hierarchy over a fine BRC matrix: coarse levels from covering lattices (cell size
+// doubling per level), transfer operators, coarse patterns and Galerkin streams, all built once;
+// update() rebuilds every coarse operator E_{h+1} = R_h A_h R_h^T from new fine values.
+#include <memory>
+
+#include "multigrid/galerkin.hpp"
+
+namespace corofem {
+
+class MultigridHierarchy {
+ public:
+  /// `fixed` per fine vertex: its DOFs take no part in the transfer. `first_cell`: lattice cell of
+  /// level 1 (each further level doubles it). `levels` counts the fine level too (>= 1).
+  MultigridHierarchy(const BrcMatrix& fine_pattern, const std::vector<Vec3>& fine_points,
+                     const std::vector<char>& fixed, double first_cell, int levels);
+
+  /// Copies the fine values and recomputes every coarse level with the given method.
+  void update(const BrcMatrix& fine, GalerkinMethod method = GalerkinMethod::Stream);
+
+  int num_levels() const { return static_cast<int>(matrices_.size()); }
+  const BrcMatrix& matrix(int h) const { return matrices_[h]; }
+  BrcMatrix& matrix(int h) { return matrices_[h]; }
+  /// Transfer from level h to h + 1.
+  const Transfer& transfer(int h) const { return transfers_[h]; }
+  const GalerkinStream& stream(int h) const { return streams_[h]; }
+  /// Bytes of all control and data streams.
+  std::size_t stream_bytes() const;
+
+ private:
+  std::vector<BrcMatrix> matrices_;
+  std::vector<Transfer> transfers_;
+  std::vector<GalerkinStream> streams_;
+  std::vector<std::unique_ptr<GalerkinReuse>> reuse_;
+};
+
+}  // namespace corofem

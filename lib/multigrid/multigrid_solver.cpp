@@ -1,0 +1,139 @@
+#include "multigrid/multigrid_solver.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "cholmod_solver.hpp"
+#include "core/errors.hpp"
+#include "sparse/brc_to_eigen.hpp"
+
+namespace corofem {
+
+nlohmann::json MultigridParams::to_json() const {
+  const char* names[] = {"naive", "stream", "reuse"};
+  return {{"levels", levels},
+          {"pre_smoothing", pre_smoothing},
+          {"post_smoothing", post_smoothing},
+          {"vcycles", vcycles},
+          {"max_iterations", max_iterations},
+          {"tolerance", tolerance},
+          {"first_cell_factor", first_cell_factor},
+          {"galerkin", names[static_cast<int>(galerkin)]}};
+}
+
+struct MultigridSolver::Coarsest {
+  std::optional<BrcToEigen> converter;
+  reference::CholmodSolver cholmod;
+};
+
+MultigridSolver::MultigridSolver(const BrcMatrix& pattern, const std::vector<Vec3>& points,
+                                 const std::vector<char>& fixed, double mean_edge,
+                                 const MultigridParams& params, bool as_preconditioner)
+    : params_(params),
+      preconditioner_(as_preconditioner),
+      hierarchy_(pattern, points, fixed, params.first_cell_factor * mean_edge, params.levels),
+      smoothers_(hierarchy_.num_levels()),
+      coarsest_(std::make_unique<Coarsest>()),
+      residual_(hierarchy_.num_levels()),
+      coarse_b_(hierarchy_.num_levels()),
+      coarse_x_(hierarchy_.num_levels()) {}
+
+MultigridSolver::~MultigridSolver() = default;
+
+void MultigridSolver::set_matrix(const BrcMatrix& a) {
+  hierarchy_.update(a, params_.galerkin);
+  const int last = hierarchy_.num_levels() - 1;
+  for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));
+  if (!coarsest_->converter) {
+    coarsest_->converter.emplace(hierarchy_.matrix(last));
+    coarsest_->cholmod.analyze(coarsest_->converter->matrix());
+  } else {
+    coarsest_->converter->update(hierarchy_.matrix(last));
+  }
+  try {
+    coarsest_->cholmod.factorize(coarsest_->converter->matrix());
+  } catch (const std::runtime_error& e) {
+    throw NumericalFault(std::string("multigrid coarsest level: ") + e.what());
+  }
+}
+
+void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const int last = hierarchy_.num_levels() - 1;
+  if (h == last) {
+    x = coarsest_->cholmod.solve(b);
+    return;
+  }
+  const BrcMatrix& a = hierarchy_.matrix(h);
+  for (int s = 0; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
+  a.multiply(x, residual_[h]);
+  residual_[h] = b - residual_[h];
+  hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]);
+  coarse_x_[h + 1].setZero(coarse_b_[h + 1].size());
+  vcycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1]);
+  hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x);
+  for (int s = 0; s < params_.post_smoothing; ++s) smoothers_[h].backward(a, b, x);
+}
+
+SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (x.size() != b.size()) x.setZero(b.size());
+  return preconditioner_ ? solve_cg(b, x) : solve_stationary(b, x);
+}
+
+SolveStats MultigridSolver::solve_stationary(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  SolveStats stats;
+  const BrcMatrix& a = hierarchy_.matrix(0);
+  const double b_norm = b.norm();
+  if (b_norm == 0) {
+    x.setZero();
+    return stats;
+  }
+  Eigen::VectorXd r = b - a * x;
+  const double r0 = r.norm();
+  const int cap = params_.vcycles > 0 ? params_.vcycles : params_.max_iterations;
+  double rk = r0;
+  for (int k = 0; k < cap; ++k) {
+    if (params_.vcycles == 0 && rk <= params_.tolerance * b_norm) break;
+    vcycle(0, b, x);
+    rk = (b - a * x).norm();
+    ++stats.iterations;
+    if (!std::isfinite(rk)) throw NumericalFault("multigrid: residual became non-finite");
+  }
+  stats.residual = rk / b_norm;
+  stats.convergence_factor = stats.iterations > 0 && r0 > 0 ? std::pow(rk / r0, 1.0 / stats.iterations) : 0;
+  return stats;
+}
+
+SolveStats MultigridSolver::solve_cg(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  SolveStats stats;
+  const BrcMatrix& a = hierarchy_.matrix(0);
+  const double b_norm = b.norm();
+  if (b_norm == 0) {
+    x.setZero();
+    return stats;
+  }
+  Eigen::VectorXd r = b - a * x, z = Eigen::VectorXd::Zero(b.size()), q;
+  const double r0 = r.norm();
+  vcycle(0, r, z);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z), rk = r0;
+  while (rk > params_.tolerance * b_norm && stats.iterations < params_.max_iterations) {
+    a.multiply(p, q);
+    const double alpha = rz / p.dot(q);
+    x += alpha * p;
+    r -= alpha * q;
+    rk = r.norm();
+    ++stats.iterations;
+    if (!std::isfinite(rk)) throw NumericalFault("mgpcg: residual became non-finite");
+    if (rk <= params_.tolerance * b_norm) break;
+    z.setZero();
+    vcycle(0, r, z);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  stats.residual = rk / b_norm;
+  stats.convergence_factor = stats.iterations > 0 && r0 > 0 ? std::pow(rk / r0, 1.0 / stats.iterations) : 0;
+  return stats;
+}
+
+}  // namespace corofem

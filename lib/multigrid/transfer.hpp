@@ -1,0 +1,49 @@
+#pragma once
+// Transfer between two levels of a non-nested hierarchy (paper section 4): R (coarse x fine) and
+// its transpose, the prolongation P = R^T, by barycentric interpolation of fine vertices in coarse
+// tets. Scalar per vertex pair, applied to each of the 3 components (R = Rs (x) I3).
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace corofem {
+
+struct Transfer {
+  int coarse = 0, fine = 0;  ///< vertex counts
+  /// Rows of P = R^T: for fine vertex l, the coarse vertices i and weights R_il (sorted by i).
+  std::vector<int> p_start, p_col;
+  std::vector<double> p_weight;
+  /// Rows of R: for coarse vertex i, the fine vertices l and weights R_il (sorted by l).
+  std::vector<int> r_start, r_col;
+  std::vector<double> r_weight;
+
+  /// Builds R's rows from P's (call after filling p_*).
+  void transpose_prolongation();
+  /// x_coarse = R x_fine and x_fine += R^T x_coarse (3 components per vertex).
+  void restrict_to(const Eigen::VectorXd& fine, Eigen::VectorXd& coarse) const;
+  void prolongate_add(const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;
+};
+
+/// R as a scalar sparse matrix of DOFs (3 coarse x 3 fine; R = Rs (x) I3), DOF 3 v + c.
+Eigen::SparseMatrix<double> restriction_matrix(const Transfer& t);
+
+/// One coarser level: the transfer and the coarse vertex positions.
+struct CoarseLevel {
+  Transfer transfer;
+  std::vector<Vec3> points;
+};
+
+/// Covering lattice of Kuhn-split cubes of edge `cell`: only cells containing a point of `points`
+/// are kept, so every point lies in a lattice tet; its weights are the barycentric coordinates
+/// there (a closed form: with local coordinates sorted t1 >= t2 >= t3, the weights of the path
+/// 000, e_a, e_a + e_b, 111 are 1 - t1, t1 - t2, t2 - t3, t3). Points with `fixed` set get no
+/// weights (their DOFs take no part in the transfer); coarse vertices supporting no point are
+/// dropped.
+CoarseLevel make_lattice_level(const std::vector<Vec3>& points, const std::vector<char>& fixed,
+                               double cell);
+
+/// Mean edge length of the mesh (sets the first lattice's cell size).
+double mean_edge_length(const TetMesh& mesh);
+
+}  // namespace corofem
