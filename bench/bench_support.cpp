@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 
+#include "fem/corotated_assembly.hpp"
 #include "fem/implicit_euler.hpp"
 #include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
@@ -48,6 +49,30 @@ FeProblem& paper_problem(const std::string& model) {
   std::vector<Material> materials(mesh.tets.size(), Material{1e5, 0.3, 1000});
   slot = std::make_unique<FeProblem>(make_fe_problem(std::move(mesh), std::move(materials)));
   return *slot;
+}
+
+int paper_levels(const std::string& model) { return model == "bunny" ? 3 : 4; }
+
+const PaperSystem& paper_system(const std::string& model) {
+  static std::map<std::string, PaperSystem> cache;
+  if (auto it = cache.find(model); it != cache.end()) return it->second;
+  FeProblem& p = paper_problem(model);
+  auto polar = make_rotation_extractor("polar", p.mesh);
+  std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
+  polar->extract(p.positions(bent_displacement(p)), rotations);
+  Eigen::VectorXd f0;
+  assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
+  DirichletConditions bc = DirichletConditions::none(p.num_dofs());
+  const auto box = bounding_box(p.mesh.rest);
+  PaperSystem s{p.stiffness, gravity_load(p.mesh, p.materials, Vec3(0, 0, -9.81)),
+                std::vector<char>(p.mesh.rest.size(), 0)};
+  for (int v = 0; v < p.mesh.num_vertices(); ++v)
+    if (p.mesh.rest[v].x() < box[0].x() + 1e-9) {
+      bc.fix_vertex(v);
+      s.fixed[v] = 1;
+    }
+  apply_dirichlet(bc, s.matrix, s.rhs);
+  return cache[model] = std::move(s);
 }
 
 const SimulatedFrames& simulated_frames(const std::string& model) {

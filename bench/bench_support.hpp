@@ -15,6 +15,18 @@ const std::filesystem::path& models_dir();
 /// boxes of about the same tet counts. Cached: built once per process.
 FeProblem& paper_problem(const std::string& model);
 
+/// Levels of the paper's hierarchies: bunny 3, horse 4, dragon 4.
+int paper_levels(const std::string& model);
+
+/// The corotated system of the bent state with the x-min face fixed, as a solver sees it
+/// (supports imposed), and a right-hand side (gravity). Cached per model.
+struct PaperSystem {
+  BrcMatrix matrix;
+  Eigen::VectorXd rhs;
+  std::vector<char> fixed;  ///< per vertex
+};
+const PaperSystem& paper_system(const std::string& model);
+
 /// Two consecutive frames of a real simulation of the problem: a soft body (E = 1e5 Pa) fixed at
 /// its x-min face, sagging under gravity with implicit Euler (dt = 0.01 s, polar rotations,
 /// CHOLMOD); `previous` is step 7 and `current` step 8. The rotation change between the two

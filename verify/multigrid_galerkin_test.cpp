@@ -15,9 +15,18 @@
 namespace corofem {
 namespace {
 
+/// Random symmetric values on A's (symmetric) pattern: A_ji = A_ij^T, as every system matrix.
 void randomize(BrcMatrix& a, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1, 1);
   for (double& v : a.values) v = u(rng);
+  for (int i = 0; i < a.block_rows; ++i)
+    for (int b = a.row_start[i]; b < a.row_start[i + 1]; ++b)
+      if (a.col_index[b] < i) {
+        a.block(b) = a.block(a.find(a.col_index[b], i)).transpose();
+      } else if (a.col_index[b] == i) {
+        const Eigen::Matrix3d d = a.block(b);
+        a.block(b) = 0.5 * (d + d.transpose());
+      }
 }
 
 double relative_frobenius(const Eigen::MatrixXd& x, const Eigen::MatrixXd& ref) {
@@ -32,9 +41,11 @@ void check_all_methods(const BrcMatrix& a, const Transfer& t) {
   const Eigen::MatrixXd eigen = Eigen::MatrixXd(reference::eigen_galerkin(r, to_eigen(a)));
   // Sums of a few dozen products in different orders: round-off ~1e-16 relative.
   EXPECT_LT(relative_frobenius(eigen, dense), 1e-13);
-  GalerkinStream stream(a, t, e);
-  stream.apply(a, e);
-  EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "stream";
+  for (auto symmetry : {GalerkinStream::Symmetry::Symmetric, GalerkinStream::Symmetry::Full}) {
+    GalerkinStream stream(a, t, e, symmetry);
+    stream.apply(a, e);
+    EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "stream";
+  }
   galerkin_naive(a, t, e);
   EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "naive";
   GalerkinReuse reuse(t.coarse);
@@ -97,7 +108,7 @@ TEST(Galerkin, ContinuationBytesBeyond127Pairs) {
   }
   t.transpose_prolongation();
   const BrcMatrix e = galerkin_pattern(a, t);
-  const GalerkinStream stream(a, t, e);
+  const GalerkinStream stream(a, t, e, GalerkinStream::Symmetry::Full);
   int continuation = 0;
   for (std::uint8_t c : stream.control()) continuation += !(c & 0x80);
   EXPECT_GT(continuation, 0);
@@ -112,7 +123,8 @@ TEST(Galerkin, HierarchyUpdateMatchesEigenOnEveryLevel) {
   randomize(a, rng);
   MultigridHierarchy hierarchy(a, mesh.rest, {}, 0.25, 3);
   ASSERT_EQ(hierarchy.num_levels(), 3);
-  for (GalerkinMethod m : {GalerkinMethod::Naive, GalerkinMethod::Stream, GalerkinMethod::Reuse}) {
+  for (GalerkinMethod m : {GalerkinMethod::Naive, GalerkinMethod::Stream, GalerkinMethod::StreamFull,
+                           GalerkinMethod::Reuse}) {
     hierarchy.update(a, m);
     for (int h = 0; h + 1 < hierarchy.num_levels(); ++h) {
       const Eigen::MatrixXd ref = Eigen::MatrixXd(

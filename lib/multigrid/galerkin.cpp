@@ -80,7 +80,9 @@ void GalerkinReuse::apply(const BrcMatrix& a, const Transfer& t, BrcMatrix& e) {
   }
 }
 
-GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e) {
+GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
+                               Symmetry symmetry) {
+  const bool upper_only = symmetry == Symmetry::Symmetric;
   control_.reserve(a.num_blocks());
   for (int l = 0; l < a.block_rows; ++l) {
     for (int b = a.row_start[l]; b < a.row_start[l + 1]; ++b) {
@@ -90,6 +92,7 @@ GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcM
         const int i = t.p_col[m];
         for (int n = t.p_start[k]; n < t.p_start[k + 1]; ++n) {
           const int j = t.p_col[n];
+          if (upper_only && j < i) continue;
           data_.push_back({t.p_weight[m] * t.p_weight[n], static_cast<std::uint32_t>(e.find(i, j))});
           ++count;
         }
@@ -104,6 +107,12 @@ GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcM
       }
     }
   }
+  if (upper_only)
+    for (int i = 0; i < e.block_rows; ++i)
+      for (int b = e.row_start[i]; b < e.row_start[i + 1]; ++b)
+        if (e.col_index[b] > i)
+          mirror_.emplace_back(static_cast<std::uint32_t>(b),
+                               static_cast<std::uint32_t>(e.find(e.col_index[b], i)));
 }
 
 void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
@@ -116,13 +125,20 @@ void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
     for (int p = c & 0x7f; p > 0; --p, ++pair)  // step 2: p weighted scatters
       add_scaled(ev + 9 * static_cast<std::size_t>(pair->destination), pair->weight, block);
   }
+  for (const auto& [upper, lower] : mirror_) {  // E_ji = E_ij^T
+    const double* u = ev + 9 * static_cast<std::size_t>(upper);
+    double* l = ev + 9 * static_cast<std::size_t>(lower);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) l[3 * r + c] = u[3 * c + r];
+  }
 }
 
 GalerkinMethod galerkin_method(const std::string& name) {
   if (name == "naive") return GalerkinMethod::Naive;
   if (name == "stream") return GalerkinMethod::Stream;
+  if (name == "stream-full") return GalerkinMethod::StreamFull;
   if (name == "reuse") return GalerkinMethod::Reuse;
-  throw InputError("analysis.galerkin: unknown method '" + name + "' (known: naive, stream, reuse)");
+  throw InputError("analysis.galerkin: unknown method '" + name + "' (known: naive, stream, stream-full, reuse)");
 }
 
 }  // namespace corofem

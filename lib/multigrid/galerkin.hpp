@@ -45,8 +45,14 @@ class GalerkinStream {
   };
 #pragma pack(pop)
 
+  /// Full: every pair, as the paper. Symmetric: for symmetric A (every system matrix here), only
+  /// the pairs with destination E_ij, i <= j, are streamed (half the pairs and scattered writes);
+  /// apply() then mirrors E_ji = E_ij^T.
+  enum class Symmetry { Full, Symmetric };
+
   GalerkinStream() = default;
-  GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e);
+  GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
+                 Symmetry symmetry = Symmetry::Symmetric);
   /// E = R A R^T (E is zeroed first; A must have the pattern the stream was built for).
   void apply(const BrcMatrix& a, BrcMatrix& e) const;
 
@@ -57,10 +63,12 @@ class GalerkinStream {
  private:
   std::vector<std::uint8_t> control_;
   std::vector<Pair> data_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> mirror_;  ///< (E_ij, E_ji) blocks, i < j
 };
 
-/// Method names for scenes and benchmarks: "naive", "stream", "reuse".
-enum class GalerkinMethod { Naive, Stream, Reuse };
+/// Method names for scenes and benchmarks: "naive", "stream" (symmetric), "stream-full" (the
+/// paper's format), "reuse".
+enum class GalerkinMethod { Naive, Stream, StreamFull, Reuse };
 GalerkinMethod galerkin_method(const std::string& name);
 
 }  // namespace corofem

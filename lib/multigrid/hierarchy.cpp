@@ -33,6 +33,12 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
       case GalerkinMethod::Stream:
         streams_[h].apply(matrices_[h], matrices_[h + 1]);
         break;
+      case GalerkinMethod::StreamFull:
+        if (full_streams_.size() <= h)
+          full_streams_.emplace_back(matrices_[h], transfers_[h], matrices_[h + 1],
+                                     GalerkinStream::Symmetry::Full);
+        full_streams_[h].apply(matrices_[h], matrices_[h + 1]);
+        break;
       case GalerkinMethod::Reuse:
         reuse_[h]->apply(matrices_[h], transfers_[h], matrices_[h + 1]);
         break;
@@ -40,9 +46,9 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
   }
 }
 
-std::size_t MultigridHierarchy::stream_bytes() const {
+std::size_t MultigridHierarchy::stream_bytes(GalerkinMethod format) const {
   std::size_t bytes = 0;
-  for (const auto& s : streams_) bytes += s.bytes();
+  for (const auto& s : format == GalerkinMethod::StreamFull ? full_streams_ : streams_) bytes += s.bytes();
   return bytes;
 }
 

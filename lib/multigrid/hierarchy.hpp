@@ -24,13 +24,14 @@ class MultigridHierarchy {
   /// Transfer from level h to h + 1.
   const Transfer& transfer(int h) const { return transfers_[h]; }
   const GalerkinStream& stream(int h) const { return streams_[h]; }
-  /// Bytes of all control and data streams.
-  std::size_t stream_bytes() const;
+  /// Bytes of all control and data streams of the given format.
+  std::size_t stream_bytes(GalerkinMethod format = GalerkinMethod::Stream) const;
 
  private:
   std::vector<BrcMatrix> matrices_;
   std::vector<Transfer> transfers_;
-  std::vector<GalerkinStream> streams_;
+  std::vector<GalerkinStream> streams_;       ///< symmetric format
+  std::vector<GalerkinStream> full_streams_;  ///< the paper's format, built on first use
   std::vector<std::unique_ptr<GalerkinReuse>> reuse_;
 };
 

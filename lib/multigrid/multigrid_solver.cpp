@@ -10,7 +10,7 @@
 namespace corofem {
 
 nlohmann::json MultigridParams::to_json() const {
-  const char* names[] = {"naive", "stream", "reuse"};
+  const char* names[] = {"naive", "stream", "stream-full", "reuse"};
   return {{"levels", levels},
           {"pre_smoothing", pre_smoothing},
           {"post_smoothing", post_smoothing},

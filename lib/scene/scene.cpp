@@ -111,7 +111,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.formulation = one_of(f, "formulation", a.formulation, {"linear", "corotational"});
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
-  a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "reuse"});
+  a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse"});
   a.levels = f.integer("levels", a.solver == "cholmod" ? 1 : 3);
   if (a.levels < 1 || a.levels > 16) f.fail("levels", "in [1, 16]");
   a.vcycles = f.integer("vcycles", a.vcycles);
