@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Cache misses of the Galerkin update (naive, reuse, stream, stream-full) on one model: D1 and
+# last-level misses per update and per block of K. Uses perf where the machine has hardware
+# counters, valgrind's cachegrind (simulated caches: exact and repeatable) otherwise; the JSON
+# says which. Each count is the difference of a run with N updates and one with none, divided by N.
+# cachegrind simulates the paper's Core 2 Duo 6600 caches (32 KiB 8-way D1, 4 MiB 16-way L2) so that
+# the counts compare with the paper's machine; --host-caches simulates this machine's instead.
+# Usage: bench/cache_profile.sh [--model bunny] [--updates 5] [--out cache_profile.json]
+#        [--bin build/release/bin] [--models DIR] [--host-caches]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+model=bunny updates=5 out=cache_profile.json bin=build/release/bin models=()
+caches=(--D1=32768,8,64 --LL=4194304,16,64) cache_note="paper's Core 2 Duo: D1 32 KiB 8-way, LL 4 MiB 16-way"
+while (($#)); do
+  case $1 in
+    --model) model=$2; shift 2 ;;
+    --updates) updates=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --bin) bin=$2; shift 2 ;;
+    --models) models=(--models "$2"); shift 2 ;;
+    --host-caches) caches=() cache_note="this machine's caches"; shift ;;
+    *) echo "cache_profile: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+profile="$bin/corofem_profile"
+[[ -x $profile ]] || { echo "cache_profile: $profile not built (ci/build)" >&2; exit 2; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# perf exits 0 even where it prints "<not supported>": require a numeric count.
+if command -v perf >/dev/null && perf stat -x, -e instructions true 2>&1 >/dev/null | grep -q '^[0-9]'; then
+  tool=perf
+else
+  tool=cachegrind
+fi
+echo "cache_profile: using $tool on $model, $updates updates per method" >&2
+
+# Prints "d1_misses ll_misses instructions" of one run of the driver.
+measure() {
+  local method=$1 n=$2
+  if [[ $tool == perf ]]; then
+    perf stat -x, -e L1-dcache-load-misses,LLC-load-misses,instructions -o "$tmp/perf.txt" \
+      "$profile" "$method" "$model" "$n" "${models[@]}" > /dev/null
+    awk -F, '/L1-dcache-load-misses/{d=$1} /LLC-load-misses/{l=$1} /instructions/{i=$1} END{print d, l, i}' "$tmp/perf.txt"
+  else
+    valgrind --tool=cachegrind --cache-sim=yes "${caches[@]}" --cachegrind-out-file="$tmp/cg.out" \
+      "$profile" "$method" "$model" "$n" "${models[@]}" > /dev/null 2> "$tmp/cg.err"
+    # events: Ir I1mr ILmr Dr D1mr DLmr Dw D1mw DLmw
+    awk '/^events:/{for(i=2;i<=NF;i++) idx[$i]=i-1} /^summary:/{print $(idx["D1mr"]+1)+$(idx["D1mw"]+1), $(idx["DLmr"]+1)+$(idx["DLmw"]+1), $(idx["Ir"]+1)}' "$tmp/cg.out"
+  fi
+}
+
+blocks=$("$profile" stream "$model" 0 "${models[@]}" | awk '/^fine_blocks/{print $2}')
+results=()
+for method in naive reuse stream stream-full; do
+  echo "cache_profile: $method" >&2
+  read -r d0 l0 i0 < <(measure "$method" 0)
+  read -r d1 l1 i1 < <(measure "$method" "$updates")
+  results+=("$method $d0 $l0 $i0 $d1 $l1 $i1")
+done
+
+python3 - "$out" "$tool" "$model" "$updates" "$blocks" "$cache_note" "${results[@]}" <<'PY'
+import json, os, platform, subprocess, sys, tempfile, datetime
+out, tool, model, updates, blocks = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
+cache_note = sys.argv[6]
+rows = []
+for line in sys.argv[7:]:
+    m, d0, l0, i0, d1, l1, i1 = line.split()
+    d = (float(d1) - float(d0)) / updates
+    l = (float(l1) - float(l0)) / updates
+    i = (float(i1) - float(i0)) / updates
+    rows.append({"method": m, "d1_misses_per_update": d, "ll_misses_per_update": l,
+                 "instructions_per_update": i, "d1_misses_per_k_block": d / blocks,
+                 "ll_misses_per_k_block": l / blocks})
+try:
+    commit = subprocess.check_output(["git", "rev-parse", "HEAD"], text=True).strip()
+except Exception:
+    commit = "unknown"
+record = {"producer": "bench/cache_profile.sh", "tool": tool,
+          "tool_note": "perf hardware counters" if tool == "perf" else
+                       "valgrind cachegrind: simulated D1 and last-level caches (exact, repeatable), " + cache_note,
+          "model": model, "updates": updates, "fine_blocks": blocks,
+          "context": {"commit": commit, "machine": platform.node(), "cpu": platform.processor(),
+                      "date": datetime.datetime.utcnow().strftime("%Y-%m-%dT%H:%M:%SZ")},
+          "results": rows}
+fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(out)))
+with os.fdopen(fd, "w") as f:
+    json.dump(record, f, indent=1)
+os.replace(tmp, out)
+for r in rows:
+    print(f"{r['method']:12s} D1 {r['d1_misses_per_k_block']:8.2f}/block  LL {r['ll_misses_per_k_block']:8.3f}/block  "
+          f"instr {r['instructions_per_update']:.3e}/update", file=sys.stderr)
+PY
+echo "cache_profile: wrote $out" >&2
