@@ -74,7 +74,9 @@ TEST_P(EachExtractor, ReturnsProperRotationsUnderLargeDeformation) {
   }
   // Only polar keeps the reflections of inverted elements (documented, measured by the
   // stability study); every other method returns proper rotations.
-  if (GetParam() != "polar") EXPECT_EQ(reflections, 0);
+  if (GetParam() != "polar") {
+    EXPECT_EQ(reflections, 0);
+  }
 }
 
 TEST_P(EachExtractor, SolvesTheLargeLoadCantilever) {
@@ -130,7 +132,9 @@ TEST(Continuity, FlatteningThroughZeroVolume) {
     }
     std::cout << "[ continuity ] " << method << ": largest jump " << largest << " rad\n";
     // Step in F is 0.005; a continuous method moves by O(0.005 |dQ/dF|): 0.05 rad is 10x that.
-    if (method == "energy-exact" || method == "energy-newton") EXPECT_LT(largest, 0.05) << method;
+    if (method == "energy-exact" || method == "energy-newton") {
+      EXPECT_LT(largest, 0.05) << method;
+    }
   }
 }
 

@@ -70,6 +70,7 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
   Vec4 q(start.w(), -start.x(), -start.y(), -start.z());
   double lambda = 2 * q.dot(n * q) - 2 * a * q.squaredNorm();
   bool converged = false;
+  bool last_step_definite = false;  // the last step's Hessian factored by Cholesky
   for (int it = 0;; ++it) {
     const Vec4 nq = n * q;
     const double q2 = q.squaredNorm();
@@ -88,7 +89,8 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
     Vec4 dq;
     double dl;
     const Eigen::LLT<Mat4> llt(hessian);
-    if (llt.info() == Eigen::Success) {
+    last_step_definite = llt.info() == Eigen::Success;
+    if (last_step_definite) {
       const Vec4 hg = llt.solve(grad), hq = llt.solve(q);
       dl = (constraint - 2 * q.dot(hg)) / (4 * q.dot(hq));
       dq = -(hg + 2 * dl * hq);
@@ -113,8 +115,9 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
     lambda += step[4];
     out.iterations = it + 1;
   }
-  if (converged) {
-    // A minimizer has a positive definite Hessian (see header); a saddle does not.
+  if (converged && !last_step_definite) {
+    // A minimizer has a positive definite Hessian (see header); a saddle does not. Checked here
+    // unless the last step's Hessian, at a point within the tolerance, was already definite.
     const Mat4 hessian = 4 * a * (q.squaredNorm() * Mat4::Identity() + 2 * q * q.transpose()) -
                          4 * n + 2 * lambda * Mat4::Identity();
     converged = Eigen::LLT<Mat4>(hessian).info() == Eigen::Success;
