@@ -68,7 +68,9 @@ TEST(MultigridSolver, StaticAndDynamicSolutionsEqualCholmod) {
           << c.name << " " << name;
       // Fixed DOFs exactly fixed (the transfer never touches them).
       for (int d = 0; d < p.num_dofs(); ++d)
-        if (p.dirichlet.fixed[d]) ASSERT_EQ(got.displacement[d], 0.0) << c.name << " " << name;
+        if (p.dirichlet.fixed[d]) {
+          ASSERT_EQ(got.displacement[d], 0.0) << c.name << " " << name;
+        }
       // Three corotated dynamic steps: A = M + dt^2 Ktilde changes every step.
       auto polar_a = make_rotation_extractor("polar", p.mesh);
       auto polar_b = make_rotation_extractor("polar", p.mesh);
@@ -100,7 +102,9 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, rho = "
               << stats.convergence_factor << " over " << stats.iterations << " V(1,1) cycles\n";
     // PAPER_NOTES 5: 0.2-0.4 expected for nodal block GS V(1,1) on well-shaped compressible tets.
-    if (c.name == "cube") EXPECT_LE(stats.convergence_factor, 0.5);
+    if (c.name == "cube") {
+      EXPECT_LE(stats.convergence_factor, 0.5);
+    }
     EXPECT_LT(stats.convergence_factor, 1.0) << c.name;
   }
 }
