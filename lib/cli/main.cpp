@@ -6,10 +6,12 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
+  corofem::remove_partial_outputs_on_interrupt();
   try {
     return corofem::dispatch(args);
   } catch (const corofem::InputError& e) {

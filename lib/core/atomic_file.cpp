@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 #include "core/errors.hpp"
@@ -11,6 +13,36 @@ namespace corofem {
 namespace fs = std::filesystem;
 
 namespace {
+
+// Temporary files being written, for the signal handler (fixed storage: handlers cannot allocate).
+constexpr int kSlots = 8;
+constexpr std::size_t kPathMax = 4096;
+char g_partial[kSlots][kPathMax];
+volatile std::sig_atomic_t g_used[kSlots];
+
+int register_partial(const fs::path& tmp) {
+  const std::string s = tmp.string();
+  if (s.size() >= kPathMax) return -1;
+  for (int i = 0; i < kSlots; ++i)
+    if (!g_used[i]) {
+      std::memcpy(g_partial[i], s.c_str(), s.size() + 1);
+      g_used[i] = 1;
+      return i;
+    }
+  return -1;
+}
+
+void unregister_partial(int slot) {
+  if (slot >= 0) g_used[slot] = 0;
+}
+
+extern "C" void remove_partials_and_exit(int signal) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_used[i]) ::unlink(g_partial[i]);
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
 fs::path temporary_beside(const fs::path& path) {
   fs::path tmp = path;
   tmp += ".tmp." + std::to_string(::getpid());
@@ -18,8 +50,18 @@ fs::path temporary_beside(const fs::path& path) {
 }
 }  // namespace
 
+void remove_partial_outputs_on_interrupt() {
+  std::signal(SIGINT, remove_partials_and_exit);
+  std::signal(SIGTERM, remove_partials_and_exit);
+}
+
 void write_file_atomically(const fs::path& path, const std::function<void(std::ostream&)>& write) {
   const fs::path tmp = temporary_beside(path);
+  const int slot = register_partial(tmp);
+  struct Unregister {
+    int slot;
+    ~Unregister() { unregister_partial(slot); }
+  } unregister{slot};
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError("cannot write output file '" + path.string() + "'");

@@ -13,6 +13,11 @@ namespace corofem {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write);
 
+/// Installs SIGINT/SIGTERM handlers that delete the temporary files being written, then end the
+/// process as the signal would: an interrupted run leaves its earlier, complete outputs and no
+/// partial file. Call once from main().
+void remove_partial_outputs_on_interrupt();
+
 /// Throws InputError if a file cannot be created in the folder of `path` (checked before long runs,
 /// so an unwritable output is reported before the work, not after).
 void check_writable(const std::filesystem::path& path);

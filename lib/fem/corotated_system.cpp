@@ -27,15 +27,16 @@ int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions)
   return inverted;
 }
 
-void check_finite(const FeProblem& problem, const Eigen::VectorXd& u, const std::string& where) {
+void check_finite(const FeProblem& problem, const Eigen::VectorXd& u, const std::string& what,
+                  const std::string& where) {
   if (u.allFinite()) return;
   for (int e = 0; e < problem.mesh.num_tets(); ++e)
     for (int v : problem.mesh.tets[e])
       if (!u.segment<3>(3 * v).allFinite())
-        throw NumericalFault("non-finite displacement at " + where + ", first at element " +
+        throw NumericalFault("non-finite " + what + " at " + where + ", first at element " +
                              std::to_string(problem.mesh.element_tags[e]) + " (node " +
                              std::to_string(problem.mesh.node_tags[v]) + ")");
-  throw NumericalFault("non-finite displacement at " + where);
+  throw NumericalFault("non-finite " + what + " at " + where);
 }
 
 }  // namespace corofem

@@ -16,7 +16,9 @@ void linearize(FeProblem& problem, RotationExtractor& extractor,
 /// Number of elements with det F <= 0 at `positions`.
 int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);
 
-/// Throws NumericalFault naming `where` and the first element touching a non-finite DOF.
-void check_finite(const FeProblem& problem, const Eigen::VectorXd& u, const std::string& where);
+/// Throws NumericalFault naming `what` (displacement, force, ...), `where` (the step) and the
+/// first element touching a non-finite DOF of v.
+void check_finite(const FeProblem& problem, const Eigen::VectorXd& v, const std::string& what,
+                  const std::string& where);
 
 }  // namespace corofem

@@ -36,13 +36,14 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       auto block = system.block(problem.assembly.diagonal[v]);
       for (int c = 0; c < 3; ++c) block(c, c) += (1 + dt * options.rayleigh_alpha) * problem.mass[3 * v + c];
     }
+    check_finite(problem, b, "force", "step " + std::to_string(step));
     apply_dirichlet(bc, system, b);
     clock.time("solve", [&] {
       solver.set_matrix(system);
       result.linear_iterations += solver.solve(b, velocity).iterations;
     });
     result.displacement += dt * velocity;
-    check_finite(problem, result.displacement, "step " + std::to_string(step));
+    check_finite(problem, result.displacement, "displacement", "step " + std::to_string(step));
     result.steps = step;
     if (on_step) on_step({step, result.displacement, velocity, result.rotations});
   }
@@ -52,6 +53,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   const Eigen::VectorXd r =
       problem.external_force -
       internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement);
+  check_finite(problem, r, "force", "the end of step " + std::to_string(options.steps));
   const double f_norm = free_norm(problem.dirichlet, problem.external_force);
   result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
   result.iterations = options.steps;

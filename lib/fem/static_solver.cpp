@@ -29,6 +29,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       linearize(problem, rotate, p, result.rotations, f0, clock);
       const Eigen::VectorXd r =
           f - internal_forces(problem.elements, problem.mesh, result.rotations, u);
+      check_finite(problem, r, "force", "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it));
       result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
       // A linear solve is exact after one step; corotated steps iterate the lagged rotations.
       if (it > 0 && (!options.corotational || result.residual < options.tolerance)) {
@@ -49,7 +50,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       });
       u += du;
       ++result.iterations;
-      check_finite(problem, u,
+      check_finite(problem, u, "displacement",
                    "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it + 1));
     }
     result.steps = inc;

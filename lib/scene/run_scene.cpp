@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "core/context.hpp"
+#include "core/memory_usage.hpp"
 #include "fem/implicit_euler.hpp"
 #include "fem/static_solver.hpp"
 #include "report/vtu_writer.hpp"
@@ -72,6 +73,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   r["residual"] = result.residual;
   r["inverted_max"] = result.inverted_max;
   r["timings_ms"] = result.timings_ms;
+  r["peak_rss_kb"] = peak_rss_kb();
   r["rotation_stats"] = {{"last_fallbacks", extractor->stats().fallbacks},
                          {"last_iterations_max",
                           extractor->stats().iterations.empty()

@@ -1,0 +1,103 @@
+// Faults during runs: NaN/inf stops with exit 1 naming the step and element; inverted elements
+// are counted, not fatal; a full disk is a clear error with no partial file; SIGINT leaves no
+// partial file; a 10,000-step run keeps constant memory.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "core/memory_usage.hpp"
+#include "fem/implicit_euler.hpp"
+#include "mesh/box_mesh.hpp"
+#include "rotation/rotation_extractor.hpp"
+#include "test_support.hpp"
+
+namespace corofem {
+namespace {
+
+using test::run_cli;
+using test::TempDir;
+using test::write_text;
+
+std::string bar_scene(const std::string& gravity, const std::string& analysis) {
+  return R"({"mesh": {"box": [1, 0.1, 0.1], "cells": [10, 1, 1]},
+    "material": {"young": 1e5, "poisson": 0.3, "density": 1000},
+    "fixed": [{"box": [[0, 0, 0], [0, 0.1, 0.1]]}], "gravity": )" + gravity +
+         R"(, "analysis": )" + analysis + "}";
+}
+
+TEST(Robustness, OverflowingLoadStopsWithExitOneNamingStepAndElement) {
+  TempDir dir;
+  // rho g overflows to inf: the first solve produces inf/NaN displacements.
+  write_text(dir / "s.json", bar_scene("[0, 0, -1e308]", R"({"type": "dynamic", "dt": 0.01, "steps": 5})"));
+  const auto r = run_cli("run '" + (dir / "s.json").string() + "' --out '" + (dir / "r.json").string() + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("non-finite"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("step"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("element"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));
+}
+
+TEST(Robustness, InvertedElementsAreCountedNotFatal) {
+  TempDir dir;
+  // A soft block squashed by a force larger than it can bear in one implicit step.
+  write_text(dir / "s.json", R"({"mesh": {"box": [1, 1, 1], "cells": [2, 2, 2]},
+    "material": {"young": 1e3, "poisson": 0.3, "density": 100},
+    "fixed": [{"box": [[0, 0, 0], [1, 1, 0]]}],
+    "forces": [{"box": [[0, 0, 1], [1, 1, 1]], "total": [0, 0, -5e4]}],
+    "analysis": {"type": "dynamic", "rotation": "polar-fixed", "dt": 0.05, "steps": 20}})");
+  const auto r = run_cli("run '" + (dir / "s.json").string() + "' --out '" + (dir / "r.json").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::read_text(dir / "r.json"));
+  EXPECT_GT(j["inverted_max"].get<int>(), 0);
+}
+
+TEST(Robustness, FullDiskIsAClearErrorWithoutPartialFile) {
+  TempDir dir;
+  write_text(dir / "s.json", bar_scene("[0, 0, -9.81]", R"({"type": "static"})"));
+  // A 1-block file size limit with SIGXFSZ ignored: writes fail as on a full disk.
+  const std::string command = "bash -c \"trap '' XFSZ; ulimit -f 1; '" + std::string(COROFEM_CLI) +
+                              "' run '" + (dir / "s.json").string() + "' --out '" +
+                              (dir / "r.json").string() + "'\"";
+  const int status = std::system((command + " 2> '" + (dir / "err").string() + "'").c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_NE(test::read_text(dir / "err").find("disk full"), std::string::npos) << test::read_text(dir / "err");
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().filename().string().find("r.json"), std::string::npos) << entry.path();
+}
+
+TEST(Robustness, InterruptLeavesNoPartialFile) {
+  TempDir dir;
+  write_text(dir / "s.json", bar_scene("[0, 0, -9.81]", R"({"type": "dynamic", "dt": 0.001, "steps": 10000000})"));
+  write_text(dir / "interrupt.sh", "'" + std::string(COROFEM_CLI) + "' run '" + (dir / "s.json").string() +
+                                       "' --out '" + (dir / "r.json").string() +
+                                       "' 2>/dev/null &\npid=$!\nsleep 1\nkill -INT $pid\nwait $pid\n");
+  const int status = std::system(("bash '" + (dir / "interrupt.sh").string() + "'").c_str());
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().filename().string().find("r.json"), std::string::npos) << entry.path();
+}
+
+TEST(Robustness, TenThousandStepsKeepConstantMemory) {
+  TetMesh mesh = make_box_mesh({1, 0.2, 0.2}, {5, 1, 1});
+  std::vector<Material> m(mesh.tets.size(), Material{1e5, 0.3, 1000});
+  FeProblem p = make_fe_problem(std::move(mesh), std::move(m));
+  for (int v = 0; v < p.mesh.num_vertices(); ++v)
+    if (p.mesh.rest[v].x() == 0) p.dirichlet.fix_vertex(v);
+  p.external_force.setConstant(-1.0);
+  auto rotation = make_rotation_extractor("energy-newton", p.mesh);
+  auto solver = make_cholmod_solver();
+  long at_1000 = 0, at_10000 = 0;
+  solve_dynamic(p, *rotation, *solver, {true, 0.01, 10000, 1.0, 0.0}, [&](const StepState& s) {
+    if (s.step == 1000) at_1000 = current_rss_kb();
+    if (s.step == 10000) at_10000 = current_rss_kb();
+  });
+  std::cout << "[ long run ] RSS at step 1000: " << at_1000 << " kB, at step 10000: " << at_10000
+            << " kB, peak " << peak_rss_kb() << " kB\n";
+  // A leak of even 100 bytes per step would add ~900 kB over the 9000 steps.
+  EXPECT_LT(at_10000 - at_1000, 256);
+}
+
+}  // namespace
+}  // namespace corofem
