@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "core/errors.hpp"
+#include "mesh/msh_precheck.hpp"
 
 namespace corofem {
 namespace fs = std::filesystem;
@@ -128,6 +129,7 @@ TetMesh collect_tets(const fs::path& file) {
 
 TetMesh read_volume_mesh(const fs::path& file) {
   check_readable(file);
+  precheck_msh(file);
   GmshSession session;
   call_gmsh(file, "open", [&] { gmsh::open(file.string()); });
   return collect_tets(file);

@@ -1,0 +1,187 @@
+#include "mesh/msh_precheck.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include "core/errors.hpp"
+
+namespace corofem {
+namespace {
+
+constexpr unsigned long long kMaxTag = 1'000'000'000ULL;
+
+[[noreturn]] void reject(const std::filesystem::path& file, const std::string& what) {
+  throw InputError("mesh file '" + file.string() + "' is malformed: " + what);
+}
+
+/// Offset just after "\n$Name\n" (or at the start of the file), or npos.
+std::size_t section_start(const std::string& bytes, const std::string& name) {
+  const std::string key = "$" + name + "\n";
+  if (bytes.compare(0, key.size(), key) == 0) return key.size();
+  const std::size_t at = bytes.find("\n" + key);
+  return at == std::string::npos ? at : at + key.size() + 1;
+}
+
+/// n whitespace-separated unsigned integers as text at `offset`.
+std::vector<unsigned long long> ascii_counts(const std::string& bytes, std::size_t offset, int n,
+                                             const std::filesystem::path& file, const std::string& section) {
+  std::istringstream in(bytes.substr(offset, 256));
+  std::vector<unsigned long long> v(n);
+  for (auto& x : v) {
+    long long signed_value = 0;
+    if (!(in >> signed_value) || signed_value < 0) reject(file, "bad count in $" + section);
+    x = static_cast<unsigned long long>(signed_value);
+  }
+  return v;
+}
+
+/// n native size_t values at `offset` (binary v4 headers).
+std::vector<unsigned long long> binary_counts(const std::string& bytes, std::size_t offset, int n,
+                                              const std::filesystem::path& file, const std::string& section) {
+  if (offset + n * sizeof(std::size_t) > bytes.size()) reject(file, "truncated $" + section);
+  std::vector<unsigned long long> v(n);
+  for (int i = 0; i < n; ++i) {
+    std::size_t x = 0;
+    std::memcpy(&x, bytes.data() + offset + i * sizeof(std::size_t), sizeof x);
+    v[i] = x;
+  }
+  return v;
+}
+
+/// Whitespace-separated tokens of the section body from `offset` up to "$End<name>".
+std::vector<std::string> section_lines(const std::string& bytes, std::size_t offset, const std::string& name,
+                                       const std::filesystem::path& file) {
+  const std::size_t end = bytes.find("$End" + name, offset);
+  if (end == std::string::npos) reject(file, "$" + name + " has no $End" + name);
+  std::vector<std::string> lines;
+  std::istringstream in(bytes.substr(offset, end - offset));
+  for (std::string line; std::getline(in, line);)
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  return lines;
+}
+
+std::vector<long long> integers(const std::string& line, const std::filesystem::path& file,
+                                const std::string& section) {
+  std::istringstream in(line);
+  std::vector<long long> v;
+  std::string token;
+  while (in >> token) {
+    std::size_t used = 0;
+    long long x = 0;
+    try {
+      x = std::stoll(token, &used);
+    } catch (...) {
+      reject(file, "non-integer '" + token + "' in $" + section);
+    }
+    if (used != token.size()) reject(file, "non-integer '" + token + "' in $" + section);
+    v.push_back(x);
+  }
+  return v;
+}
+
+/// ASCII files: every node reference of every element names a node of $Nodes (gmsh 4.8 keeps
+/// a null vertex for a missing one and crashes later, in getElements).
+void check_ascii_references(const std::string& bytes, int major, const std::filesystem::path& file) {
+  const std::size_t nodes_at = section_start(bytes, "Nodes");
+  const std::size_t elements_at = section_start(bytes, "Elements");
+  if (nodes_at == std::string::npos || elements_at == std::string::npos) return;  // gmsh reports it
+  std::unordered_set<long long> tags;
+  const auto node_lines = section_lines(bytes, nodes_at, "Nodes", file);
+  if (node_lines.empty()) reject(file, "empty $Nodes");
+  std::size_t row = 1;
+  if (major == 2) {
+    for (; row < node_lines.size(); ++row) {
+      std::istringstream in(node_lines[row]);
+      long long tag = 0;
+      if (!(in >> tag) || tag <= 0) reject(file, "bad node line in $Nodes: '" + node_lines[row] + "'");
+      tags.insert(tag);
+    }
+  } else {
+    while (row < node_lines.size()) {
+      const auto block = integers(node_lines[row++], file, "Nodes");
+      if (block.size() != 4 || block[3] < 0) reject(file, "bad entity block header in $Nodes");
+      const long long n = block[3];
+      if (row + 2 * static_cast<std::size_t>(n) > node_lines.size()) reject(file, "truncated $Nodes");
+      for (long long k = 0; k < n; ++k) {
+        const auto tag = integers(node_lines[row++], file, "Nodes");
+        if (tag.size() != 1 || tag[0] <= 0) reject(file, "bad node tag in $Nodes");
+        tags.insert(tag[0]);
+      }
+      row += static_cast<std::size_t>(n);  // coordinates
+    }
+  }
+  const auto element_lines = section_lines(bytes, elements_at, "Elements", file);
+  if (element_lines.empty()) reject(file, "empty $Elements");
+  auto check_nodes = [&](const std::vector<long long>& v, std::size_t first) {
+    if (first >= v.size()) reject(file, "an element of $Elements has no nodes");
+    for (std::size_t i = first; i < v.size(); ++i)
+      if (!tags.count(v[i]))
+        reject(file, "element " + std::to_string(v[0]) + " refers to node " + std::to_string(v[i]) +
+                         ", which $Nodes does not define");
+  };
+  row = 1;
+  if (major == 2) {
+    for (; row < element_lines.size(); ++row) {
+      const auto v = integers(element_lines[row], file, "Elements");
+      if (v.size() < 3 || v[2] < 0) reject(file, "bad element line in $Elements");
+      check_nodes(v, 3 + static_cast<std::size_t>(v[2]));
+    }
+  } else {
+    while (row < element_lines.size()) {
+      const auto block = integers(element_lines[row++], file, "Elements");
+      if (block.size() != 4 || block[3] < 0) reject(file, "bad entity block header in $Elements");
+      if (row + static_cast<std::size_t>(block[3]) > element_lines.size()) reject(file, "truncated $Elements");
+      for (long long k = 0; k < block[3]; ++k) check_nodes(integers(element_lines[row++], file, "Elements"), 1);
+    }
+  }
+}
+
+}  // namespace
+
+void precheck_msh(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const unsigned long long size = bytes.size();
+  const std::size_t format = section_start(bytes, "MeshFormat");
+  if (format != std::strlen("$MeshFormat\n")) reject(file, "it does not start with $MeshFormat");
+  std::istringstream line(bytes.substr(format, 64));
+  double version = 0;
+  int type = -1, data_size = 0;
+  if (!(line >> version >> type >> data_size)) reject(file, "unreadable $MeshFormat line");
+  const int major = static_cast<int>(version);
+  if ((major != 2 && major != 4) || (type != 0 && type != 1) || data_size != 8)
+    reject(file, "unsupported $MeshFormat '" + bytes.substr(format, bytes.find('\n', format) - format) +
+                     "' (need version 2.x or 4.x, type 0 or 1, data size 8)");
+  const bool binary_headers = major == 4 && type == 1;
+  struct Section {
+    const char* name;
+    int v4_counts;  // numbers in the v4 header (v2 and $PhysicalNames: 1)
+    bool has_tag_range;
+  };
+  const Section sections[] = {{"Entities", 4, false}, {"Nodes", 4, true}, {"Elements", 4, true},
+                              {"PhysicalNames", 1, false}};
+  for (const Section& s : sections) {
+    const std::size_t at = section_start(bytes, s.name);
+    if (at == std::string::npos) continue;
+    const bool ascii_only = std::string(s.name) == "PhysicalNames";
+    const int n = major == 4 ? s.v4_counts : (std::string(s.name) == "Entities" ? 0 : 1);
+    if (n == 0) continue;
+    const auto counts = binary_headers && !ascii_only ? binary_counts(bytes, at, n, file, s.name)
+                                                      : ascii_counts(bytes, at, n, file, s.name);
+    for (std::size_t i = 0; i < counts.size(); ++i)
+      if (!(s.has_tag_range && major == 4 && i >= 2) && counts[i] > size)
+        reject(file, "$" + std::string(s.name) + " declares " + std::to_string(counts[i]) +
+                         " items in a file of " + std::to_string(size) + " bytes");
+    if (s.has_tag_range && major == 4 && counts[1] > 0 &&
+        (counts[3] > kMaxTag || counts[2] > counts[3]))
+      reject(file, "$" + std::string(s.name) + " has tag range [" + std::to_string(counts[2]) + ", " +
+                       std::to_string(counts[3]) + "] (tags above 1e9 are not accepted)");
+  }
+  if (type == 0) check_ascii_references(bytes, major, file);
+}
+
+}  // namespace corofem
