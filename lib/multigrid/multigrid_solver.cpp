@@ -76,19 +76,25 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (x.size() != b.size()) x.setZero(b.size());
-  return preconditioner_ ? solve_cg(b, x) : solve_stationary(b, x);
-}
-
-SolveStats MultigridSolver::solve_stationary(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  SolveStats stats;
-  const BrcMatrix& a = hierarchy_.matrix(0);
   const double b_norm = b.norm();
   if (b_norm == 0) {
     x.setZero();
-    return stats;
+    return {};
   }
-  Eigen::VectorXd r = b - a * x;
-  const double r0 = r.norm();
+  const Eigen::VectorXd r0 = b - hierarchy_.matrix(0) * x;
+  SolveStats stats = preconditioner_ ? solve_cg(b, r0, x) : solve_stationary(b, r0.norm(), x);
+  stats.residual /= b_norm;
+  stats.convergence_factor =
+      stats.iterations > 0 && r0.norm() > 0
+          ? std::pow(stats.residual * b_norm / r0.norm(), 1.0 / stats.iterations)
+          : 0;
+  return stats;
+}
+
+SolveStats MultigridSolver::solve_stationary(const Eigen::VectorXd& b, double r0, Eigen::VectorXd& x) {
+  SolveStats stats;
+  const BrcMatrix& a = hierarchy_.matrix(0);
+  const double b_norm = b.norm();
   const int cap = params_.vcycles > 0 ? params_.vcycles : params_.max_iterations;
   double rk = r0;
   for (int k = 0; k < cap; ++k) {
@@ -98,24 +104,19 @@ SolveStats MultigridSolver::solve_stationary(const Eigen::VectorXd& b, Eigen::Ve
     ++stats.iterations;
     if (!std::isfinite(rk)) throw NumericalFault("multigrid: residual became non-finite");
   }
-  stats.residual = rk / b_norm;
-  stats.convergence_factor = stats.iterations > 0 && r0 > 0 ? std::pow(rk / r0, 1.0 / stats.iterations) : 0;
+  stats.residual = rk;  // absolute here; solve() makes it relative
   return stats;
 }
 
-SolveStats MultigridSolver::solve_cg(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+SolveStats MultigridSolver::solve_cg(const Eigen::VectorXd& b, const Eigen::VectorXd& r0,
+                                     Eigen::VectorXd& x) {
   SolveStats stats;
   const BrcMatrix& a = hierarchy_.matrix(0);
   const double b_norm = b.norm();
-  if (b_norm == 0) {
-    x.setZero();
-    return stats;
-  }
-  Eigen::VectorXd r = b - a * x, z = Eigen::VectorXd::Zero(b.size()), q;
-  const double r0 = r.norm();
+  Eigen::VectorXd r = r0, z = Eigen::VectorXd::Zero(b.size()), q;
   vcycle(0, r, z);
   Eigen::VectorXd p = z;
-  double rz = r.dot(z), rk = r0;
+  double rz = r.dot(z), rk = r0.norm();
   while (rk > params_.tolerance * b_norm && stats.iterations < params_.max_iterations) {
     a.multiply(p, q);
     const double alpha = rz / p.dot(q);
@@ -131,8 +132,7 @@ SolveStats MultigridSolver::solve_cg(const Eigen::VectorXd& b, Eigen::VectorXd& 
     p = z + (rz_next / rz) * p;
     rz = rz_next;
   }
-  stats.residual = rk / b_norm;
-  stats.convergence_factor = stats.iterations > 0 && r0 > 0 ? std::pow(rk / r0, 1.0 / stats.iterations) : 0;
+  stats.residual = rk;  // absolute here; solve() makes it relative
   return stats;
 }
 

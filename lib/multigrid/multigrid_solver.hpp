@@ -40,8 +40,9 @@ class MultigridSolver : public LinearSolver {
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
 
  private:
-  SolveStats solve_stationary(const Eigen::VectorXd& b, Eigen::VectorXd& x);
-  SolveStats solve_cg(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// Both take the initial residual and return the absolute final one.
+  SolveStats solve_stationary(const Eigen::VectorXd& b, double r0, Eigen::VectorXd& x);
+  SolveStats solve_cg(const Eigen::VectorXd& b, const Eigen::VectorXd& r0, Eigen::VectorXd& x);
 
   MultigridParams params_;
   bool preconditioner_;

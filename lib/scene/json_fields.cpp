@@ -38,12 +38,17 @@ JsonFields JsonFields::object(const std::string& key) {
   return JsonFields(require(key), path_of(key), file_);
 }
 
-double JsonFields::number(const std::string& key, std::optional<double> fallback) {
+/// The value at key; nullptr when it is missing and a fallback exists, an error when not.
+template <class T>
+const nlohmann::json* JsonFields::value_or_fallback(const std::string& key, const std::optional<T>& fallback) {
   const nlohmann::json* v = get(key);
-  if (!v) {
-    if (fallback) return *fallback;
-    error(file_, path_of(key), "is required");
-  }
+  if (!v && !fallback) error(file_, path_of(key), "is required");
+  return v;
+}
+
+double JsonFields::number(const std::string& key, std::optional<double> fallback) {
+  const nlohmann::json* v = value_or_fallback(key, fallback);
+  if (!v) return *fallback;
   if (!v->is_number()) error(file_, path_of(key), "must be a number");
   const double d = v->get<double>();
   if (!std::isfinite(d)) error(file_, path_of(key), "must be finite");
@@ -51,11 +56,8 @@ double JsonFields::number(const std::string& key, std::optional<double> fallback
 }
 
 int JsonFields::integer(const std::string& key, std::optional<int> fallback) {
-  const nlohmann::json* v = get(key);
-  if (!v) {
-    if (fallback) return *fallback;
-    error(file_, path_of(key), "is required");
-  }
+  const nlohmann::json* v = value_or_fallback(key, fallback);
+  if (!v) return *fallback;
   if (!v->is_number_integer()) error(file_, path_of(key), "must be an integer");
   const auto i = v->get<long long>();
   if (i < -2147483647LL || i > 2147483647LL) error(file_, path_of(key), "is out of range");
@@ -63,31 +65,22 @@ int JsonFields::integer(const std::string& key, std::optional<int> fallback) {
 }
 
 bool JsonFields::boolean(const std::string& key, std::optional<bool> fallback) {
-  const nlohmann::json* v = get(key);
-  if (!v) {
-    if (fallback) return *fallback;
-    error(file_, path_of(key), "is required");
-  }
+  const nlohmann::json* v = value_or_fallback(key, fallback);
+  if (!v) return *fallback;
   if (!v->is_boolean()) error(file_, path_of(key), "must be true or false");
   return v->get<bool>();
 }
 
 std::string JsonFields::string(const std::string& key, std::optional<std::string> fallback) {
-  const nlohmann::json* v = get(key);
-  if (!v) {
-    if (fallback) return *fallback;
-    error(file_, path_of(key), "is required");
-  }
+  const nlohmann::json* v = value_or_fallback(key, fallback);
+  if (!v) return *fallback;
   if (!v->is_string()) error(file_, path_of(key), "must be a string");
   return v->get<std::string>();
 }
 
 Vec3 JsonFields::vec3(const std::string& key, std::optional<Vec3> fallback) {
-  const nlohmann::json* v = get(key);
-  if (!v) {
-    if (fallback) return *fallback;
-    error(file_, path_of(key), "is required");
-  }
+  const nlohmann::json* v = value_or_fallback(key, fallback);
+  if (!v) return *fallback;
   return json_vec3(*v, path_of(key), file_);
 }
 

@@ -37,6 +37,9 @@ class JsonFields {
   const std::string& file() const { return file_; }
 
  private:
+  template <class T>
+  const nlohmann::json* value_or_fallback(const std::string& key, const std::optional<T>& fallback);
+
   const nlohmann::json& object_;
   std::string path_, file_;
   std::set<std::string> known_;
