@@ -152,7 +152,8 @@ void precheck_msh(const std::filesystem::path& file) {
   double version = 0;
   int type = -1, data_size = 0;
   if (!(line >> version >> type >> data_size)) reject(file, "unreadable $MeshFormat line");
-  const int major = static_cast<int>(version);
+  // Range first: converting an out-of-range double to int is undefined (UBSan found 4.2e33 here).
+  const int major = version >= 2 && version < 5 ? static_cast<int>(version) : 0;
   if ((major != 2 && major != 4) || (type != 0 && type != 1) || data_size != 8)
     reject(file, "unsupported $MeshFormat '" + bytes.substr(format, bytes.find('\n', format) - format) +
                      "' (need version 2.x or 4.x, type 0 or 1, data size 8)");
