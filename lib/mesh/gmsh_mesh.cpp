@@ -137,6 +137,7 @@ TetMesh read_volume_mesh(const fs::path& file) {
 
 TetMesh tetrahedralize_surface(const fs::path& file, double size) {
   check_readable(file);
+  precheck_stl(file);
   if (!(size > 0) || !std::isfinite(size))
     throw InputError("mesh size for '" + file.string() + "' must be a positive number");
   GmshSession session;

@@ -1,5 +1,6 @@
 #include "mesh/msh_precheck.hpp"
 
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -183,6 +184,21 @@ void precheck_msh(const std::filesystem::path& file) {
                        std::to_string(counts[3]) + "] (tags above 1e9 are not accepted)");
   }
   if (type == 0) check_ascii_references(bytes, major, file);
+}
+
+void precheck_stl(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char header[84] = {};
+  in.read(header, sizeof header);
+  const auto got = in.gcount();
+  if (got >= 5 && std::string(header, 5) == "solid") return;  // ASCII: gmsh parses it line by line
+  if (got < 84) reject(file, "binary STL shorter than its 84-byte header");
+  std::uint32_t triangles = 0;
+  std::memcpy(&triangles, header + 80, sizeof triangles);
+  const auto size = std::filesystem::file_size(file);
+  if (size != 84 + 50ULL * triangles)
+    reject(file, "binary STL declares " + std::to_string(triangles) + " triangles (" +
+                     std::to_string(84 + 50ULL * triangles) + " bytes) but has " + std::to_string(size) + " bytes");
 }
 
 }  // namespace corofem
