@@ -141,6 +141,24 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
   }
 }
 
+/// ASCII files: every "$" line is a known section header. gmsh matches section names by prefix,
+/// so "$Nodes1" is read as $Nodes by gmsh but skipped by the checks above; a fuzzed file built
+/// that way corrupted gmsh's heap.
+void check_section_names(const std::string& bytes, const std::filesystem::path& file) {
+  static const std::unordered_set<std::string> known = {
+      "MeshFormat", "PhysicalNames", "Entities", "PartitionedEntities", "Nodes", "Elements",
+      "Periodic", "GhostElements", "Parametrizations", "NodeData", "ElementData",
+      "ElementNodeData", "InterpolationScheme", "Comments"};
+  std::istringstream in(bytes);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] != '$') continue;
+    std::string name = line.substr(1);
+    while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
+    if (name.rfind("End", 0) == 0) name = name.substr(3);
+    if (!known.count(name)) reject(file, "unknown section header '" + line.substr(0, 40) + "'");
+  }
+}
+
 }  // namespace
 
 void precheck_msh(const std::filesystem::path& file) {
@@ -183,7 +201,10 @@ void precheck_msh(const std::filesystem::path& file) {
       reject(file, "$" + std::string(s.name) + " has tag range [" + std::to_string(counts[2]) + ", " +
                        std::to_string(counts[3]) + "] (tags above 1e9 are not accepted)");
   }
-  if (type == 0) check_ascii_references(bytes, major, file);
+  if (type == 0) {
+    check_section_names(bytes, file);
+    check_ascii_references(bytes, major, file);
+  }
 }
 
 void precheck_stl(const std::filesystem::path& file) {

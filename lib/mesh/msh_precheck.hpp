@@ -10,7 +10,8 @@ namespace corofem {
 /// $MeshFormat section; the version is not 2.x or 4.x, the file type not 0 (ASCII) or 1 (binary),
 /// or the data size not 8; a count in $Entities, $Nodes, $Elements or $PhysicalNames exceeds
 /// the file's size in bytes (every item takes at least one byte); or a node or element tag range
-/// exceeds 1e9 or has min > max; in ASCII files, also a malformed $Nodes or $Elements body or an
+/// exceeds 1e9 or has min > max; in ASCII files, also an unknown section header (gmsh matches
+/// names by prefix), a malformed $Nodes or $Elements body or an
 /// element referring to a node $Nodes does not define. Binary bodies are not parsed here.
 void precheck_msh(const std::filesystem::path& file);
 
