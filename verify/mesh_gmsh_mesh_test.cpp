@@ -132,6 +132,16 @@ TEST(GmshMesh, BadFilesGiveErrorsNamingFileAndFault) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("nan.msh"), std::string::npos) << e.what();
   }
+  write_text(dir / "binary.msh", std::string("$MeshFormat\n4.1 1 8\n\x01\0\0\0\n$EndMeshFormat\n"));
+  expect_input_error(dir / "binary.msh", "binary .msh");
+  std::string prefixed = kMshV4;
+  prefixed.replace(prefixed.find("$Nodes"), 6, "$Nodes1");
+  write_text(dir / "prefixed.msh", prefixed);
+  expect_input_error(dir / "prefixed.msh", "unknown section header");
+  std::string dangling = kMshV2;
+  dangling.replace(dangling.find("101 4 2 0 1 11 12 13 14"), 23, "101 4 2 0 1 11 12 13 77");
+  write_text(dir / "dangling.msh", dangling);
+  expect_input_error(dir / "dangling.msh", "refers to node 77");
   std::string truncated = kMshV4;
   write_text(dir / "truncated.msh", truncated.substr(0, truncated.size() / 2));
   EXPECT_THROW(read_volume_mesh(dir / "truncated.msh"), InputError);

@@ -40,19 +40,6 @@ std::vector<unsigned long long> ascii_counts(const std::string& bytes, std::size
   return v;
 }
 
-/// n native size_t values at `offset` (binary v4 headers).
-std::vector<unsigned long long> binary_counts(const std::string& bytes, std::size_t offset, int n,
-                                              const std::filesystem::path& file, const std::string& section) {
-  if (offset + n * sizeof(std::size_t) > bytes.size()) reject(file, "truncated $" + section);
-  std::vector<unsigned long long> v(n);
-  for (int i = 0; i < n; ++i) {
-    std::size_t x = 0;
-    std::memcpy(&x, bytes.data() + offset + i * sizeof(std::size_t), sizeof x);
-    v[i] = x;
-  }
-  return v;
-}
-
 /// Whitespace-separated tokens of the section body from `offset` up to "$End<name>".
 std::vector<std::string> section_lines(const std::string& bytes, std::size_t offset, const std::string& name,
                                        const std::filesystem::path& file) {
@@ -176,7 +163,12 @@ void precheck_msh(const std::filesystem::path& file) {
   if ((major != 2 && major != 4) || (type != 0 && type != 1) || data_size != 8)
     reject(file, "unsupported $MeshFormat '" + bytes.substr(format, bytes.find('\n', format) - format) +
                      "' (need version 2.x or 4.x, type 0 or 1, data size 8)");
-  const bool binary_headers = major == 4 && type == 1;
+  if (type == 1)
+    throw InputError("mesh file '" + file.string() +
+                     "' is a binary .msh, which corofem does not accept: gmsh 4.8 trusts the counts "
+                     "in binary files and crashes on hostile ones, and their bodies cannot be "
+                     "checked here. Convert it to ASCII: gmsh '" + file.string() +
+                     "' -save -bin 0 -o ascii.msh");
   struct Section {
     const char* name;
     int v4_counts;  // numbers in the v4 header (v2 and $PhysicalNames: 1)
@@ -187,11 +179,9 @@ void precheck_msh(const std::filesystem::path& file) {
   for (const Section& s : sections) {
     const std::size_t at = section_start(bytes, s.name);
     if (at == std::string::npos) continue;
-    const bool ascii_only = std::string(s.name) == "PhysicalNames";
     const int n = major == 4 ? s.v4_counts : (std::string(s.name) == "Entities" ? 0 : 1);
     if (n == 0) continue;
-    const auto counts = binary_headers && !ascii_only ? binary_counts(bytes, at, n, file, s.name)
-                                                      : ascii_counts(bytes, at, n, file, s.name);
+    const auto counts = ascii_counts(bytes, at, n, file, s.name);
     for (std::size_t i = 0; i < counts.size(); ++i)
       if (!(s.has_tag_range && major == 4 && i >= 2) && counts[i] > size)
         reject(file, "$" + std::string(s.name) + " declares " + std::to_string(counts[i]) +
@@ -201,10 +191,8 @@ void precheck_msh(const std::filesystem::path& file) {
       reject(file, "$" + std::string(s.name) + " has tag range [" + std::to_string(counts[2]) + ", " +
                        std::to_string(counts[3]) + "] (tags above 1e9 are not accepted)");
   }
-  if (type == 0) {
-    check_section_names(bytes, file);
-    check_ascii_references(bytes, major, file);
-  }
+  check_section_names(bytes, file);
+  check_ascii_references(bytes, major, file);
 }
 
 void precheck_stl(const std::filesystem::path& file) {
