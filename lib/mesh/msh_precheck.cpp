@@ -74,36 +74,53 @@ std::vector<long long> integers(const std::string& line, const std::filesystem::
 /// ASCII files: every node reference of every element names a node of $Nodes (gmsh 4.8 keeps
 /// a null vertex for a missing one and crashes later, in getElements).
 void check_ascii_references(const std::string& bytes, int major, const std::filesystem::path& file) {
-  const std::size_t nodes_at = section_start(bytes, "Nodes");
-  const std::size_t elements_at = section_start(bytes, "Elements");
-  if (nodes_at == std::string::npos || elements_at == std::string::npos) return;  // gmsh reports it
+  // Each section is checked whenever it is present: gmsh parses whatever it finds.
   std::unordered_set<long long> tags;
-  const auto node_lines = section_lines(bytes, nodes_at, "Nodes", file);
-  if (node_lines.empty()) reject(file, "empty $Nodes");
-  std::size_t row = 1;
-  if (major == 2) {
-    for (; row < node_lines.size(); ++row) {
-      std::istringstream in(node_lines[row]);
-      long long tag = 0;
-      if (!(in >> tag) || tag <= 0) reject(file, "bad node line in $Nodes: '" + node_lines[row] + "'");
-      tags.insert(tag);
-    }
-  } else {
-    while (row < node_lines.size()) {
-      const auto block = integers(node_lines[row++], file, "Nodes");
-      if (block.size() != 4 || block[3] < 0) reject(file, "bad entity block header in $Nodes");
-      const long long n = block[3];
-      if (row + 2 * static_cast<std::size_t>(n) > node_lines.size()) reject(file, "truncated $Nodes");
-      for (long long k = 0; k < n; ++k) {
-        const auto tag = integers(node_lines[row++], file, "Nodes");
-        if (tag.size() != 1 || tag[0] <= 0) reject(file, "bad node tag in $Nodes");
-        tags.insert(tag[0]);
+  const std::size_t nodes_at = section_start(bytes, "Nodes");
+  if (nodes_at != std::string::npos) {
+    const auto node_lines = section_lines(bytes, nodes_at, "Nodes", file);
+    if (node_lines.empty()) reject(file, "empty $Nodes");
+    const auto head = integers(node_lines[0], file, "Nodes");
+    std::size_t row = 1;
+    if (major == 2) {
+      if (head.size() != 1 || head[0] < 0 || static_cast<std::size_t>(head[0]) != node_lines.size() - 1)
+        reject(file, "$Nodes declares " + node_lines[0] + " nodes but lists " + std::to_string(node_lines.size() - 1));
+      for (; row < node_lines.size(); ++row) {
+        std::istringstream in(node_lines[row]);
+        long long tag = 0;
+        double x = 0, y = 0, z = 0;
+        if (!(in >> tag >> x >> y >> z) || tag <= 0) reject(file, "bad node line in $Nodes: '" + node_lines[row] + "'");
+        tags.insert(tag);
       }
-      row += static_cast<std::size_t>(n);  // coordinates
+    } else {
+      if (head.size() != 4) reject(file, "bad $Nodes header");
+      long long listed = 0;
+      while (row < node_lines.size()) {
+        const auto block = integers(node_lines[row++], file, "Nodes");
+        if (block.size() != 4 || block[3] < 0) reject(file, "bad entity block header in $Nodes");
+        const long long n = block[3];
+        if (row + 2 * static_cast<std::size_t>(n) > node_lines.size()) reject(file, "truncated $Nodes");
+        for (long long k = 0; k < n; ++k) {
+          const auto tag = integers(node_lines[row++], file, "Nodes");
+          if (tag.size() != 1 || tag[0] < head[2] || tag[0] > head[3] || tag[0] <= 0)
+            reject(file, "node tag outside the declared range in $Nodes");
+          tags.insert(tag[0]);
+        }
+        for (long long k = 0; k < n; ++k) {
+          std::istringstream in(node_lines[row++]);
+          double x = 0, y = 0, z = 0;
+          if (!(in >> x >> y >> z)) reject(file, "bad coordinates in $Nodes");
+        }
+        listed += n;
+      }
+      if (listed != head[1]) reject(file, "$Nodes declares " + std::to_string(head[1]) + " nodes but lists " + std::to_string(listed));
     }
   }
+  const std::size_t elements_at = section_start(bytes, "Elements");
+  if (elements_at == std::string::npos) return;
   const auto element_lines = section_lines(bytes, elements_at, "Elements", file);
   if (element_lines.empty()) reject(file, "empty $Elements");
+  const auto head = integers(element_lines[0], file, "Elements");
   auto check_nodes = [&](const std::vector<long long>& v, std::size_t first) {
     if (first >= v.size()) reject(file, "an element of $Elements has no nodes");
     for (std::size_t i = first; i < v.size(); ++i)
@@ -111,20 +128,31 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
         reject(file, "element " + std::to_string(v[0]) + " refers to node " + std::to_string(v[i]) +
                          ", which $Nodes does not define");
   };
-  row = 1;
+  std::size_t row = 1;
   if (major == 2) {
+    if (head.size() != 1 || head[0] < 0 || static_cast<std::size_t>(head[0]) != element_lines.size() - 1)
+      reject(file, "$Elements declares " + element_lines[0] + " elements but lists " + std::to_string(element_lines.size() - 1));
     for (; row < element_lines.size(); ++row) {
       const auto v = integers(element_lines[row], file, "Elements");
       if (v.size() < 3 || v[2] < 0) reject(file, "bad element line in $Elements");
       check_nodes(v, 3 + static_cast<std::size_t>(v[2]));
     }
   } else {
+    if (head.size() != 4) reject(file, "bad $Elements header");
+    long long listed = 0;
     while (row < element_lines.size()) {
       const auto block = integers(element_lines[row++], file, "Elements");
       if (block.size() != 4 || block[3] < 0) reject(file, "bad entity block header in $Elements");
       if (row + static_cast<std::size_t>(block[3]) > element_lines.size()) reject(file, "truncated $Elements");
-      for (long long k = 0; k < block[3]; ++k) check_nodes(integers(element_lines[row++], file, "Elements"), 1);
+      for (long long k = 0; k < block[3]; ++k) {
+        const auto v = integers(element_lines[row++], file, "Elements");
+        if (v.empty() || v[0] < head[2] || v[0] > head[3] || v[0] <= 0)
+          reject(file, "element tag outside the declared range in $Elements");
+        check_nodes(v, 1);
+      }
+      listed += block[3];
     }
+    if (listed != head[1]) reject(file, "$Elements declares " + std::to_string(head[1]) + " elements but lists " + std::to_string(listed));
   }
 }
 
