@@ -22,10 +22,4 @@ FeProblem make_fe_problem(TetMesh mesh, std::vector<Material> materials) {
   return p;
 }
 
-Eigen::VectorXd rest_vector(const TetMesh& mesh) {
-  Eigen::VectorXd x(3 * mesh.num_vertices());
-  for (int v = 0; v < mesh.num_vertices(); ++v) x.segment<3>(3 * v) = mesh.rest[v];
-  return x;
-}
-
 }  // namespace corofem

@@ -28,7 +28,4 @@ struct FeProblem {
 /// Precomputes element data and the stiffness pattern; loads and supports start empty.
 FeProblem make_fe_problem(TetMesh mesh, std::vector<Material> materials);
 
-/// Rest positions as one DOF vector.
-Eigen::VectorXd rest_vector(const TetMesh& mesh);
-
 }  // namespace corofem

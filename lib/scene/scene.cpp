@@ -106,28 +106,30 @@ void read_material(JsonFields f, Scene& s) {
   f.reject_unknown_keys();
 }
 
+/// An integer key with its fallback, required to lie in [lo, hi].
+int integer_in(JsonFields& f, const std::string& key, int fallback, int lo, int hi) {
+  const int value = f.integer(key, fallback);
+  if (value < lo || value > hi)
+    f.fail(key, "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return value;
+}
+
 void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.type = one_of(f, "type", a.type, {"static", "dynamic"});
   a.formulation = one_of(f, "formulation", a.formulation, {"linear", "corotational"});
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
   a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse"});
-  a.levels = f.integer("levels", a.solver == "cholmod" ? 1 : 3);
-  if (a.levels < 1 || a.levels > 16) f.fail("levels", "in [1, 16]");
-  a.vcycles = f.integer("vcycles", a.vcycles);
-  if (a.vcycles < 0 || a.vcycles > 1000) f.fail("vcycles", "in [0, 1000]");
-  a.smoothing = f.integer("smoothing", a.smoothing);
-  if (a.smoothing < 1 || a.smoothing > 100) f.fail("smoothing", "in [1, 100]");
+  a.levels = integer_in(f, "levels", a.solver == "cholmod" ? 1 : 3, 1, 16);
+  a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
+  a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
   a.dt = f.number("dt", a.dt);
   if (!(a.dt > 0)) f.fail("dt", "> 0");
-  a.steps = f.integer("steps", a.steps);
-  if (a.steps < 1 || a.steps > 10'000'000) f.fail("steps", "in [1, 10000000]");
-  a.load_steps = f.integer("load_steps", a.load_steps);
-  if (a.load_steps < 1 || a.load_steps > 100000) f.fail("load_steps", "in [1, 100000]");
+  a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
+  a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);
   a.tolerance = f.number("tolerance", a.tolerance);
   if (!(a.tolerance > 0 && a.tolerance < 1)) f.fail("tolerance", "in (0, 1)");
-  a.max_iterations = f.integer("max_iterations", a.max_iterations);
-  if (a.max_iterations < 1 || a.max_iterations > 100000) f.fail("max_iterations", "in [1, 100000]");
+  a.max_iterations = integer_in(f, "max_iterations", a.max_iterations, 1, 100000);
   if (const nlohmann::json* damping = f.get("rayleigh")) {
     JsonFields d(*damping, f.path_of("rayleigh"), f.file());
     a.rayleigh_alpha = d.number("alpha", 0.0);
@@ -141,14 +143,11 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     RotationParams& p = a.rotation_params;
     p.newton_tolerance = r.number("newton_tolerance", p.newton_tolerance);
     if (!(p.newton_tolerance > 0 && p.newton_tolerance < 1)) r.fail("newton_tolerance", "in (0, 1)");
-    p.newton_max_iterations = r.integer("newton_max_iterations", p.newton_max_iterations);
-    if (p.newton_max_iterations < 1 || p.newton_max_iterations > 100) r.fail("newton_max_iterations", "in [1, 100]");
-    p.mueller_iterations = r.integer("mueller_iterations", p.mueller_iterations);
-    if (p.mueller_iterations < 1 || p.mueller_iterations > 200) r.fail("mueller_iterations", "in [1, 200]");
+    p.newton_max_iterations = integer_in(r, "newton_max_iterations", p.newton_max_iterations, 1, 100);
+    p.mueller_iterations = integer_in(r, "mueller_iterations", p.mueller_iterations, 1, 200);
     p.mueller_tolerance = r.number("mueller_tolerance", p.mueller_tolerance);
     if (!(p.mueller_tolerance > 0 && p.mueller_tolerance < 1)) r.fail("mueller_tolerance", "in (0, 1)");
-    p.smoothing_passes = r.integer("smoothing_passes", p.smoothing_passes);
-    if (p.smoothing_passes < 0 || p.smoothing_passes > 100) r.fail("smoothing_passes", "in [0, 100]");
+    p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
     r.reject_unknown_keys();
   }
   if (a.levels > 1 && a.solver == "cholmod")
