@@ -1,5 +1,7 @@
 #include "fem/implicit_euler.hpp"
 
+#include <chrono>
+
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
 #include "rotation/polar_decomposition.hpp"
@@ -18,9 +20,13 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   result.displacement = Eigen::VectorXd::Zero(n);
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), f0;
-  DirichletConditions bc = problem.dirichlet;
-  bc.value.setZero();  // supports hold still: zero velocity
   for (int step = 1; step <= options.steps; ++step) {
+    const auto step_start = std::chrono::steady_clock::now();
+    const std::map<std::string, double> before = result.timings_ms;
+    if (options.before_step) options.before_step(step, problem);
+    DirichletConditions bc = problem.dirichlet;  // on the velocity: reach the prescribed u
+    for (int i = 0; i < n; ++i)
+      bc.value[i] = bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
     const auto p = problem.positions(result.displacement);
     result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
     linearize(problem, rotate, p, result.rotations, f0, clock);
@@ -38,14 +44,22 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     }
     check_finite(problem, b, "force", "step " + std::to_string(step));
     apply_dirichlet(bc, system, b);
-    clock.time("solve", [&] {
-      solver.set_matrix(system);
-      result.linear_iterations += solver.solve(b, velocity).iterations;
-    });
+    // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
+    clock.time("update", [&] { solver.set_matrix(system); });
+    const SolveStats stats = clock.time("solve", [&] { return solver.solve(b, velocity); });
+    result.linear_iterations += stats.iterations;
     result.displacement += dt * velocity;
     check_finite(problem, result.displacement, "displacement", "step " + std::to_string(step));
     result.steps = step;
-    if (on_step) on_step({step, result.displacement, velocity, result.rotations});
+    if (on_step) {
+      std::map<std::string, double> phase_ms;
+      for (const auto& [phase, total] : result.timings_ms)
+        phase_ms[phase] = total - (before.count(phase) ? before.at(phase) : 0.0);
+      phase_ms["step"] = std::chrono::duration<double, std::milli>(
+                             std::chrono::steady_clock::now() - step_start)
+                             .count();
+      on_step({step, result.displacement, velocity, result.rotations, phase_ms, stats});
+    }
   }
   // Equilibrium residual of the final state (how far from static rest the run ended).
   clock.time("rotate",

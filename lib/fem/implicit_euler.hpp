@@ -12,20 +12,28 @@
 
 namespace corofem {
 
+struct StepState;
+
 struct DynamicOptions {
   bool corotational = true;
   double dt = 0.01;
   int steps = 1;
   double rayleigh_alpha = 0;  ///< mass-proportional damping (1/s)
   double rayleigh_beta = 0;   ///< stiffness-proportional damping (s)
+  /// Called before each step (1-based) to set time-varying loads and supports:
+  /// problem.external_force, and problem.dirichlet with the displacement prescribed at the end of
+  /// the step. Without it both stay as they are.
+  std::function<void(int step, FeProblem& problem)> before_step;
 };
 
-/// State after each step, for records that follow a run (flutter, energy, VTU frames).
+/// State after each step, for records that follow a run (flutter, energy, VTU frames, timings).
 struct StepState {
   int step;
   const Eigen::VectorXd& displacement;
   const Eigen::VectorXd& velocity;
-  const std::vector<Mat3>& rotations;
+  const std::vector<Mat3>& rotations;        ///< the ones this step's system used
+  const std::map<std::string, double>& phase_ms;  ///< this step: rotate, assemble, update, solve, step
+  const SolveStats& solve;
 };
 
 /// Fixed DOFs keep zero velocity. Throws NumericalFault naming the step on NaN/inf.

@@ -38,6 +38,8 @@ class MultigridSolver : public LinearSolver {
   /// One V-cycle from level h for A_h x = b (x is the initial guess on entry).
   void vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
+  /// How many coarsest-level factorizations needed the semidefinite shift (see set_matrix).
+  int coarsest_shifts() const { return coarsest_shifts_; }
 
  private:
   /// Both take the initial residual and return the absolute final one.
@@ -51,6 +53,7 @@ class MultigridSolver : public LinearSolver {
   struct Coarsest;
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
+  int coarsest_shifts_ = 0;
 };
 
 }  // namespace corofem

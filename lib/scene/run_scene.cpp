@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <ostream>
 
 #include "core/context.hpp"
@@ -11,6 +12,7 @@
 #include "fem/static_solver.hpp"
 #include "report/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
+#include "scene/load_schedule.hpp"
 #include "scene/scene_problem.hpp"
 #include "solver/solver_factory.hpp"
 
@@ -33,6 +35,8 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   const bool corotational = a.formulation == "corotational";
   auto extractor =
       make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
+  std::optional<DynamicOptions> dynamic;
+  if (a.type == "dynamic") dynamic = dynamic_options(scene, problem);
   auto solver = make_linear_solver(a, problem);
   SimulationResult result;
   if (a.type == "static") {
@@ -40,8 +44,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                           {corotational, a.load_steps, a.tolerance, a.max_iterations});
   } else {
     const int every = std::max(1, a.steps / 10);
-    result = solve_dynamic(problem, *extractor, *solver,
-                           {corotational, a.dt, a.steps, a.rayleigh_alpha, a.rayleigh_beta},
+    result = solve_dynamic(problem, *extractor, *solver, *dynamic,
                            [&](const StepState& s) {
                              if (progress && (s.step % every == 0 || s.step == a.steps))
                                *progress << "corofem: step " << s.step << "/" << a.steps << "\n";

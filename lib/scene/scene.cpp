@@ -1,5 +1,7 @@
 #include "scene/scene.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -46,16 +48,24 @@ std::string one_of(JsonFields& f, const std::string& key, const std::string& fal
 
 MeshSpec read_mesh(JsonFields f, const fs::path& base) {
   MeshSpec m;
-  const int sources = f.has("file") + f.has("surface") + f.has("box");
-  if (sources != 1) f.fail("file", "given alone: a mesh is exactly one of file, surface+size, box+cells");
+  const int sources = f.has("file") + f.has("surface") + f.has("box") + f.has("shape");
+  if (sources != 1)
+    f.fail("file", "given alone: a mesh is exactly one of file, surface+size, box+cells, shape+size");
   if (f.has("file")) {
     m.kind = MeshSpec::Kind::File;
     m.path = base / f.string("file");
-  } else if (f.has("surface")) {
-    m.kind = MeshSpec::Kind::Surface;
-    m.path = base / f.string("surface");
+  } else if (f.has("surface") || f.has("shape")) {
+    if (f.has("surface")) {
+      m.kind = MeshSpec::Kind::Surface;
+      m.path = base / f.string("surface");
+    } else {
+      m.kind = MeshSpec::Kind::Quadruped;
+      one_of(f, "shape", "", {"quadruped"});
+    }
     m.size = f.number("size");
     if (!(m.size > 0)) f.fail("size", "> 0");
+    if (m.kind == MeshSpec::Kind::Quadruped && m.size < 0.005)
+      f.fail("size", ">= 0.005 for the quadruped (smaller would need billions of tets)");
   } else {
     m.kind = MeshSpec::Kind::Box;
     m.box = f.vec3("box");
@@ -155,7 +165,21 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   f.reject_unknown_keys();
 }
 
+LoadTiming read_timing(JsonFields& f) {
+  LoadTiming t;
+  t.ramp_steps = integer_in(f, "ramp_steps", 0, 0, 10'000'000);
+  t.release_step = integer_in(f, "release_step", 0, 0, 10'000'000);
+  if (t.release_step > 0 && t.release_step <= t.ramp_steps)
+    f.fail("release_step", "after ramp_steps (" + std::to_string(t.ramp_steps) + ")");
+  return t;
+}
+
 }  // namespace
+
+double LoadTiming::factor(int step) const {
+  if (release_step > 0 && step >= release_step) return 0;
+  return ramp_steps > 0 ? std::min(1.0, static_cast<double>(step) / ramp_steps) : 1.0;
+}
 
 Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const std::string& name) {
   Scene s;
@@ -173,8 +197,27 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
     ForceSpec force;
     force.box = read_box(f.require("box"), f.path_of("box"), f.file());
     force.total = f.vec3("total");
+    force.timing = read_timing(f);
     f.reject_unknown_keys();
     s.forces.push_back(force);
+  });
+  for_each_entry(top, "moves", [&](JsonFields f) {
+    MoveSpec move;
+    move.box = read_box(f.require("box"), f.path_of("box"), f.file());
+    move.translate = f.vec3("translate", Vec3::Zero());
+    if (const nlohmann::json* rotate = f.get("rotate")) {
+      JsonFields r(*rotate, f.path_of("rotate"), f.file());
+      move.axis = r.vec3("axis");
+      if (!(move.axis.norm() > 0)) r.fail("axis", "a nonzero vector");
+      move.axis.normalize();
+      move.center = r.vec3("center");
+      move.degrees = r.number("degrees");
+      if (std::abs(move.degrees) > 36000) r.fail("degrees", "within +-36000");
+      r.reject_unknown_keys();
+    }
+    move.timing = read_timing(f);
+    f.reject_unknown_keys();
+    s.moves.push_back(move);
   });
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
@@ -185,6 +228,8 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
     o.reject_unknown_keys();
   }
   top.reject_unknown_keys();
+  if (!s.moves.empty() && s.analysis.type != "dynamic")
+    throw InputError("scene '" + name + "': moves need a dynamic analysis");
   const bool needs_mass = s.analysis.type == "dynamic" || s.gravity.norm() > 0;
   if (needs_mass && !(s.material.density > 0))
     throw InputError("scene '" + name + "': material.density is required for " +

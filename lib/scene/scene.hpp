@@ -15,16 +15,37 @@
 namespace corofem {
 
 struct MeshSpec {
-  enum class Kind { File, Surface, Box } kind = Kind::Box;
+  enum class Kind { File, Surface, Box, Quadruped } kind = Kind::Box;
   std::filesystem::path path;  ///< File, Surface: resolved against the scene's folder
-  double size = 0;             ///< Surface: gmsh Mesh.MeshSizeMax
+  double size = 0;             ///< Surface, Quadruped: gmsh Mesh.MeshSizeMax
   Vec3 box = Vec3::Ones();     ///< Box: extents
   std::array<int, 3> cells{1, 1, 1};
+};
+
+/// When a load acts in a dynamic run: full strength from step ramp_steps on (linear ramp from
+/// step 0), and nothing from release_step on (0: never released).
+struct LoadTiming {
+  int ramp_steps = 0;
+  int release_step = 0;
+  /// Load factor at the end of `step` (1-based).
+  double factor(int step) const;
 };
 
 struct ForceSpec {
   AxisBox box;
   Vec3 total = Vec3::Zero();
+  LoadTiming timing;
+};
+
+/// Prescribed motion of the vertices in a box (dynamic only): at factor s the displacement is
+/// s translate + (Rot(axis, s degrees) - I)(x - center); after release_step they are free.
+struct MoveSpec {
+  AxisBox box;
+  Vec3 translate = Vec3::Zero();
+  Vec3 axis = Vec3::UnitX();
+  Vec3 center = Vec3::Zero();
+  double degrees = 0;
+  LoadTiming timing;
 };
 
 struct AnalysisSpec {
@@ -58,6 +79,7 @@ struct Scene {
   std::vector<AxisBox> fixed;
   Vec3 gravity = Vec3::Zero();
   std::vector<ForceSpec> forces;
+  std::vector<MoveSpec> moves;
   AnalysisSpec analysis;
   OutputSpec output;
   nlohmann::json raw;  ///< the scene as given, copied into results

@@ -5,6 +5,7 @@
 #include "core/errors.hpp"
 #include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/quadruped_mesh.hpp"
 
 namespace corofem {
 
@@ -14,6 +15,8 @@ TetMesh load_scene_mesh(const MeshSpec& spec) {
       return read_volume_mesh(spec.path);
     case MeshSpec::Kind::Surface:
       return tetrahedralize_surface(spec.path, spec.size);
+    case MeshSpec::Kind::Quadruped:
+      return make_quadruped_mesh(spec.size);
     case MeshSpec::Kind::Box:
       break;
   }

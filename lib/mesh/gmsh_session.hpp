@@ -1,0 +1,46 @@
+#pragma once
+// What every use of the gmsh API shares: a clean session per model, gmsh's exceptions turned into
+// InputError, and the model's linear tets collected into a TetMesh.
+#include <filesystem>
+#include <string>
+
+#include "core/errors.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace corofem {
+
+/// One gmsh API session; gmsh keeps global state, so each model gets a clean one.
+class GmshSession {
+ public:
+  GmshSession();
+  ~GmshSession();
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+};
+
+/// gmsh's last logged error, or "unknown gmsh error".
+std::string last_gmsh_error();
+
+/// Runs a gmsh call and turns whatever gmsh throws (it throws strings and ints, not only
+/// std::exception) into an InputError naming `source`.
+template <class F>
+void call_gmsh(const std::filesystem::path& source, const char* what, F&& f) {
+  try {
+    f();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::string& message) {
+    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() + "': " + message);
+  } catch (const std::exception& e) {
+    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() + "': " + e.what());
+  } catch (...) {
+    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() +
+                     "': " + last_gmsh_error());
+  }
+}
+
+/// Collects the current gmsh model's linear tets and the nodes they use (validated; tags kept).
+/// Throws InputError naming `source` for volume elements that are not linear tets.
+TetMesh collect_tets(const std::filesystem::path& source);
+
+}  // namespace corofem

@@ -1,0 +1,59 @@
+#include "scene/load_schedule.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.hpp"
+#include "fem/loads.hpp"
+
+namespace corofem {
+
+LoadSchedule::LoadSchedule(const Scene& scene, const FeProblem& problem)
+    : gravity_(Eigen::VectorXd::Zero(problem.num_dofs())), supports_(problem.dirichlet) {
+  if (scene.gravity.norm() > 0) gravity_ = gravity_load(problem.mesh, problem.materials, scene.gravity);
+  for (const ForceSpec& force : scene.forces) {
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(problem.num_dofs());
+    add_spread_force(f, vertices_in_box(problem.mesh.rest, force.box), force.total);
+    forces_.push_back(std::move(f));
+    force_timing_.push_back(force.timing);
+  }
+  for (std::size_t i = 0; i < scene.moves.size(); ++i) {
+    auto vertices = vertices_in_box(problem.mesh.rest, scene.moves[i].box);
+    if (vertices.empty())
+      throw InputError("scene '" + scene.name + "': moves[" + std::to_string(i) +
+                       "].box selects no vertex of the mesh");
+    moves_.push_back(scene.moves[i]);
+    move_vertices_.push_back(std::move(vertices));
+  }
+}
+
+void LoadSchedule::apply(int step, FeProblem& problem) const {
+  problem.external_force = gravity_;
+  for (std::size_t i = 0; i < forces_.size(); ++i)
+    if (const double s = force_timing_[i].factor(step); s != 0) problem.external_force += s * forces_[i];
+  problem.dirichlet = supports_;
+  for (std::size_t i = 0; i < moves_.size(); ++i) {
+    const MoveSpec& move = moves_[i];
+    const LoadTiming& t = move.timing;
+    if (t.release_step > 0 && step >= t.release_step) continue;  // released: free vertices
+    const double s = t.factor(step);
+    const Mat3 rotation =
+        Eigen::AngleAxisd(s * move.degrees * std::numbers::pi / 180, move.axis).toRotationMatrix();
+    for (int v : move_vertices_[i]) {
+      const Vec3& x = problem.mesh.rest[v];
+      problem.dirichlet.fix_vertex(v, s * move.translate + (rotation - Mat3::Identity()) * (x - move.center));
+    }
+  }
+}
+
+DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem) {
+  const AnalysisSpec& a = scene.analysis;
+  DynamicOptions options{a.formulation == "corotational", a.dt, a.steps, a.rayleigh_alpha,
+                         a.rayleigh_beta, {}};
+  auto schedule = std::make_shared<const LoadSchedule>(scene, problem);
+  schedule->apply(1, problem);
+  options.before_step = [schedule](int step, FeProblem& p) { schedule->apply(step, p); };
+  return options;
+}
+
+}  // namespace corofem

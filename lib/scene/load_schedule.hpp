@@ -1,0 +1,33 @@
+#pragma once
+// The scene's loads and prescribed motions over the steps of a dynamic run: ramps, holds and
+// releases (README "Scene format": ramp_steps, release_step, moves).
+#include <memory>
+
+#include "fem/implicit_euler.hpp"
+#include "scene/scene.hpp"
+
+namespace corofem {
+
+class LoadSchedule {
+ public:
+  /// Selects the vertices of every force and move (InputError naming moves[i].box if it selects
+  /// none). `problem` must come from build_problem(scene): its supports are the scene's fixed.
+  LoadSchedule(const Scene& scene, const FeProblem& problem);
+
+  /// Sets problem.external_force and problem.dirichlet for the end of `step` (1-based).
+  void apply(int step, FeProblem& problem) const;
+
+ private:
+  Eigen::VectorXd gravity_;
+  std::vector<Eigen::VectorXd> forces_;      ///< each at full strength
+  std::vector<LoadTiming> force_timing_;
+  std::vector<MoveSpec> moves_;
+  std::vector<std::vector<int>> move_vertices_;
+  DirichletConditions supports_;             ///< the scene's fixed boxes
+};
+
+/// The scene's analysis as DynamicOptions, with before_step driving a LoadSchedule. Applies step
+/// 1's loads and supports to `problem` now, so a solver built next sees the prescribed vertices.
+DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem);
+
+}  // namespace corofem
