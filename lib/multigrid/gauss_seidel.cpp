@@ -32,4 +32,10 @@ void BlockGaussSeidel::backward(const BrcMatrix& a, const Eigen::VectorXd& b, Ei
   for (int i = a.block_rows - 1; i >= 0; --i) relax(a, b, x, i);
 }
 
+void BlockGaussSeidel::block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  z.resize(r.size());
+  for (std::size_t i = 0; i < inverse_diagonal_.size(); ++i)
+    z.segment<3>(3 * i) = inverse_diagonal_[i] * r.segment<3>(3 * i);
+}
+
 }  // namespace corofem

@@ -14,6 +14,8 @@ class BlockGaussSeidel {
   void set_matrix(const BrcMatrix& a);
   void forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   void backward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// z = D^{-1} r with the same inverted diagonal blocks (the block-Jacobi preconditioner).
+  void block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
  private:
   void relax(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i) const;

@@ -5,6 +5,7 @@
 
 #include "cholmod_solver.hpp"
 #include "core/errors.hpp"
+#include "solver/preconditioned_cg.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
@@ -87,26 +88,19 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
 }
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const BrcMatrix& a = hierarchy_.matrix(0);
+  if (preconditioner_)
+    return preconditioned_cg(
+        a, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { vcycle(0, r, z); },
+        params_.tolerance, params_.max_iterations, "mgpcg");
   if (x.size() != b.size()) x.setZero(b.size());
+  SolveStats stats;
   const double b_norm = b.norm();
   if (b_norm == 0) {
     x.setZero();
-    return {};
+    return stats;
   }
-  const Eigen::VectorXd r0 = b - hierarchy_.matrix(0) * x;
-  SolveStats stats = preconditioner_ ? solve_cg(b, r0, x) : solve_stationary(b, r0.norm(), x);
-  stats.residual /= b_norm;
-  stats.convergence_factor =
-      stats.iterations > 0 && r0.norm() > 0
-          ? std::pow(stats.residual * b_norm / r0.norm(), 1.0 / stats.iterations)
-          : 0;
-  return stats;
-}
-
-SolveStats MultigridSolver::solve_stationary(const Eigen::VectorXd& b, double r0, Eigen::VectorXd& x) {
-  SolveStats stats;
-  const BrcMatrix& a = hierarchy_.matrix(0);
-  const double b_norm = b.norm();
+  const double r0 = (b - a * x).norm();
   const int cap = params_.vcycles > 0 ? params_.vcycles : params_.max_iterations;
   double rk = r0;
   for (int k = 0; k < cap; ++k) {
@@ -116,35 +110,9 @@ SolveStats MultigridSolver::solve_stationary(const Eigen::VectorXd& b, double r0
     ++stats.iterations;
     if (!std::isfinite(rk)) throw NumericalFault("multigrid: residual became non-finite");
   }
-  stats.residual = rk;  // absolute here; solve() makes it relative
-  return stats;
-}
-
-SolveStats MultigridSolver::solve_cg(const Eigen::VectorXd& b, const Eigen::VectorXd& r0,
-                                     Eigen::VectorXd& x) {
-  SolveStats stats;
-  const BrcMatrix& a = hierarchy_.matrix(0);
-  const double b_norm = b.norm();
-  Eigen::VectorXd r = r0, z = Eigen::VectorXd::Zero(b.size()), q;
-  vcycle(0, r, z);
-  Eigen::VectorXd p = z;
-  double rz = r.dot(z), rk = r0.norm();
-  while (rk > params_.tolerance * b_norm && stats.iterations < params_.max_iterations) {
-    a.multiply(p, q);
-    const double alpha = rz / p.dot(q);
-    x += alpha * p;
-    r -= alpha * q;
-    rk = r.norm();
-    ++stats.iterations;
-    if (!std::isfinite(rk)) throw NumericalFault("mgpcg: residual became non-finite");
-    if (rk <= params_.tolerance * b_norm) break;
-    z.setZero();
-    vcycle(0, r, z);
-    const double rz_next = r.dot(z);
-    p = z + (rz_next / rz) * p;
-    rz = rz_next;
-  }
-  stats.residual = rk;  // absolute here; solve() makes it relative
+  stats.residual = rk / b_norm;
+  stats.convergence_factor =
+      stats.iterations > 0 && r0 > 0 ? std::pow(rk / r0, 1.0 / stats.iterations) : 0;
   return stats;
 }
 

@@ -42,10 +42,6 @@ class MultigridSolver : public LinearSolver {
   int coarsest_shifts() const { return coarsest_shifts_; }
 
  private:
-  /// Both take the initial residual and return the absolute final one.
-  SolveStats solve_stationary(const Eigen::VectorXd& b, double r0, Eigen::VectorXd& x);
-  SolveStats solve_cg(const Eigen::VectorXd& b, const Eigen::VectorXd& r0, Eigen::VectorXd& x);
-
   MultigridParams params_;
   bool preconditioner_;
   MultigridHierarchy hierarchy_;

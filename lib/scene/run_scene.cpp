@@ -2,56 +2,35 @@
 
 #include <Eigen/LU>
 #include <algorithm>
-#include <chrono>
-#include <optional>
 #include <ostream>
 
 #include "core/context.hpp"
 #include "core/memory_usage.hpp"
-#include "fem/implicit_euler.hpp"
-#include "fem/static_solver.hpp"
 #include "report/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
-#include "scene/load_schedule.hpp"
-#include "scene/scene_problem.hpp"
+#include "scene/scene_simulation.hpp"
 #include "solver/solver_factory.hpp"
 
 namespace corofem {
 
 SceneRun run_scene(const Scene& scene, std::ostream* progress) {
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed_ms = [&] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  };
   if (progress) *progress << "corofem: building '" << scene.name << "'\n";
-  MeshValidation validation;
-  FeProblem problem = build_problem(scene, &validation);
-  const double setup_ms = elapsed_ms();
+  SceneSimulation simulation(scene);
+  FeProblem& problem = simulation.problem();
+  const MeshValidation& validation = simulation.validation();
   if (progress)
     *progress << "corofem: " << problem.mesh.num_tets() << " tets, " << problem.mesh.num_vertices()
               << " vertices; " << scene.analysis.type << " " << scene.analysis.formulation
               << " analysis\n";
   const AnalysisSpec& a = scene.analysis;
-  const bool corotational = a.formulation == "corotational";
-  auto extractor =
-      make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
-  std::optional<DynamicOptions> dynamic;
-  if (a.type == "dynamic") dynamic = dynamic_options(scene, problem);
-  auto solver = make_linear_solver(a, problem);
-  SimulationResult result;
-  if (a.type == "static") {
-    result = solve_static(problem, *extractor, *solver,
-                          {corotational, a.load_steps, a.tolerance, a.max_iterations});
-  } else {
-    const int every = std::max(1, a.steps / 10);
-    result = solve_dynamic(problem, *extractor, *solver, *dynamic,
-                           [&](const StepState& s) {
-                             if (progress && (s.step % every == 0 || s.step == a.steps))
-                               *progress << "corofem: step " << s.step << "/" << a.steps << "\n";
-                           });
-  }
-  result.timings_ms["setup"] = setup_ms;
-  result.timings_ms["total"] = elapsed_ms();
+  const bool corotational = simulation.corotational();
+  RotationExtractor* extractor = &simulation.extractor();
+  LinearSolver* solver = &simulation.solver();
+  const int every = std::max(1, a.steps / 10);
+  SimulationResult result = simulation.run([&](const StepState& s) {
+    if (progress && (s.step % every == 0 || s.step == a.steps))
+      *progress << "corofem: step " << s.step << "/" << a.steps << "\n";
+  });
 
   nlohmann::json r;
   r["producer"] = "corofem run";
@@ -67,7 +46,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                    {"rotation", corotational ? a.rotation : "none"},
                    {"rotation_params", a.rotation_params.to_json()},
                    {"solver", solver->name()}};
-  if (a.solver != "cholmod") r["analysis"]["multigrid"] = multigrid_params(a).to_json();
+  if (a.solver == "multigrid" || a.solver == "mgpcg") r["analysis"]["multigrid"] = multigrid_params(a).to_json();
   r["converged"] = result.converged;
   if (!result.converged) r["message"] = result.message;
   r["iterations"] = result.iterations;

@@ -130,7 +130,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
   a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse"});
-  a.levels = integer_in(f, "levels", a.solver == "cholmod" ? 1 : 3, 1, 16);
+  const bool multigrid = a.solver == "multigrid" || a.solver == "mgpcg";
+  a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
   a.dt = f.number("dt", a.dt);
@@ -160,8 +161,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
     r.reject_unknown_keys();
   }
-  if (a.levels > 1 && a.solver == "cholmod")
-    f.fail("levels", "1 with solver 'cholmod' (levels belong to multigrid solvers)");
+  if (a.levels > 1 && !multigrid)
+    f.fail("levels", "1 with solver '" + a.solver + "' (levels belong to multigrid solvers)");
   f.reject_unknown_keys();
 }
 

@@ -1,8 +1,10 @@
 #include "solver/solver_factory.hpp"
 
+#include "solver/preconditioned_cg.hpp"
+
 namespace corofem {
 
-std::vector<std::string> linear_solver_names() { return {"cholmod", "multigrid", "mgpcg"}; }
+std::vector<std::string> linear_solver_names() { return {"cholmod", "multigrid", "mgpcg", "jacobi-pcg"}; }
 
 MultigridParams multigrid_params(const AnalysisSpec& a) {
   MultigridParams p;
@@ -23,6 +25,7 @@ std::vector<char> fixed_vertices(const DirichletConditions& bc) {
 
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem) {
   if (a.solver == "cholmod") return make_cholmod_solver();
+  if (a.solver == "jacobi-pcg") return make_jacobi_pcg_solver(a.tolerance, 100000);
   return std::make_unique<MultigridSolver>(problem.stiffness, problem.mesh.rest,
                                            fixed_vertices(problem.dirichlet),
                                            mean_edge_length(problem.mesh), multigrid_params(a),

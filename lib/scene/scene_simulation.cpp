@@ -1,0 +1,41 @@
+#include "scene/scene_simulation.hpp"
+
+#include <chrono>
+
+#include "scene/load_schedule.hpp"
+#include "scene/scene_problem.hpp"
+#include "solver/solver_factory.hpp"
+
+namespace corofem {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
+  const auto start = std::chrono::steady_clock::now();
+  problem_ = build_problem(scene_, &validation_);
+  const AnalysisSpec& a = scene_.analysis;
+  extractor_ = make_rotation_extractor(corotational() ? a.rotation : "none", problem_.mesh,
+                                       a.rotation_params);
+  if (a.type == "dynamic") dynamic_ = dynamic_options(scene_, problem_);
+  solver_ = make_linear_solver(a, problem_);
+  setup_ms_ = ms_since(start);
+}
+
+SimulationResult SceneSimulation::run(const std::function<void(const StepState&)>& on_step) {
+  const auto start = std::chrono::steady_clock::now();
+  const AnalysisSpec& a = scene_.analysis;
+  SimulationResult result =
+      dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
+               : solve_static(problem_, *extractor_, *solver_,
+                              {corotational(), a.load_steps, a.tolerance, a.max_iterations});
+  result.timings_ms["setup"] = setup_ms_;
+  result.timings_ms["total"] = setup_ms_ + ms_since(start);
+  return result;
+}
+
+}  // namespace corofem

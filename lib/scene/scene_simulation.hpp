@@ -1,0 +1,41 @@
+#pragma once
+// A scene ready to run: its problem, rotation extractor, linear solver and load schedule, built
+// once. `corofem run` and the report's drivers share it; the report swaps in instrumented solvers.
+#include <memory>
+#include <optional>
+
+#include "fem/implicit_euler.hpp"
+#include "fem/static_solver.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "scene/scene.hpp"
+
+namespace corofem {
+
+class SceneSimulation {
+ public:
+  /// Builds everything the scene asks for (InputError for bad input).
+  explicit SceneSimulation(const Scene& scene);
+
+  const Scene& scene() const { return scene_; }
+  FeProblem& problem() { return problem_; }
+  const MeshValidation& validation() const { return validation_; }
+  RotationExtractor& extractor() { return *extractor_; }
+  LinearSolver& solver() { return *solver_; }
+  void set_solver(std::unique_ptr<LinearSolver> solver) { solver_ = std::move(solver); }
+  bool corotational() const { return scene_.analysis.formulation == "corotational"; }
+
+  /// Static or dynamic, as the scene says; `on_step` follows every dynamic step. Phase times
+  /// include "setup" (building) and "total".
+  SimulationResult run(const std::function<void(const StepState&)>& on_step = {});
+
+ private:
+  Scene scene_;
+  MeshValidation validation_;
+  FeProblem problem_;
+  std::unique_ptr<RotationExtractor> extractor_;
+  std::optional<DynamicOptions> dynamic_;
+  std::unique_ptr<LinearSolver> solver_;
+  double setup_ms_ = 0;
+};
+
+}  // namespace corofem

@@ -1,0 +1,25 @@
+#pragma once
+// Preconditioned conjugate gradients on a BRC matrix, shared by MG-PCG (a V-cycle as the
+// preconditioner) and block-Jacobi PCG.
+#include <Eigen/Core>
+#include <functional>
+
+#include "solver/linear_solver.hpp"
+
+namespace corofem {
+
+/// z = M^{-1} r for a symmetric positive definite M (z arrives zeroed).
+using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& z)>;
+
+/// Iterates from x (the initial guess) until |b - A x| <= tolerance |b| or max_iterations.
+/// `name` prefixes the NumericalFault thrown on a non-finite residual. Returns the relative
+/// residual and the convergence factor.
+SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                             const Preconditioner& precondition, double tolerance,
+                             int max_iterations, const char* name);
+
+/// CG with the inverse 3x3 diagonal blocks as preconditioner ("jacobi-pcg"): the baseline a
+/// multigrid preconditioner has to beat.
+std::unique_ptr<LinearSolver> make_jacobi_pcg_solver(double tolerance, int max_iterations);
+
+}  // namespace corofem
