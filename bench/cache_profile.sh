@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Cache misses of the Galerkin update (naive, reuse, stream, stream-full) on one model: D1 and
-# last-level misses per update and per block of K. Uses perf where the machine has hardware
+# Cache misses of the Galerkin update (naive, reuse, stream, stream-full) and of one whole time
+# step (rotate, assemble, stream update, MG-PCG) on one model: D1 and last-level misses per
+# update (or step) and per block of K. Uses perf where the machine has hardware
 # counters, valgrind's cachegrind (simulated caches: exact and repeatable) otherwise; the JSON
 # says which. Each count is the difference of a run with N updates and one with none, divided by N.
 # cachegrind simulates the paper's Core 2 Duo 6600 caches (32 KiB 8-way D1, 4 MiB 16-way L2) so that
@@ -52,7 +53,7 @@ measure() {
 
 blocks=$("$profile" stream "$model" 0 "${models[@]}" | awk '/^fine_blocks/{print $2}')
 results=()
-for method in naive reuse stream stream-full; do
+for method in naive reuse stream stream-full step; do
   echo "cache_profile: $method" >&2
   read -r d0 l0 i0 < <(measure "$method" 0)
   read -r d1 l1 i1 < <(measure "$method" "$updates")
@@ -69,7 +70,8 @@ for line in sys.argv[7:]:
     d = (float(d1) - float(d0)) / updates
     l = (float(l1) - float(l0)) / updates
     i = (float(i1) - float(i0)) / updates
-    rows.append({"method": m, "d1_misses_per_update": d, "ll_misses_per_update": l,
+    rows.append({"method": m, "unit": "time step" if m == "step" else "Galerkin update",
+                 "d1_misses_per_update": d, "ll_misses_per_update": l,
                  "instructions_per_update": i, "d1_misses_per_k_block": d / blocks,
                  "ll_misses_per_k_block": l / blocks})
 try:

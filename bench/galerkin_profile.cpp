@@ -1,18 +1,24 @@
 // corofem_profile: a driver for cache profilers. Builds a paper model's hierarchy, then runs N
-// Galerkin updates of one method (N = 0 measures the setup alone, so a profiler's difference of
-// two runs isolates the updates). Usage: corofem_profile METHOD MODEL N [--models DIR]
+// Galerkin updates of one method, or N whole time steps (METHOD "step": energy-newton rotations,
+// assembly, stream update, MG-PCG to 1e-4; the body fixed at its x-min face under gravity).
+// N = 0 measures the setup alone, so a profiler's difference of two runs isolates the work.
+// Usage: corofem_profile METHOD MODEL N [--models DIR]
 #include <cstring>
 #include <iostream>
 #include <string>
 
 #include "bench_support.hpp"
 #include "core/errors.hpp"
+#include "fem/implicit_euler.hpp"
+#include "fem/loads.hpp"
 #include "multigrid/hierarchy.hpp"
+#include "multigrid/multigrid_solver.hpp"
+#include "rotation/rotation_extractor.hpp"
 
 int main(int argc, char** argv) {
   using namespace corofem;
   if (argc < 4) {
-    std::cerr << "usage: corofem_profile naive|stream|stream-full|reuse bunny|horse|dragon N [--models DIR]\n";
+    std::cerr << "usage: corofem_profile naive|stream|stream-full|reuse|step bunny|horse|dragon N [--models DIR]\n";
     return 2;
   }
   if (argc == 6 && std::strcmp(argv[4], "--models") == 0) bench::set_models_dir(argv[5]);
@@ -21,6 +27,23 @@ int main(int argc, char** argv) {
     const int updates = std::stoi(argv[3]);
     const FeProblem& p = bench::paper_problem(model);
     const auto& system = bench::paper_system(model);
+    if (method == "step") {
+      FeProblem problem = p;  // a copy with this run's supports and loads
+      for (int v = 0; v < problem.mesh.num_vertices(); ++v)
+        if (system.fixed[v]) problem.dirichlet.fix_vertex(v);
+      problem.external_force = gravity_load(problem.mesh, problem.materials, Vec3(0, 0, -9.81));
+      auto rotations = make_rotation_extractor("energy-newton", problem.mesh);
+      MultigridParams params;
+      params.levels = bench::paper_levels(model);
+      params.tolerance = 1e-4;
+      MultigridSolver solver(problem.stiffness, problem.mesh.rest, system.fixed,
+                             mean_edge_length(problem.mesh), params, true);
+      DynamicOptions options;
+      options.steps = updates;
+      solve_dynamic(problem, *rotations, solver, options);
+      std::cout << "fine_blocks " << system.matrix.num_blocks() << "\ntets " << p.mesh.num_tets() << "\n";
+      return 0;
+    }
     MultigridHierarchy h(system.matrix, p.mesh.rest, system.fixed, 1.5 * mean_edge_length(p.mesh),
                          bench::paper_levels(model));
     const GalerkinMethod m = galerkin_method(method);

@@ -55,7 +55,7 @@ AnalysisSpec analysis(const std::string& solver, double tolerance) {
 
 TEST(MultigridSolver, StaticAndDynamicSolutionsEqualCholmod) {
   for (const MeshCase& c : meshes()) {
-    for (const char* name : {"multigrid", "mgpcg"}) {
+    for (const char* name : {"multigrid", "mgpcg", "jacobi-pcg"}) {
       // Static linear: one solve of K u = f. Solver tolerance 1e-12 on the residual leaves a
       // solution error of ~cond(K)/1e4 x 1e-12 << 1e-8 for these meshes.
       FeProblem p = problem_for(c);

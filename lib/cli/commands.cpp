@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "report/report_driver.hpp"
 #include "scene/export_matrices.hpp"
 #include "scene/run_scene.hpp"
 
@@ -20,6 +21,9 @@ Commands:
   export-matrices SCENE.json --out DIR
                                      Matrix Market files of every level's system matrix
                                      and transfer operator, and levels.json
+  report [--out DIR] [--quick] [--models DIR] [--tables-only | --stability-only]
+                                     the main job: paper tables, speed against accuracy,
+                                     stability study (JSON), REPORT.md and charts
   help [COMMAND]                     this text, or a command's
 
 Exit status: 0 success, 1 did not converge or numerical fault, 2 bad input.
@@ -40,6 +44,32 @@ Runs the scene's first linear solve through the multigrid hierarchy of analysis.
 cholmod scenes) and writes, for each level h, A<h>.mtx (3n_h x 3n_h) and R<h>.mtx (3n_{h+1} x 3n_h,
 level h to h+1) in Matrix Market coordinate real general, DOF index 3*vertex+component, and
 levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver computed it.
+)";
+
+const char* kReportHelp = R"(Usage: corofem report [--out DIR] [--quick | --smoke] [--models DIR] [--only NAME]
+                      [--tables-only | --speed-accuracy-only | --stability-only] [--vtu] [--no-render]
+
+Runs the report's sections and writes into DIR (default out/report):
+  tables.json          Tables 1 and 2 of the paper, measured (dynamic runs: energy-newton rotations,
+                       MG-PCG, stream update; naive update, polar + smoothing, CHOLMOD step,
+                       small strain, Jacobi-PCG), the paper's rows, and the oracle checks
+  speed_accuracy.json  time per step against error for solver settings, rotation methods and
+                       resolutions, with the Pareto front and the cheapest setting meeting targets
+  stability.json       every rotation extractor on scenes built to break them: stable, flutter or
+                       diverged, with flutter, inversion and energy measurements
+then draws REPORT.md and charts/*.png from the JSON alone (reports/render; needs matplotlib).
+A cache_profile.json in DIR (bench/cache_profile.sh, run by ci/report) is included.
+
+  --quick        small versions of every scene (under 3 minutes)
+  --smoke        a seconds-long run for the report's own tests
+  --models DIR   the bunny, horse and dragon surfaces instead of the procedural scenes
+  --only NAME    just one model (cantilever, twisting-bar, quadruped, bunny, horse, dragon) or
+                 stability scene (bar-twist, bar-stretch, block-squash, quadruped-stretched,
+                 quadruped-posed, horse-stretched, horse-posed)
+  --vtu          VTU frames of the stability runs (every 10th step) under DIR/vtu/
+  --no-render    JSON only
+Progress goes to stderr. A failing case is recorded ("completed": false) and the report goes on.
+Exit status: 0 written, 2 bad options.
 )";
 
 /// Options of the form --key value, plus positional arguments.
@@ -105,6 +135,57 @@ int export_command(const std::vector<std::string>& args) {
   return 0;
 }
 
+int report_command(const std::vector<std::string>& args) {
+  ParsedArgs parsed =
+      parse_args(args, {"--out", "--models", "--only"},
+                 {"--quick", "--smoke", "--tables-only", "--speed-accuracy-only", "--stability-only",
+                  "--vtu", "--no-render"});
+  if (parsed.help) {
+    std::cout << kReportHelp;
+    return 0;
+  }
+  if (!parsed.positional.empty())
+    throw InputError("report takes no positional arguments (got '" + parsed.positional[0] + "')");
+  ReportConfig config;
+  config.progress = &std::cerr;
+  if (parsed.options.count("--out")) config.out_dir = parsed.options["--out"];
+  if (parsed.options.count("--quick") && parsed.options.count("--smoke"))
+    throw InputError("report: --quick and --smoke exclude each other");
+  if (parsed.options.count("--quick")) config.mode = ReportConfig::Mode::Quick;
+  if (parsed.options.count("--smoke")) config.mode = ReportConfig::Mode::Smoke;
+  if (parsed.options.count("--models")) {
+    config.models_dir = parsed.options["--models"];
+    std::error_code ec;
+    for (const char* file : {"bunny_L0.stl", "horse_L0.stl", "dragon_L0.stl"})
+      if (!std::filesystem::is_regular_file(config.models_dir / file, ec))
+        throw InputError("--models " + config.models_dir.string() + ": no " + file + " there");
+  }
+  const int only = parsed.options.count("--tables-only") + parsed.options.count("--speed-accuracy-only") +
+                   parsed.options.count("--stability-only");
+  if (only > 1) throw InputError("report: give at most one of --tables-only, --speed-accuracy-only, --stability-only");
+  if (only == 1) {
+    config.tables = parsed.options.count("--tables-only") > 0;
+    config.speed_accuracy = parsed.options.count("--speed-accuracy-only") > 0;
+    config.stability = parsed.options.count("--stability-only") > 0;
+  }
+  config.vtu = parsed.options.count("--vtu") > 0;
+  if (parsed.options.count("--only")) config.only = parsed.options["--only"];
+  std::error_code ec;
+  std::filesystem::create_directories(config.out_dir, ec);
+  if (ec) throw InputError("report: cannot create the output folder '" + config.out_dir.string() + "': " + ec.message());
+  check_writable(config.out_dir / "tables.json");
+  std::cerr << "report: " << config.mode_name() << " run into " << config.out_dir.string() << "\n";
+  run_report(config);
+  if (!parsed.options.count("--no-render")) {
+    const int rendered = render_report(config.out_dir, &std::cerr);
+    if (rendered != 0)
+      std::cerr << "report: the renderer exited with " << rendered
+                << "; the JSON records are complete (re-draw with reports/render " << config.out_dir.string()
+                << ")\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int dispatch(const std::vector<std::string>& args) {
@@ -118,6 +199,7 @@ int dispatch(const std::vector<std::string>& args) {
   if (args[0] == "help") rest = {"--help"};
   if (command == "run") return run_command(rest);
   if (command == "export-matrices") return export_command(rest);
+  if (command == "report") return report_command(rest);
   throw InputError("unknown command '" + command + "' (see corofem --help)");
 }
 

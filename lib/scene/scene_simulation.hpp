@@ -22,6 +22,7 @@ class SceneSimulation {
   RotationExtractor& extractor() { return *extractor_; }
   LinearSolver& solver() { return *solver_; }
   void set_solver(std::unique_ptr<LinearSolver> solver) { solver_ = std::move(solver); }
+  std::unique_ptr<LinearSolver> release_solver() { return std::move(solver_); }
   bool corotational() const { return scene_.analysis.formulation == "corotational"; }
 
   /// Static or dynamic, as the scene says; `on_step` follows every dynamic step. Phase times

@@ -1,0 +1,153 @@
+#include "report/paper_tables.hpp"
+
+#include <algorithm>
+#include <ostream>
+
+#include "core/errors.hpp"
+#include "report/case_record.hpp"
+#include "report/timed_run.hpp"
+
+namespace corofem {
+using nlohmann::json;
+
+json paper_table1_row(const std::string& m) {
+  // PAPER_NOTES section 6 (Core 2 Duo 6600, 2.4 GHz, one thread).
+  if (m == "bunny")
+    return {{"tets", 11241}, {"vertices", 2918}, {"levels", 3}, {"rotate_ms", 21}, {"assemble_ms", 18},
+            {"update_ms", 11}, {"update_naive_ms", 108}, {"solve_ms", 10}, {"tps", 17}};
+  if (m == "horse")
+    return {{"tets", 33689}, {"vertices", 8632}, {"levels", 4}, {"rotate_ms", 67}, {"assemble_ms", 58},
+            {"update_ms", 39}, {"update_naive_ms", 354}, {"solve_ms", 26}, {"tps", 5.2}};
+  if (m == "dragon")
+    return {{"tets", 67309}, {"vertices", 16943}, {"levels", 4}, {"rotate_ms", 112}, {"assemble_ms", 103},
+            {"update_ms", 94}, {"update_naive_ms", 1183}, {"solve_ms", 51}, {"tps", 2.8}};
+  return nullptr;
+}
+
+json paper_table2_tps(const std::string& m) {
+  if (m == "bunny") return 31;
+  if (m == "horse") return 10.1;
+  if (m == "dragon") return 5.0;
+  return nullptr;
+}
+
+namespace {
+
+json with_analysis(json scene, const json& changes) {
+  for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
+  return scene;
+}
+
+double tps_of(const TimedRun& run, int warmup) { return 1000.0 / run.median_ms("step", warmup); }
+
+}  // namespace
+
+json run_paper_tables(const ReportConfig& config) {
+  json tables = {{"table1", json::array()},   {"table2", json::array()},
+                 {"small_strain", json::array()}, {"jacobi_pcg", json::array()},
+                 {"verification", json::array()}};
+  const int warmup = config.table_warmup(), measured = config.table_measured();
+  const int steps = warmup + measured;
+  tables["settings"] = {{"warmup_steps", warmup},
+                        {"measured_steps", measured},
+                        {"statistic", "median over the measured steps"},
+                        {"rotation", "energy-newton"},
+                        {"solver", "mgpcg"},
+                        {"accuracy", "MG-PCG to relative residual " + std::to_string(config.default_tolerance()) +
+                                         " per step, warm-started from the previous velocity"},
+                        {"tolerance", config.default_tolerance()},
+                        {"dt", 0.01},
+                        {"oracle_check_steps", nlohmann::json::array()}};
+  std::vector<int> check_steps{warmup + 1, warmup + measured / 2, steps};
+  check_steps.erase(std::unique(check_steps.begin(), check_steps.end()), check_steps.end());
+  tables["settings"]["oracle_check_steps"] = check_steps;
+  for (const std::string& model : config.models()) {
+    for (SceneSize size : config.table_sizes(model)) {
+      const std::string id = model + "-" + size_name(size);
+      const std::string paper_model = config.with_models() ? model : paper_model_of(size);
+      const json scene = table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
+      auto say = [&](const std::string& what) {
+        if (config.progress) *config.progress << "report: tables: " << id << ": " << what << std::endl;
+      };
+      json base = {{"model", id}, {"scene", scene}, {"paper_model", paper_model}};
+      // Table 1: the paper's method.
+      TimedRun main;
+      say("energy-newton + MG-PCG");
+      json row = record_case(base, [&] {
+        TimedRunOptions options;
+        options.warmup_steps = warmup;
+        options.check_steps = check_steps;
+        options.check_operators = true;
+        main = timed_run(scene, id, options);
+        say("naive Galerkin update");
+        const TimedRun naive = timed_run(with_analysis(scene, {{"galerkin", "naive"}}), id, {});
+        say("CHOLMOD step");
+        const TimedRun cholmod = timed_run(with_analysis(scene, {{"solver", "cholmod"}, {"levels", 1}}), id, {});
+        return json{{"tets", main.tets},
+                    {"vertices", main.vertices},
+                    {"levels", main.levels},
+                    {"rotate_ms", main.median_ms("rotate", warmup)},
+                    {"assemble_ms", main.median_ms("assemble", warmup)},
+                    {"update_ms", main.median_ms("update", warmup)},
+                    {"update_naive_ms", naive.median_ms("update", warmup)},
+                    {"solve_ms", main.median_ms("solve", warmup)},
+                    {"step_ms", main.median_ms("step", warmup)},
+                    {"tps", tps_of(main, warmup)},
+                    {"solve_iterations", main.median_iterations(warmup)},
+                    {"solve_accuracy",
+                     {{"relative_residual_max", main.solve_residual_max},
+                      {"error_vs_cholmod_max", main.solve_error_max},
+                      {"checked_steps", check_steps}}},
+                    {"cholmod_step_ms", cholmod.median_ms("step", warmup)},
+                    {"cholmod_factorize_ms", cholmod.median_ms("update", warmup)},
+                    {"speedup_vs_cholmod", cholmod.median_ms("step", warmup) / main.median_ms("step", warmup)},
+                    {"inverted_max", main.result.inverted_max},
+                    {"paper", paper_table1_row(paper_model)}};
+      });
+      tables["table1"].push_back(row);
+      if (row["completed"]) {
+        tables["verification"].push_back(
+            {{"model", id},
+             {"checks",
+              {{{"oracle", "CHOLMOD solve of the same step"}, {"quantity", "relative error of the MG-PCG solution"},
+                {"largest", main.solve_error_max}, {"count", check_steps.size()}},
+               {{"oracle", "Eigen sparse R A R^T"}, {"quantity", "relative Frobenius error of every coarse level"},
+                {"largest", main.galerkin_error_max}, {"count", main.levels - 1}},
+               {{"oracle", "energy-exact (closed-form minimizer)"}, {"quantity", "energy-newton rotation angle error (rad)"},
+                {"largest", main.rotation_error_max_rad}, {"count", main.rotation_elements_compared}}}}});
+      }
+      // Table 2: polar decomposition with spatial smoothing.
+      say("polar + smoothing");
+      tables["table2"].push_back(record_case({{"model", id}, {"paper_model", paper_model}}, [&] {
+        const TimedRun polar = timed_run(with_analysis(scene, {{"rotation", "polar-smoothed"}}), id, {});
+        return json{{"tets", polar.tets}, {"tps", tps_of(polar, warmup)},
+                    {"rotate_ms", polar.median_ms("rotate", warmup)},
+                    {"paper_tps", paper_table2_tps(paper_model)}};
+      }));
+      // Figure 1: small strain against corotated.
+      say("small strain");
+      tables["small_strain"].push_back(record_case({{"model", id}}, [&] {
+        const TimedRun linear = timed_run(with_analysis(scene, {{"formulation", "linear"}}), id, {});
+        if (!row["completed"]) throw NumericalFault("the corotated run of this model failed");
+        return json{{"tps", tps_of(linear, warmup)},
+                    {"corotated_tps", tps_of(main, warmup)},
+                    {"volume_change", linear.final_volume / linear.rest_volume - 1},
+                    {"corotated_volume_change", main.final_volume / main.rest_volume - 1}};
+      }));
+      // The baseline preconditioner at the same accuracy.
+      say("Jacobi-PCG");
+      tables["jacobi_pcg"].push_back(record_case({{"model", id}}, [&] {
+        const TimedRun jacobi =
+            timed_run(with_analysis(scene, {{"solver", "jacobi-pcg"}, {"levels", 1}}), id, {});
+        return json{{"step_ms", jacobi.median_ms("step", warmup)},
+                    {"solve_ms", jacobi.median_ms("solve", warmup)},
+                    {"iterations", jacobi.median_iterations(warmup)},
+                    {"mgpcg_step_ms", main.step_ms.empty() ? json(nullptr) : json(main.median_ms("step", warmup))},
+                    {"mgpcg_iterations", main.step_ms.empty() ? json(nullptr) : json(main.median_iterations(warmup))}};
+      }));
+    }
+  }
+  return tables;
+}
+
+}  // namespace corofem

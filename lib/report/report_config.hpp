@@ -1,0 +1,40 @@
+#pragma once
+// What `corofem report` runs: sections, sizes and step counts per mode.
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "report/scene_catalogue.hpp"
+
+namespace corofem {
+
+struct ReportConfig {
+  /// full: the paper's sizes (under 20 minutes on 2 cores); quick: small versions (under 3
+  /// minutes); smoke: seconds-long, for the tests of the report itself.
+  enum class Mode { Full, Quick, Smoke } mode = Mode::Full;
+  std::filesystem::path out_dir = "out/report";
+  std::filesystem::path models_dir;  ///< empty: procedural scenes only
+  bool tables = true, speed_accuracy = true, stability = true;
+  bool vtu = false;                  ///< stability: VTU frames for ParaView
+  std::string only;                  ///< if set: just the models / stability scenes of this name
+  std::ostream* progress = nullptr;
+
+  std::string mode_name() const;
+  bool with_models() const { return !models_dir.empty(); }
+  /// The table models (procedural, or the files' with --models) and the sizes of each.
+  std::vector<std::string> models() const;
+  std::vector<SceneSize> table_sizes(const std::string& model) const;
+  int table_warmup() const;
+  int table_measured() const;   ///< steps in each median (at least 20 outside smoke)
+  double default_tolerance() const { return 1e-4; }  ///< MG-PCG relative residual per step
+  SceneSize sweep_size(const std::string& model) const;
+  std::vector<SceneSize> resolution_sizes() const;
+  int sweep_steps() const;
+  SceneSize stability_size() const { return SceneSize::Small; }
+  int stability_ramp() const;
+  int stability_hold() const;
+  std::vector<std::string> stability_scenes() const;
+};
+
+}  // namespace corofem

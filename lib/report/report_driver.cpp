@@ -1,0 +1,77 @@
+#include "report/report_driver.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <ostream>
+
+#include "core/atomic_file.hpp"
+#include "core/context.hpp"
+#include "report/paper_tables.hpp"
+#include "report/speed_accuracy.hpp"
+#include "report/stability_study.hpp"
+
+#ifndef COROFEM_SOURCE_DIR
+#define COROFEM_SOURCE_DIR "."
+#endif
+
+namespace corofem {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json header(const ReportConfig& config, const char* section) {
+  return {{"producer", std::string("corofem report (") + section + ")"},
+          {"context", run_context()},
+          {"parameters",
+           {{"mode", config.mode_name()},
+            {"models_dir", config.with_models() ? config.models_dir.string() : ""},
+            {"scenes", config.with_models() ? "bunny, horse, dragon surfaces" : "embedded procedural scenes"}}}};
+}
+
+template <class F>
+fs::path write_section(const ReportConfig& config, const char* section, const char* file, F&& run) {
+  const auto start = std::chrono::steady_clock::now();
+  json record = header(config, section);
+  json body = run();
+  for (auto& [key, value] : body.items()) record[key] = value;
+  record["elapsed_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const fs::path path = config.out_dir / file;
+  write_file_atomically(path, [&](std::ostream& o) { o << record.dump(1) << '\n'; });
+  if (config.progress) *config.progress << "report: wrote " << path.string() << std::endl;
+  return path;
+}
+
+}  // namespace
+
+std::vector<fs::path> run_report(const ReportConfig& config) {
+  fs::create_directories(config.out_dir);
+  std::vector<fs::path> written;
+  if (config.tables)
+    written.push_back(write_section(config, "tables", "tables.json", [&] { return run_paper_tables(config); }));
+  if (config.speed_accuracy)
+    written.push_back(write_section(config, "speed-accuracy", "speed_accuracy.json",
+                                    [&] { return run_speed_accuracy(config); }));
+  if (config.stability)
+    written.push_back(write_section(config, "stability", "stability.json",
+                                    [&] { return run_stability_study(config); }));
+  return written;
+}
+
+int render_report(const fs::path& dir, std::ostream* progress) {
+  fs::path script = fs::path(COROFEM_SOURCE_DIR) / "reports" / "render";
+  if (const char* env = std::getenv("COROFEM_RENDERER")) script = env;
+  std::error_code ec;
+  if (!fs::exists(script, ec)) {
+    if (progress) *progress << "report: renderer " << script.string() << " not found; JSON only\n";
+    return 127;
+  }
+  // Paths are quoted for the shell; a quote inside them is refused rather than escaped.
+  const std::string d = dir.string(), s = script.string();
+  if (d.find('\'') != std::string::npos || s.find('\'') != std::string::npos) return 127;
+  const int status = std::system(("'" + s + "' '" + d + "'").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+}  // namespace corofem

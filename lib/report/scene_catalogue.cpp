@@ -1,0 +1,217 @@
+#include "report/scene_catalogue.hpp"
+
+#include "core/errors.hpp"
+
+namespace corofem {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json box(double x0, double y0, double z0, double x1, double y1, double z1) {
+  return json::array({json::array({x0, y0, z0}), json::array({x1, y1, z1})});
+}
+
+int size_index(SceneSize size) { return static_cast<int>(size); }
+
+/// Bars: 2 x 0.5 x 0.5 m in Kuhn cells (4n, n, n): 1536, 11904, 32670, 65856 tets.
+json bar_mesh(SceneSize size) {
+  static const int cells[4][3] = {{16, 4, 4}, {31, 8, 8}, {45, 11, 11}, {56, 14, 14}};
+  const int* c = cells[size_index(size)];
+  return {{"box", {2.0, 0.5, 0.5}}, {"cells", {c[0], c[1], c[2]}}};
+}
+
+/// Quadruped mesh sizes for about 3.7k, 11.2k, 33.7k and 67.3k tets (calibrated with gmsh 4.11).
+json quadruped_mesh(SceneSize size) {
+  static const double h[4] = {0.1, 0.0642, 0.0434, 0.0339};
+  return {{"shape", "quadruped"}, {"size", h[size_index(size)]}};
+}
+
+struct ModelSurface {
+  const char* fine;
+  double fine_size;
+  const char* small;
+  double small_size;
+};
+
+ModelSurface model_surface(const std::string& model) {
+  if (model == "bunny") return {"bunny_L0.stl", 0.045098, "bunny_L1.stl", 0.09365};
+  if (model == "horse") return {"horse_L0.stl", 0.018747, "horse_L1.stl", 0.038184};
+  if (model == "dragon") return {"dragon_L0.stl", 0.0163, "dragon_L1.stl", 0.033};
+  throw InputError("unknown model '" + model + "' (bunny, horse, dragon)");
+}
+
+json model_mesh(const std::string& model, SceneSize size, const fs::path& models_dir) {
+  const ModelSurface s = model_surface(model);
+  const bool fine = size != SceneSize::Small;
+  return {{"surface", (models_dir / (fine ? s.fine : s.small)).string()},
+          {"size", fine ? s.fine_size : s.small_size}};
+}
+
+json dynamic_analysis(int steps, double tolerance, SceneSize size) {
+  return {{"type", "dynamic"},  {"formulation", "corotational"}, {"rotation", "energy-newton"},
+          {"solver", "mgpcg"},  {"levels", paper_levels(size)},  {"tolerance", tolerance},
+          {"dt", 0.01},         {"steps", steps},                {"rayleigh", {{"alpha", 1.0}}}};
+}
+
+// Quadruped landmarks (mesh/quadruped_mesh.hpp).
+const json kHindFeet = box(0.0, -0.3, -0.01, 0.3, 0.3, 0.05);
+const json kForeFeet = box(1.3, -0.3, -0.01, 1.6, 0.3, 0.05);
+const json kForeShins = box(1.3, -0.3, -0.01, 1.6, 0.3, 0.4);  // below the knees
+const json kShoulders = box(1.15, -0.3, 1.44, 1.65, 0.3, 1.51);
+const json kHead = box(1.8, -0.11, 1.84, 2.26, 0.11, 2.09);
+// Horse landmarks (models README: unit box, head at +y, up +z).
+const json kHorseHind = box(-0.3, -0.55, -0.45, 0.3, -0.28, -0.36);
+const json kHorseFore = box(-0.3, -0.02, -0.45, 0.3, 0.25, -0.34);
+const json kHorseShoulders = box(-0.3, 0.02, 0.12, 0.3, 0.3, 0.3);
+const json kHorseHead = box(-0.3, 0.35, 0.15, 0.3, 0.55, 0.45);
+
+}  // namespace
+
+std::string size_name(SceneSize size) {
+  static const char* names[] = {"small", "11k", "34k", "67k"};
+  return names[size_index(size)];
+}
+
+std::string paper_model_of(SceneSize size) {
+  static const char* names[] = {"", "bunny", "horse", "dragon"};
+  return names[size_index(size)];
+}
+
+int paper_levels(SceneSize size) {
+  static const int levels[] = {2, 3, 4, 4};
+  return levels[size_index(size)];
+}
+
+std::vector<std::string> procedural_models() { return {"cantilever", "twisting-bar", "quadruped"}; }
+std::vector<std::string> file_models() { return {"bunny", "horse", "dragon"}; }
+
+SceneSize file_model_size(const std::string& model) {
+  if (model == "bunny") return SceneSize::S;
+  if (model == "horse") return SceneSize::M;
+  return SceneSize::L;
+}
+
+json table_scene(const std::string& model, SceneSize size, int steps, double tolerance,
+                 const fs::path& models_dir) {
+  json s;
+  s["analysis"] = dynamic_analysis(steps, tolerance, size);
+  if (model == "cantilever" || model == "twisting-bar") {
+    s["mesh"] = bar_mesh(size);
+    s["material"] = {{"young", 5e5}, {"poisson", 0.3}, {"density", 1000}};
+    s["fixed"] = json::array({{{"box", box(0, 0, 0, 1e-6, 0.5, 0.5)}}});
+    if (model == "cantilever") {
+      s["gravity"] = {0, 0, -9.81};
+    } else {  // a quarter turn per 25 steps, from the first step on
+      s["moves"] = json::array({{{"box", box(2 - 1e-6, 0, 0, 2, 0.5, 0.5)},
+                                 {"rotate", {{"axis", {1, 0, 0}}, {"center", {2, 0.25, 0.25}},
+                                             {"degrees", 360}}},
+                                 {"ramp_steps", 100}}});
+    }
+  } else if (model == "quadruped") {
+    s["mesh"] = quadruped_mesh(size);
+    s["material"] = {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}};
+    s["fixed"] = json::array({{{"box", kHindFeet}}});
+    s["forces"] = json::array({{{"box", kShoulders}, {"total", {0, 0, 2e4}}, {"ramp_steps", 10}}});
+  } else {
+    s["mesh"] = model_mesh(model, size, models_dir);
+    s["material"] = {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}};
+    if (model == "horse") {
+      s["fixed"] = json::array({{{"box", kHorseHind}}});
+      s["forces"] = json::array({{{"box", kHorseShoulders}, {"total", {0, 0, 400}}, {"ramp_steps", 10}}});
+    } else if (model == "bunny") {  // base z = -0.493; ears and head pulled sideways
+      s["fixed"] = json::array({{{"box", box(-1, -1, -1, 1, 1, -0.47)}}});
+      s["forces"] = json::array({{{"box", box(-1, -1, 0.25, 1, 1, 1)}, {"total", {400, 0, 0}}, {"ramp_steps", 10}}});
+    } else if (model == "dragon") {  // up is +y, length along z; base y = -0.381
+      s["fixed"] = json::array({{{"box", box(-1, -1, -1, 1, -0.36, 1)}}});
+      s["forces"] = json::array({{{"box", box(-1, 0.2, -1, 1, 1, 1)}, {"total", {0, 0, 200}}, {"ramp_steps", 10}}});
+    } else {
+      throw InputError("unknown report model '" + model + "'");
+    }
+  }
+  return s;
+}
+
+json probe_box(const std::string& model) {
+  if (model == "cantilever" || model == "twisting-bar") return box(1.5, 0, 0, 1.55, 0.5, 0.5);
+  if (model == "quadruped") return kHead;
+  if (model == "horse") return kHorseHead;
+  if (model == "bunny") return box(-1, -1, 0.25, 1, 1, 1);
+  return box(-1, 0.2, -1, 1, 1, 1);
+}
+
+std::vector<std::string> stability_scene_ids(bool with_models) {
+  std::vector<std::string> ids{"bar-twist", "bar-stretch", "block-squash", "quadruped-stretched",
+                               "quadruped-posed"};
+  if (with_models) {
+    ids.push_back("horse-stretched");
+    ids.push_back("horse-posed");
+  }
+  return ids;
+}
+
+json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int hold_steps,
+                     const fs::path& models_dir) {
+  json s;
+  s["analysis"] = {{"type", "dynamic"},   {"formulation", "corotational"},
+                   {"rotation", "energy-newton"}, {"solver", "cholmod"},
+                   {"dt", 0.01},          {"steps", ramp_steps + hold_steps},
+                   {"rayleigh", {{"alpha", 10.0}, {"beta", 0.002}}}};  // settles within the hold
+  const int fine = size == SceneSize::Small ? 1 : 2;
+  auto ramp = [&](json load) {
+    load["ramp_steps"] = ramp_steps;
+    return load;
+  };
+  if (id == "bar-twist" || id == "bar-stretch") {  // 1 x 0.2 x 0.2 m
+    s["mesh"] = {{"box", {1.0, 0.2, 0.2}}, {"cells", {20 * fine, 4 * fine, 4 * fine}}};
+    s["material"] = {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}};
+    s["fixed"] = json::array({{{"box", box(0, 0, 0, 1e-6, 0.2, 0.2)}}});
+    json move = {{"box", box(1 - 1e-6, 0, 0, 1, 0.2, 0.2)}};
+    if (id == "bar-twist")
+      move["rotate"] = {{"axis", {1, 0, 0}}, {"center", {1, 0.1, 0.1}}, {"degrees", 450}};
+    else
+      move["translate"] = {2.0, 0, 0};  // to 3x its length
+    s["moves"] = json::array({ramp(move)});
+  } else if (id == "block-squash") {  // 0.5 m cube, top pushed through the bottom, then released
+    s["mesh"] = {{"box", {0.5, 0.5, 0.5}}, {"cells", {6 * fine, 6 * fine, 6 * fine}}};
+    s["material"] = {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}};
+    s["fixed"] = json::array({{{"box", box(0, 0, 0, 0.5, 0.5, 1e-6)}}});
+    json move = ramp({{"box", box(0, 0, 0.5 - 1e-6, 0.5, 0.5, 0.5)}, {"translate", {0, 0, -0.6}}});
+    move["release_step"] = ramp_steps + 1;
+    s["moves"] = json::array({move});
+  } else if (id == "quadruped-stretched" || id == "quadruped-posed") {
+    s["mesh"] = quadruped_mesh(size);
+    s["material"] = {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}};
+    s["fixed"] = json::array({{{"box", kHindFeet}}});
+    if (id == "quadruped-stretched") {
+      s["forces"] = json::array({ramp({{"box", kHead}, {"total", {6e3, 0, 6e3}}}),
+                                 ramp({{"box", kShoulders}, {"total", {6e3, 0, 6e3}}})});
+    } else {  // legs 30x stiffer than the body, knees as soft as the body
+      s["material"]["regions"] = json::array(
+          {{{"box", box(-1, -1, -1, 3, 1, 1.0)}, {"young", 3e7}},
+           {{"box", box(-1, -1, 0.45, 3, 1, 0.6)}, {"young", 1e6}}});
+      // Knee hinges of about 200 N m/rad each: these loads fold them by tens of degrees.
+      s["forces"] = json::array({ramp({{"box", kShoulders}, {"total", {0, 0, 400}}}),
+                                 ramp({{"box", kForeShins}, {"total", {-150, 0, 150}}})});
+    }
+  } else if (id == "horse-stretched" || id == "horse-posed") {
+    s["mesh"] = model_mesh("horse", size, models_dir);
+    s["material"] = {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}};
+    s["fixed"] = json::array({{{"box", kHorseHind}}});
+    if (id == "horse-stretched") {
+      s["forces"] = json::array({ramp({{"box", kHorseHead}, {"total", {0, 150, 150}}}),
+                                 ramp({{"box", kHorseShoulders}, {"total", {0, 150, 150}}})});
+    } else {  // legs below the belly 30x stiffer, knees (z in [-0.3, -0.22]) as soft as the body
+      s["material"]["regions"] = json::array(
+          {{{"box", box(-1, -1, -1, 1, 1, -0.12)}, {"young", 3e6}},
+           {{"box", box(-1, -1, -0.3, 1, 1, -0.22)}, {"young", 1e5}}});
+      s["forces"] = json::array({ramp({{"box", kHorseShoulders}, {"total", {0, 0, 20}}}),
+                                 ramp({{"box", kHorseFore}, {"total", {0, -5, 5}}})});
+    }
+  } else {
+    throw InputError("unknown stability scene '" + id + "'");
+  }
+  return s;
+}
+
+}  // namespace corofem

@@ -1,0 +1,191 @@
+#include "report/speed_accuracy.hpp"
+
+#include <limits>
+#include <ostream>
+
+#include "report/case_record.hpp"
+#include "report/timed_run.hpp"
+#include "rotation/rotation_extractor.hpp"
+
+namespace corofem {
+using nlohmann::json;
+
+namespace {
+
+json with_analysis(json scene, const json& changes) {
+  for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
+  if (changes.contains("solver") && changes["solver"] != "mgpcg" && changes["solver"] != "multigrid")
+    scene["analysis"]["levels"] = 1;
+  return scene;
+}
+
+double relative_error(const Eigen::VectorXd& u, const Eigen::VectorXd& reference) {
+  const double norm = reference.norm();
+  return norm > 0 ? (u - reference).norm() / norm : (u - reference).norm();
+}
+
+/// Settings of the solver sweep (all with energy-newton rotations).
+std::vector<json> solver_settings(const ReportConfig& config, int levels) {
+  std::vector<json> settings;
+  for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8})
+    settings.push_back({{"solver", "mgpcg"}, {"tolerance", tolerance}});
+  for (int vcycles : {1, 2, 4}) settings.push_back({{"solver", "multigrid"}, {"vcycles", vcycles}});
+  for (int smoothing : {2, 3})
+    settings.push_back({{"solver", "multigrid"}, {"vcycles", 1}, {"smoothing", smoothing}});
+  for (int l = 2; l <= levels + 1; ++l)
+    if (l != levels) settings.push_back({{"solver", "mgpcg"}, {"tolerance", 1e-4}, {"levels", l}});
+  settings.push_back({{"solver", "jacobi-pcg"}, {"tolerance", 1e-4}});
+  if (config.mode == ReportConfig::Mode::Smoke) settings.resize(3);
+  return settings;
+}
+
+std::string label_of(const json& setting) {
+  std::string label;
+  for (auto& [key, value] : setting.items())
+    label += (label.empty() ? "" : " ") + key + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
+  return label;
+}
+
+/// Cheapest completed point with error <= tolerance (excluding the reference itself).
+json cheapest_meeting(const json& points, double tolerance) {
+  json best = nullptr;
+  for (const json& p : points) {
+    if (!p.value("completed", false) || p.value("is_reference", false)) continue;
+    if (!p["rel_error"].is_number() || p["rel_error"].get<double>() > tolerance) continue;
+    if (best.is_null() || p["time_per_step_ms"].get<double>() < best["time_per_step_ms"].get<double>()) best = p;
+  }
+  return best.is_null() ? json(nullptr) : json{{"label", best["label"]}, {"time_per_step_ms", best["time_per_step_ms"]}, {"rel_error", best["rel_error"]}};
+}
+
+}  // namespace
+
+void mark_pareto_front(json& points) {
+  for (json& p : points) {
+    if (!p.value("completed", false) || !p["rel_error"].is_number() || p.value("is_reference", false)) continue;
+    const double t = p["time_per_step_ms"], e = p["rel_error"];
+    bool dominated = false;
+    for (const json& q : points) {
+      if (&q == &p || !q.value("completed", false) || !q["rel_error"].is_number() ||
+          q.value("is_reference", false))
+        continue;
+      const double tq = q["time_per_step_ms"], eq = q["rel_error"];
+      if (tq <= t && eq <= e && (tq < t || eq < e)) dominated = true;
+    }
+    p["pareto"] = !dominated;
+  }
+}
+
+json run_speed_accuracy(const ReportConfig& config) {
+  const AccuracyTargets targets;
+  json out = {{"targets", {{"solver", targets.solver}, {"rotation", targets.rotation}, {"resolution", targets.resolution}}},
+              {"error_definitions",
+               {{"solver", "|u - u_ref| / |u_ref| of the last step's displacement, u_ref: CHOLMOD with the same rotations and mesh"},
+                {"rotation", "|u - u_ref| / |u_ref|, u_ref: energy-exact rotations with CHOLMOD (the exact minimizer)"},
+                {"resolution", "|p - p_ref| / |p_ref| of the mean displacement of a probe region, p_ref: the finest resolution"}}},
+              {"scenes", json::array()}};
+  const int steps = config.sweep_steps();
+  const int warmup = std::min(2, steps - 1);
+  for (const std::string& model : config.models()) {
+    const SceneSize size = config.sweep_size(model);
+    const std::string id = model + "-" + size_name(size);
+    const json scene = table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
+    auto say = [&](const std::string& what) {
+      if (config.progress) *config.progress << "report: speed-accuracy: " << id << ": " << what << std::endl;
+    };
+    json entry = {{"scene", id}, {"model", model}, {"steps", steps}, {"points", json::array()}};
+    auto point = [&](const std::string& sweep, const json& setting, const json& scene_json,
+                     const std::function<double(const TimedRun&)>& error, bool is_reference = false) {
+      say(sweep + ": " + label_of(setting));
+      json p = record_case({{"sweep", sweep}, {"setting", setting}, {"label", label_of(setting)}}, [&] {
+        const TimedRun run = timed_run(scene_json, id, {});
+        return json{{"time_per_step_ms", run.median_ms("step", warmup)},
+                    {"rel_error", finite_or_null(error(run))},
+                    {"tets", run.tets},
+                    {"iterations_per_step", run.median_iterations(warmup)},
+                    {"is_reference", is_reference}};
+      });
+      entry["points"].push_back(p);
+    };
+    // References at this resolution.
+    Eigen::VectorXd u_ref, u_exact;
+    say("references (CHOLMOD)");
+    json refs = record_case({}, [&] {
+      u_ref = timed_run(with_analysis(scene, {{"solver", "cholmod"}}), id, {}).result.displacement;
+      u_exact = timed_run(with_analysis(scene, {{"solver", "cholmod"}, {"rotation", "energy-exact"}}), id, {})
+                    .result.displacement;
+      return json::object();
+    });
+    if (!refs["completed"]) {
+      entry["completed"] = false;
+      entry["error"] = refs["error"];
+      out["scenes"].push_back(entry);
+      continue;
+    }
+    const int levels = scene["analysis"]["levels"];
+    for (const json& setting : solver_settings(config, levels))
+      point("solver", setting, with_analysis(scene, setting),
+            [&](const TimedRun& r) { return relative_error(r.result.displacement, u_ref); });
+    point("solver", {{"solver", "cholmod"}}, with_analysis(scene, {{"solver", "cholmod"}}),
+          [&](const TimedRun& r) { return relative_error(r.result.displacement, u_ref); }, true);
+    for (const std::string& method : rotation_method_names()) {
+      if (method == "none") continue;
+      if (config.mode == ReportConfig::Mode::Smoke && method != "energy-newton" && method != "polar") continue;
+      point("rotation", {{"rotation", method}}, with_analysis(scene, {{"rotation", method}}),
+            [&](const TimedRun& r) { return relative_error(r.result.displacement, u_exact); });
+    }
+    // Resolution: probe displacement against the finest.
+    const json probe = probe_box(model);
+    std::vector<std::pair<SceneSize, Vec3>> probes;
+    json resolution_points = json::array();
+    for (SceneSize s : config.resolution_sizes()) {
+      const json setting = {{"resolution", size_name(s)}};
+      say("resolution: " + size_name(s));
+      json p = record_case({{"sweep", "resolution"}, {"setting", setting}, {"label", size_name(s)}}, [&] {
+        const TimedRun run = timed_run(table_scene(model, s, steps, config.default_tolerance(), config.models_dir),
+                                       model + "-" + size_name(s), {});
+        const Vec3 value = run.probe(probe);
+        return json{{"time_per_step_ms", run.median_ms("step", warmup)},
+                    {"tets", run.tets},
+                    {"probe_displacement", {value.x(), value.y(), value.z()}}};
+      });
+      resolution_points.push_back(p);
+    }
+    // The finest completed resolution is the reference.
+    json* finest = nullptr;
+    for (json& p : resolution_points)
+      if (p["completed"]) finest = &p;
+    for (json& p : resolution_points) {
+      if (!p["completed"] || !finest) continue;
+      const auto& a = p["probe_displacement"];
+      const auto& b = (*finest)["probe_displacement"];
+      const Vec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]);
+      p["rel_error"] = finite_or_null(pb.norm() > 0 ? (pa - pb).norm() / pb.norm() : (pa - pb).norm());
+      p["is_reference"] = &p == finest;
+      entry["points"].push_back(p);
+    }
+    for (const char* sweep : {"solver", "rotation", "resolution"}) {
+      json subset = json::array();
+      for (const json& p : entry["points"])
+        if (p["sweep"] == sweep) subset.push_back(p);
+      mark_pareto_front(subset);
+      std::size_t k = 0;
+      for (json& p : entry["points"])
+        if (p["sweep"] == sweep) p["pareto"] = subset[k++].value("pareto", false);
+    }
+    auto subset_of = [&](const char* sweep) {
+      json subset = json::array();
+      for (const json& p : entry["points"])
+        if (p["sweep"] == sweep) subset.push_back(p);
+      return subset;
+    };
+    entry["cheapest_meeting_target"] = {
+        {"solver", cheapest_meeting(subset_of("solver"), targets.solver)},
+        {"rotation", cheapest_meeting(subset_of("rotation"), targets.rotation)},
+        {"resolution", cheapest_meeting(subset_of("resolution"), targets.resolution)}};
+    entry["completed"] = true;
+    out["scenes"].push_back(entry);
+  }
+  return out;
+}
+
+}  // namespace corofem

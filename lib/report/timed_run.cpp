@@ -1,0 +1,158 @@
+#include "report/timed_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cholmod_solver.hpp"
+#include "galerkin_oracle.hpp"
+#include "multigrid/multigrid_solver.hpp"
+#include "multigrid/transfer.hpp"
+#include "rotation/rotation_extractor.hpp"
+#include "scene/scene_simulation.hpp"
+#include "sparse/brc_to_eigen.hpp"
+
+namespace corofem {
+namespace {
+
+/// Passes everything to the solver under test; on the checked steps also solves the same system
+/// with CHOLMOD (outside the step's timed phases only in the sense that it is excluded from the
+/// medians: checked steps are dropped from them).
+class OracleCheckedSolver : public LinearSolver {
+ public:
+  OracleCheckedSolver(std::unique_ptr<LinearSolver> inner, std::vector<int> check_steps, TimedRun& out)
+      : inner_(std::move(inner)), check_steps_(std::move(check_steps)), out_(out) {}
+  std::string name() const override { return inner_->name(); }
+  LinearSolver& inner() { return *inner_; }
+  void set_matrix(const BrcMatrix& a) override {
+    ++call_;
+    inner_->set_matrix(a);
+    checking_ = std::find(check_steps_.begin(), check_steps_.end(), call_) != check_steps_.end();
+    if (checking_) matrix_ = to_eigen(a);
+  }
+  SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    const SolveStats stats = inner_->solve(b, x);
+    if (checking_) {
+      reference::CholmodSolver cholmod;
+      cholmod.analyze(matrix_);
+      cholmod.factorize(matrix_);
+      const Eigen::VectorXd exact = cholmod.solve(b);
+      const double norm = exact.norm();
+      const double error = norm > 0 ? (x - exact).norm() / norm : (x - exact).norm();
+      out_.solve_error_max = std::max(out_.solve_error_max, error);
+      out_.solve_residual_max = std::max(out_.solve_residual_max, stats.residual);
+    }
+    return stats;
+  }
+
+ private:
+  std::unique_ptr<LinearSolver> inner_;
+  std::vector<int> check_steps_;
+  TimedRun& out_;
+  int call_ = 0;
+  bool checking_ = false;
+  Eigen::SparseMatrix<double> matrix_;
+};
+
+double total_volume(const TetMesh& mesh, const std::vector<Vec3>& x) {
+  double v = 0;
+  for (const Tet& t : mesh.tets) v += signed_volume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+  return v;
+}
+
+double rotation_angle(const Mat3& a, const Mat3& b) {
+  return 2 * std::asin(std::min(1.0, (a - b).norm() / (2 * std::sqrt(2.0))));
+}
+
+}  // namespace
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double TimedRun::median_ms(const std::string& phase, int warmup) const {
+  std::vector<double> values;
+  for (std::size_t s = warmup; s < step_ms.size(); ++s) {
+    auto it = step_ms[s].find(phase);
+    if (it != step_ms[s].end() && !step_ms[s].count("checked")) values.push_back(it->second);
+  }
+  return median(values);
+}
+
+double TimedRun::median_iterations(int warmup) const {
+  std::vector<double> values;
+  for (std::size_t s = warmup; s < solves.size(); ++s) values.push_back(solves[s].iterations);
+  return median(values);
+}
+
+Vec3 TimedRun::probe(const nlohmann::json& box) const {
+  const Vec3 lo(box[0][0].get<double>(), box[0][1].get<double>(), box[0][2].get<double>());
+  const Vec3 hi(box[1][0].get<double>(), box[1][1].get<double>(), box[1][2].get<double>());
+  Vec3 sum = Vec3::Zero();
+  int count = 0;
+  for (std::size_t v = 0; v < mesh.rest.size(); ++v)
+    if ((mesh.rest[v].array() >= lo.array()).all() && (mesh.rest[v].array() <= hi.array()).all()) {
+      sum += result.displacement.segment<3>(3 * v);
+      ++count;
+    }
+  return count ? Vec3(sum / count) : Vec3::Zero();
+}
+
+TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
+                   const TimedRunOptions& options) {
+  TimedRun out;
+  SceneSimulation simulation(parse_scene(scene_json, ".", name));
+  FeProblem& problem = simulation.problem();
+  out.tets = problem.mesh.num_tets();
+  out.vertices = problem.mesh.num_vertices();
+  out.mesh = problem.mesh;
+  OracleCheckedSolver* checked = nullptr;
+  if (!options.check_steps.empty()) {
+    auto solver = std::make_unique<OracleCheckedSolver>(simulation.release_solver(),
+                                                        options.check_steps, out);
+    checked = solver.get();
+    simulation.set_solver(std::move(solver));
+  }
+  LinearSolver& under_test = checked ? checked->inner() : simulation.solver();
+  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) out.levels = mg->hierarchy().num_levels();
+  out.result = simulation.run([&](const StepState& s) {
+    auto phases = s.phase_ms;
+    if (std::find(options.check_steps.begin(), options.check_steps.end(), s.step) !=
+        options.check_steps.end())
+      phases["checked"] = 1;  // the oracle solve ran inside this step's solve phase
+    out.step_ms.push_back(std::move(phases));
+    out.solves.push_back(s.solve);
+    if (options.on_step) options.on_step(s, problem);
+  });
+  out.rest_volume = total_volume(problem.mesh, problem.mesh.rest);
+  const auto final_positions = problem.positions(out.result.displacement);
+  out.final_volume = total_volume(problem.mesh, final_positions);
+  if (options.check_operators) {
+    if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
+      const MultigridHierarchy& h = mg->hierarchy();
+      out.galerkin_error_max = 0;
+      for (int level = 0; level + 1 < h.num_levels(); ++level) {
+        const Eigen::SparseMatrix<double> expected = reference::eigen_galerkin(
+            restriction_matrix(h.transfer(level)), to_eigen(h.matrix(level)));
+        const double error = (to_eigen(h.matrix(level + 1)) - expected).norm() / expected.norm();
+        out.galerkin_error_max = std::max(out.galerkin_error_max, error);
+      }
+    }
+    if (simulation.scene().analysis.rotation == "energy-newton" && simulation.corotational()) {
+      auto exact = make_rotation_extractor("energy-exact", problem.mesh);
+      std::vector<Mat3> newton = out.result.rotations, oracle = out.result.rotations;
+      simulation.extractor().extract(final_positions, newton);
+      exact->extract(final_positions, oracle);
+      out.rotation_error_max_rad = 0;
+      for (std::size_t e = 0; e < newton.size(); ++e)
+        out.rotation_error_max_rad = std::max(out.rotation_error_max_rad, rotation_angle(newton[e], oracle[e]));
+      out.rotation_elements_compared = static_cast<int>(newton.size());
+    }
+  }
+  return out;
+}
+
+}  // namespace corofem

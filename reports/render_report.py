@@ -1,0 +1,413 @@
+#!/usr/bin/env python3
+"""Draws REPORT.md and charts/*.png of a corofem report folder from its JSON records alone.
+
+Usage: render_report.py DIR [--blank-times]
+
+Reads tables.json, speed_accuracy.json, stability.json and cache_profile.json (each optional).
+--blank-times prints every time, rate and date as "t" (the golden test of the report's format
+compares text that does not depend on the machine's speed).
+"""
+import json
+import math
+import os
+import sys
+import tempfile
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    HAVE_MPL = True
+except ImportError:  # REPORT.md is still written; it says the charts are missing
+    HAVE_MPL = False
+
+BLANK = False
+TIME_KEYS = ("_ms", "tps", "elapsed_s", "speedup")
+
+
+def load(folder, name):
+    path = os.path.join(folder, name)
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return json.load(f)
+
+
+def num(value, digits=3):
+    """A number with `digits` significant digits; '-' for missing."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "-"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    if value == 0:
+        return "0"
+    magnitude = abs(value)
+    if magnitude >= 1e5 or magnitude < 1e-3:
+        return f"{value:.{digits - 1}e}"
+    return f"{value:.{digits}g}" if magnitude < 10 ** digits else f"{value:.0f}"
+
+
+def t(value, digits=3):
+    """A machine-dependent number (time, rate, ratio of times)."""
+    return "t" if BLANK else num(value, digits)
+
+
+def ratio(a, b):
+    if a is None or b is None or b == 0:
+        return None
+    return a / b
+
+
+def table(headers, rows):
+    out = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    out += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(out) + "\n"
+
+
+def save(fig, folder, name):
+    charts = os.path.join(folder, "charts")
+    os.makedirs(charts, exist_ok=True)
+    path = os.path.join(charts, name)
+    fd, tmp = tempfile.mkstemp(dir=charts, suffix=".png")
+    os.close(fd)
+    fig.savefig(tmp, dpi=90, metadata={"Software": None})
+    plt.close(fig)
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, path)
+    return "charts/" + name
+
+
+def context_lines(record):
+    c = record.get("context", {})
+    p = record.get("parameters", {})
+    date = "t" if BLANK else c.get("date", "?")
+    commit = "t" if BLANK else c.get("commit", "?")
+    return (f"- {record.get('producer', '?')}, mode `{p.get('mode', '?')}`, {p.get('scenes', '')}; "
+            f"commit `{commit}`, {c.get('compiler', '?')} `{c.get('flags', '?')}`, "
+            f"{'t' if BLANK else c.get('cpu', '?')}, {c.get('threads_used', 1)} thread, {date}\n")
+
+
+def failed(row):
+    return not row.get("completed", False)
+
+
+def failure_text(row):
+    e = row.get("error", {})
+    return f"**failed** ({e.get('kind', '?')}): {e.get('message', '?')}"
+
+
+# ----------------------------------------------------------------------------------------------
+def render_tables(tables, folder, md):
+    s = tables.get("settings", {})
+    md.append("## Tables 1 and 2: our timings beside the paper's\n\n")
+    md.append(context_lines(tables))
+    md.append(f"- Dynamic runs, implicit Euler dt = {s.get('dt')} s; each time is the median over "
+              f"{s.get('measured_steps')} steps after {s.get('warmup_steps')} warm-up steps. "
+              f"Accuracy: {s.get('accuracy')}. Energy-newton rotations, stream Galerkin update.\n")
+    md.append("- The paper's rows (Core 2 Duo 6600, 2.4 GHz) are matched by size: 11k tets to the "
+              "bunny, 34k to the horse, 67k to the dragon. Ratio = paper time / our time "
+              "(above 1: we are faster).\n\n")
+    rows, fails = [], []
+    for r in tables.get("table1", []):
+        if failed(r):
+            fails.append(f"- {r['model']}: {failure_text(r)}\n")
+            continue
+        p = r.get("paper") or {}
+        def cell(key):
+            ours = r.get(key)
+            if not p.get(key):
+                return t(ours)
+            return f"{t(ours)} ({num(p[key])}; {t(ratio(p[key], ours), 2)}x)"
+        acc = r.get("solve_accuracy", {})
+        rows.append([r["model"], r["tets"], r["vertices"], r["levels"], cell("rotate_ms"),
+                     cell("assemble_ms"), cell("update_ms"), cell("update_naive_ms"), cell("solve_ms"),
+                     f"{t(r['tps'])} ({num(p.get('tps'))}; {t(ratio(r['tps'], p.get('tps')), 2)}x)" if p else t(r["tps"]),
+                     f"{num(acc.get('relative_residual_max'), 2)} / {num(acc.get('error_vs_cholmod_max'), 2)}",
+                     t(r.get("cholmod_step_ms")), t(r.get("speedup_vs_cholmod"), 2)])
+    md.append("### Table 1 (ms per step; in brackets the paper's value and paper/ours)\n\n")
+    md.append(table(["model", "tets", "vertices", "levels", "rotate", "assemble", "update",
+                     "update naive", "solve", "tps (paper; ours/paper)",
+                     "residual / error vs CHOLMOD", "CHOLMOD step", "CHOLMOD / ours"], rows))
+    md.extend(fails)
+    md.append("\n")
+    # Targets of the issue.
+    md.append("### Performance targets\n\n")
+    lines = []
+    for r in tables.get("table1", []):
+        if failed(r) or not r.get("paper"):
+            continue
+        target = 10 * r["paper"]["tps"]
+        met = r["tps"] >= target
+        lines.append(f"- {r['model']}: {t(r['tps'])} tps against the target 10x paper = {num(target)} tps: "
+                     f"{'t' if BLANK else ('met' if met else 'not met')}\n")
+        if r.get("paper_model") == "dragon":
+            sp = r.get("speedup_vs_cholmod")
+            lines.append(f"- {r['model']}: step {t(sp, 2)}x faster than the CHOLMOD-refactorization step "
+                         f"(target 3x): {'t' if BLANK else ('met' if sp and sp >= 3 else 'not met')}\n")
+    md.extend(lines or ["- (no row of the paper's sizes in this run)\n"])
+    md.append("\n")
+    # Table 2.
+    rows = []
+    t1 = {r["model"]: r for r in tables.get("table1", []) if not failed(r)}
+    for r in tables.get("table2", []):
+        if failed(r):
+            rows.append([r["model"], failure_text(r), "", "", "", ""])
+            continue
+        energy = t1.get(r["model"], {}).get("tps")
+        rows.append([r["model"], t(r["tps"]), num(r.get("paper_tps")), t(ratio(r["tps"], r.get("paper_tps")), 2),
+                     t(energy), t(ratio(r["tps"], energy), 2)])
+    md.append("### Table 2: polar decomposition with spatial smoothing\n\n")
+    md.append(table(["model", "tps", "paper tps", "ours/paper", "energy-newton tps",
+                     "polar+smoothing / energy-newton (paper about 2)"], rows))
+    md.append("\n")
+    rows = []
+    for r in tables.get("small_strain", []):
+        if failed(r):
+            rows.append([r["model"], failure_text(r), "", "", ""])
+            continue
+        rows.append([r["model"], t(r["tps"]), t(r["corotated_tps"]), f"{100 * r['volume_change']:+.3f}%",
+                     f"{100 * r['corotated_volume_change']:+.3f}%"])
+    md.append("### Small strain against corotated (the paper's Figure 1)\n\n")
+    md.append(table(["model", "small-strain tps", "corotated tps", "volume change, small strain",
+                     "volume change, corotated"], rows))
+    md.append("\n")
+    rows = []
+    for r in tables.get("jacobi_pcg", []):
+        if failed(r):
+            rows.append([r["model"], failure_text(r), "", "", ""])
+            continue
+        rows.append([r["model"], t(r["step_ms"]), num(r["iterations"]), t(r.get("mgpcg_step_ms")),
+                     num(r.get("mgpcg_iterations"))])
+    md.append("### Jacobi-PCG at the same accuracy\n\n")
+    md.append(table(["model", "Jacobi-PCG step ms", "CG iterations", "MG-PCG step ms", "MG-PCG iterations"], rows))
+    md.append("\n")
+    # Phase chart.
+    ok = [r for r in tables.get("table1", []) if not failed(r)]
+    if HAVE_MPL and ok:
+        phases = ["rotate_ms", "assemble_ms", "update_ms", "solve_ms"]
+        fig, ax = plt.subplots(figsize=(8, 3.5))
+        labels, bottoms = [], [0.0] * (2 * len(ok))
+        for r in ok:
+            labels += [r["model"], f"paper {r['paper_model']}" if r.get("paper") else ""]
+        for phase in phases:
+            values = []
+            for r in ok:
+                values += [r.get(phase) or 0, (r.get("paper") or {}).get(phase) or 0]
+            ax.bar(range(len(values)), values, bottom=bottoms, label=phase[:-3])
+            bottoms = [b + v for b, v in zip(bottoms, values)]
+        ax.set_xticks(range(len(labels)))
+        ax.set_xticklabels(labels, rotation=30, ha="right", fontsize=7)
+        ax.set_ylabel("ms per step")
+        ax.set_yscale("log")
+        ax.legend(fontsize=7)
+        ax.set_title("Step phases: ours beside the paper's")
+        fig.tight_layout()
+        md.append(f"![phases]({save(fig, folder, 'table1_phases.png')})\n\n")
+    # Verification summary.
+    md.append("## Verification summary (oracle checks in the table runs)\n\n")
+    rows = []
+    for v in tables.get("verification", []):
+        for c in v["checks"]:
+            rows.append([v["model"], c["oracle"], c["quantity"], c["count"], num(c["largest"], 2)])
+    md.append(table(["model", "oracle", "quantity", "compared", "largest"], rows))
+    md.append("\nThe full gate suite (`ci/test`) checks more: see verify/.\n\n")
+
+
+# ----------------------------------------------------------------------------------------------
+def render_speed_accuracy(sa, folder, md):
+    md.append("## Speed against accuracy\n\n")
+    md.append(context_lines(sa))
+    for key, text in sa.get("error_definitions", {}).items():
+        md.append(f"- {key} error: {text}; target {num(sa['targets'][key])}\n")
+    md.append("\n")
+    markers = {"solver": "o", "rotation": "s", "resolution": "^"}
+    for scene in sa.get("scenes", []):
+        md.append(f"### {scene['scene']}\n\n")
+        if failed(scene):
+            md.append(failure_text(scene) + "\n\n")
+            continue
+        pts = scene["points"]
+        if HAVE_MPL:
+            fig, ax = plt.subplots(figsize=(6.5, 4.2))
+            for sweep, marker in markers.items():
+                sel = [p for p in pts if p["sweep"] == sweep and not failed(p) and p.get("rel_error")
+                       and not p.get("is_reference")]
+                if not sel:
+                    continue
+                ax.scatter([p["time_per_step_ms"] for p in sel], [p["rel_error"] for p in sel],
+                           marker=marker, label=sweep)
+                front = sorted([p for p in sel if p.get("pareto")], key=lambda p: p["time_per_step_ms"])
+                if len(front) > 1:
+                    ax.plot([p["time_per_step_ms"] for p in front], [p["rel_error"] for p in front],
+                            linestyle="--", linewidth=0.8)
+                for p in sel:
+                    ax.annotate(p["label"].replace("solver=", "").replace("rotation=", ""),
+                                (p["time_per_step_ms"], p["rel_error"]), fontsize=5)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("time per step (ms)")
+            ax.set_ylabel("relative error")
+            ax.set_title(f"{scene['scene']}: speed against accuracy (dashed: Pareto fronts)", fontsize=9)
+            ax.legend(fontsize=7)
+            fig.tight_layout()
+            md.append(f"![{scene['scene']}]({save(fig, folder, 'speed_accuracy_' + scene['scene'] + '.png')})\n\n")
+        rows = []
+        for p in pts:
+            if failed(p):
+                rows.append([p["sweep"], p["label"], failure_text(p), "", "", ""])
+                continue
+            rows.append([p["sweep"], p["label"], p.get("tets", "-"), t(p["time_per_step_ms"]),
+                         "reference" if p.get("is_reference") else num(p.get("rel_error"), 2),
+                         "yes" if p.get("pareto") else ""])
+        md.append(table(["sweep", "setting", "tets", "ms per step", "relative error", "Pareto"], rows))
+        md.append("\nCheapest setting meeting each target (model no more than the scene needs):\n\n")
+        for sweep, best in scene.get("cheapest_meeting_target", {}).items():
+            if best is None:
+                md.append(f"- {sweep}: none of the settings met {num(sa['targets'][sweep])}\n")
+            else:
+                md.append(f"- {sweep}: `{best['label']}`, {t(best['time_per_step_ms'])} ms per step, "
+                          f"error {num(best['rel_error'], 2)}\n")
+        md.append("\n")
+
+
+# ----------------------------------------------------------------------------------------------
+def render_cache(cache, md):
+    md.append("## Cache profiles\n\n")
+    if cache is None:
+        md.append("Not run in this report (ci/report runs bench/cache_profile.sh).\n\n")
+        return
+    md.append(f"- {cache.get('producer')}: {cache.get('tool_note')}; model `{cache.get('model')}`, "
+              f"{cache.get('updates')} repetitions, {cache.get('fine_blocks')} blocks of K.\n\n")
+    rows = []
+    for r in cache.get("results", []):
+        rows.append([r["method"], r.get("unit", "Galerkin update"), num(r["d1_misses_per_update"]),
+                     num(r["ll_misses_per_update"]), num(r["d1_misses_per_k_block"]),
+                     num(r["ll_misses_per_k_block"]), num(r["instructions_per_update"])])
+    md.append(table(["method", "per", "D1 misses", "LL misses", "D1 per K block", "LL per K block",
+                     "instructions"], rows))
+    md.append("\n")
+
+
+# ----------------------------------------------------------------------------------------------
+def render_stability(st, folder, md):
+    md.append("## Stability where methods fail\n\n")
+    md.append(context_lines(st))
+    th = st.get("thresholds", {})
+    first = next(iter(st.get("scenes", {}).values()), {}).get("analysis", {})
+    damping = first.get("rayleigh", {})
+    md.append(f"- Load for {st.get('ramp_steps')} steps, hold for {st.get('hold_steps')} (dt {first.get('dt')} s, "
+              f"Rayleigh damping alpha {damping.get('alpha', 0)}/s, beta {damping.get('beta', 0)} s, "
+              f"{first.get('solver')} solves, `{st.get('size')}` meshes). Flutter is "
+              f"measured over the {th.get('window')}.\n")
+    md.append(f"- Status: {th.get('statuses')}. Thresholds: largest change {th.get('flutter_max_rad')} rad "
+              f"per step, RMS {th.get('flutter_rms_rad')} rad per step. Why these: with the loads constant, "
+              f"a settling body's elements turn by well under 1e-3 rad per step (see the energy-exact "
+              f"runs, the exact minimizer); a change 100x larger, every step, is a rotation field that "
+              f"jumps, not a body that moves.\n\n")
+    runs = st.get("runs", [])
+    scenes = list(dict.fromkeys(r["scene"] for r in runs))
+    methods = list(dict.fromkeys(r["method"] for r in runs))
+    rows = []
+    for r in runs:
+        rows.append([r["scene"], r["method"], f"**{r['status']}**" if r["status"] != "stable" else r["status"],
+                     num(r.get("flutter_rms_rad"), 2), num(r.get("flutter_max_rad"), 2), r.get("inverted_max"),
+                     r.get("inverted_final"), num(r.get("kinetic_energy_final"), 2),
+                     num(r.get("residual_final"), 2), r.get("diverged_step") or "",
+                     (r.get("divergence") or {}).get("message", "")[:80]])
+    md.append(table(["scene", "method", "status", "flutter RMS (rad)", "flutter max (rad)", "inverted max",
+                     "inverted at end", "kinetic energy at end (J)", "equilibrium residual",
+                     "diverged at step", "why"], rows))
+    md.append("\n")
+    # Status matrix.
+    md.append("Status by scene and method:\n\n")
+    rows = []
+    for s in scenes:
+        row = [s]
+        for m in methods:
+            r = next((r for r in runs if r["scene"] == s and r["method"] == m), None)
+            row.append(r["status"] if r else "")
+        rows.append(row)
+    md.append(table(["scene"] + methods, rows))
+    md.append("\n")
+    if not HAVE_MPL:
+        return
+    for s in scenes:
+        fig, ax = plt.subplots(figsize=(7, 3.6))
+        for r in runs:
+            if r["scene"] != s:
+                continue
+            series = r["series"]["rotation_change_max_rad"]
+            ax.plot(range(1, len(series) + 1), [max(v, 1e-12) for v in series], label=r["method"], linewidth=0.9)
+        ax.axvline(st.get("ramp_steps", 0), color="gray", linestyle=":", linewidth=0.8)
+        ax.axhline(th.get("flutter_max_rad", 0.1), color="red", linestyle="--", linewidth=0.8)
+        ax.set_yscale("log")
+        ax.set_xlabel("step (dotted: end of loading; dashed: flutter threshold)")
+        ax.set_ylabel("largest rotation change per step (rad)")
+        ax.set_title(f"{s}: flutter per step", fontsize=9)
+        ax.legend(fontsize=6, ncol=2)
+        fig.tight_layout()
+        md.append(f"![{s} flutter]({save(fig, folder, 'stability_flutter_' + s + '.png')})\n\n")
+        poses = [p for p in st.get("poses", []) if p["scene"] == s]
+        if poses:
+            fig = plt.figure(figsize=(2.4 * len(poses), 2.8))
+            for k, p in enumerate(poses):
+                ax = fig.add_subplot(1, len(poses), k + 1, projection="3d")
+                xs, ys, zs = zip(*p["points"]) if p["points"] else ([], [], [])
+                values = [max(v, 1e-6) for v in p["rotation_change_max_rad"]]
+                ax.scatter(xs, ys, zs, c=[math.log10(v) for v in values], s=1, cmap="viridis",
+                           vmin=-6, vmax=0)
+                ax.set_title(p["method"], fontsize=7)
+                ax.set_axis_off()
+                try:
+                    ax.set_box_aspect((max(xs) - min(xs) + 1e-9, max(ys) - min(ys) + 1e-9, max(zs) - min(zs) + 1e-9))
+                except (AttributeError, ValueError):
+                    pass
+            fig.suptitle(f"{s}: final pose, colour log10 of the largest rotation change per step "
+                         f"while held (dark: still, yellow: 1 rad)", fontsize=7)
+            md.append(f"![{s} poses]({save(fig, folder, 'stability_pose_' + s + '.png')})\n\n")
+
+
+def main(argv):
+    global BLANK
+    args = [a for a in argv[1:] if a != "--blank-times"]
+    BLANK = "--blank-times" in argv
+    if len(args) != 1:
+        print(__doc__, file=sys.stderr)
+        return 2
+    folder = args[0]
+    tables = load(folder, "tables.json")
+    sa = load(folder, "speed_accuracy.json")
+    st = load(folder, "stability.json")
+    cache = load(folder, "cache_profile.json")
+    if not (tables or sa or st):
+        print(f"render: no tables.json, speed_accuracy.json or stability.json in {folder}", file=sys.stderr)
+        return 2
+    md = ["# corofem report\n\n",
+          "Drawn by reports/render_report.py from the JSON records in this folder alone; every "
+          "number below is in them, with the commit, flags and machine that produced it.\n\n"]
+    if not HAVE_MPL:
+        md.append("(matplotlib was not available: no charts drawn.)\n\n")
+    if tables:
+        render_tables(tables, folder, md)
+    if sa:
+        render_speed_accuracy(sa, folder, md)
+    if tables or sa:
+        render_cache(cache, md)
+    if st:
+        render_stability(st, folder, md)
+    text = "".join(md)
+    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".md")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, os.path.join(folder, "REPORT.md"))
+    print(f"render: wrote {os.path.join(folder, 'REPORT.md')}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,213 @@
+// `corofem report`: every record has its schema and provenance, the oracle checks inside the table
+// runs hold, REPORT.md is drawn from the JSON alone (regenerated identically, and against a golden
+// file with times blanked), and a failing case is recorded instead of aborting the report.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "core/errors.hpp"
+#include "report/case_record.hpp"
+#include "report/speed_accuracy.hpp"
+#include "test_support.hpp"
+
+namespace corofem {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::read_text;
+using test::run_cli;
+using test::TempDir;
+
+/// The smoke report, run once for the tests of this file.
+const fs::path& smoke_report() {
+  static TempDir dir;
+  static bool done = false;
+  if (!done) {
+    const auto r = run_cli("report --smoke --out '" + (dir / "out").string() + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    done = true;
+  }
+  static const fs::path out = dir / "out";
+  return out;
+}
+
+json load(const fs::path& file) { return json::parse(read_text(file)); }
+
+bool renderer_usable() {
+  return run_cli("help").exit_code == 0 &&
+         std::system("python3 -c 'import sys' >/dev/null 2>&1") == 0;
+}
+
+void expect_keys(const json& j, std::initializer_list<const char*> keys, const std::string& where) {
+  for (const char* key : keys) EXPECT_TRUE(j.contains(key)) << where << " lacks " << key;
+}
+
+void expect_context(const json& record, const std::string& file) {
+  expect_keys(record, {"producer", "context", "parameters"}, file);
+  expect_keys(record["context"], {"commit", "compiler", "flags", "cpu", "caches", "threads_used", "date"}, file);
+}
+
+TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
+  const json t = load(smoke_report() / "tables.json");
+  expect_context(t, "tables.json");
+  ASSERT_FALSE(t["table1"].empty());
+  for (const json& row : t["table1"]) {
+    ASSERT_TRUE(row["completed"].get<bool>()) << row.dump();
+    expect_keys(row, {"model", "tets", "vertices", "levels", "rotate_ms", "assemble_ms", "update_ms",
+                      "update_naive_ms", "solve_ms", "tps", "solve_accuracy", "cholmod_step_ms", "paper"},
+                "table1 row");
+    for (const char* key : {"rotate_ms", "assemble_ms", "update_ms", "update_naive_ms", "solve_ms", "tps",
+                            "cholmod_step_ms"})
+      EXPECT_GT(row[key].get<double>(), 0) << key;
+    // MG-PCG stops at relative residual 1e-4; its error against CHOLMOD on the same system is at
+    // most cond-bounded, and for these well-shaped meshes stays below 1e-2.
+    EXPECT_LE(row["solve_accuracy"]["relative_residual_max"].get<double>(), 1e-4);
+    EXPECT_LT(row["solve_accuracy"]["error_vs_cholmod_max"].get<double>(), 1e-2);
+  }
+  for (const char* section : {"table2", "small_strain", "jacobi_pcg"}) {
+    ASSERT_FALSE(t[section].empty()) << section;
+    for (const json& row : t[section]) EXPECT_TRUE(row["completed"].get<bool>()) << section << row.dump();
+  }
+  expect_keys(t["table2"][0], {"model", "tps", "paper_tps"}, "table2 row");
+  expect_keys(t["small_strain"][0], {"tps", "volume_change", "corotated_volume_change"}, "small_strain row");
+  // The verification summary: the same oracles as the gates, on the report's own states.
+  ASSERT_FALSE(t["verification"].empty());
+  for (const json& check : t["verification"][0]["checks"]) {
+    const std::string oracle = check["oracle"];
+    const double largest = check["largest"];
+    ASSERT_GE(largest, 0) << oracle;  // negative would mean "not run"
+    if (oracle.find("R A R^T") != std::string::npos) EXPECT_LT(largest, 1e-12);
+    if (oracle.find("energy-exact") != std::string::npos) EXPECT_LT(largest, 1e-8);
+  }
+}
+
+TEST(Report, SpeedAccuracyPointsAndParetoFront) {
+  const json s = load(smoke_report() / "speed_accuracy.json");
+  expect_context(s, "speed_accuracy.json");
+  ASSERT_FALSE(s["scenes"].empty());
+  for (const json& scene : s["scenes"]) {
+    ASSERT_TRUE(scene["completed"].get<bool>()) << scene.dump();
+    std::set<std::string> sweeps;
+    for (const json& p : scene["points"]) {
+      expect_keys(p, {"sweep", "setting", "label", "completed"}, "point");
+      ASSERT_TRUE(p["completed"].get<bool>()) << p.dump();
+      expect_keys(p, {"time_per_step_ms", "rel_error", "pareto"}, "point");
+      sweeps.insert(p["sweep"]);
+    }
+    EXPECT_EQ(sweeps, (std::set<std::string>{"solver", "rotation", "resolution"}));
+    expect_keys(scene["cheapest_meeting_target"], {"solver", "rotation", "resolution"}, "scene");
+  }
+}
+
+TEST(Report, ParetoFrontIsTheSetOfUndominatedPoints) {
+  json points = json::array();
+  auto add = [&](double time, double error) {
+    points.push_back({{"completed", true}, {"time_per_step_ms", time}, {"rel_error", error}});
+  };
+  add(1, 1e-2);  // front
+  add(2, 1e-3);  // front
+  add(3, 1e-2);  // dominated by (1, 1e-2) and (2, 1e-3)
+  add(4, 1e-6);  // front
+  add(5, 1e-6);  // dominated by (4, 1e-6)
+  points.push_back({{"completed", false}, {"error", {{"message", "failed"}}}});
+  mark_pareto_front(points);
+  const bool expected[] = {true, true, false, true, false};
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(points[i]["pareto"].get<bool>(), expected[i]) << i;
+  EXPECT_FALSE(points[5].contains("pareto"));
+}
+
+TEST(Report, StabilityRunsHaveTheDocumentedSchema) {
+  const json st = load(smoke_report() / "stability.json");
+  expect_context(st, "stability.json");
+  expect_keys(st, {"thresholds", "runs", "scenes"}, "stability.json");
+  ASSERT_FALSE(st["runs"].empty());
+  std::set<std::string> methods;
+  for (const json& run : st["runs"]) {
+    expect_keys(run, {"scene", "method", "status", "flutter_rms_rad", "flutter_max_rad", "inverted_max",
+                      "diverged_step", "series"},
+                "run");
+    const std::string status = run["status"];
+    EXPECT_TRUE(status == "stable" || status == "flutter" || status == "diverged") << status;
+    EXPECT_EQ(run["diverged_step"].is_null(), status != "diverged");
+    methods.insert(run["method"]);
+  }
+  EXPECT_EQ(methods.size(), 7u);  // every extractor
+}
+
+TEST(Report, MarkdownIsRedrawnFromTheJsonAlone) {
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  const fs::path& out = smoke_report();
+  ASSERT_TRUE(fs::exists(out / "REPORT.md"));
+  TempDir copy;
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
+    fs::copy_file(out / file, copy / file);
+  const std::string script = (test::source_dir() / "reports" / "render").string();
+  ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>/dev/null").c_str()), 0);
+  EXPECT_EQ(read_text(copy / "REPORT.md"), read_text(out / "REPORT.md"));
+  // The same charts, drawn from the copy.
+  std::set<std::string> original, redrawn;
+  if (fs::exists(out / "charts"))
+    for (const auto& e : fs::directory_iterator(out / "charts")) original.insert(e.path().filename());
+  if (fs::exists(copy / "charts"))
+    for (const auto& e : fs::directory_iterator(copy / "charts")) redrawn.insert(e.path().filename());
+  EXPECT_EQ(original, redrawn);
+}
+
+TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  // verify/golden/report: JSON records of a smoke run and the REPORT.md drawn from them with
+  // --blank-times. A change of the report's format shows here; regenerate with
+  // reports/render verify/golden/report --blank-times and review the diff.
+  const fs::path golden = test::source_dir() / "verify" / "golden" / "report";
+  TempDir copy;
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
+    fs::copy_file(golden / file, copy / file);
+  const std::string script = (test::source_dir() / "reports" / "render").string();
+  ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' --blank-times 2>/dev/null").c_str()), 0);
+  std::string expected = read_text(golden / "REPORT.md"), got = read_text(copy / "REPORT.md");
+  if (got.find("matplotlib was not available") != std::string::npos)
+    GTEST_SKIP() << "no matplotlib: the golden file has the charts' links";
+  EXPECT_EQ(got, expected);
+}
+
+TEST(Report, FailingCasesAreRecordedAndTheReportGoesOn) {
+  // A models folder whose surfaces are not STL: every table, sweep and model case fails with an
+  // input error naming the file; the report still writes all its records and exits 0.
+  TempDir models, out;
+  for (const char* m : {"bunny", "horse", "dragon"})
+    for (const char* level : {"_L0.stl", "_L1.stl"})
+      test::write_text(models / (std::string(m) + level), "solid broken\nthis is not an stl\n");
+  const auto r = run_cli("report --smoke --no-render --tables-only --models '" + models.path().string() +
+                         "' --out '" + out.path().string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json t = load(out / "tables.json");
+  ASSERT_EQ(t["table1"].size(), 3u);
+  for (const json& row : t["table1"]) {
+    EXPECT_FALSE(row["completed"].get<bool>());
+    EXPECT_EQ(row["error"]["kind"], "input");
+    EXPECT_NE(row["error"]["message"].get<std::string>().find("_L1.stl"), std::string::npos) << row.dump();
+  }
+}
+
+TEST(Report, RecordCaseKeepsTheErrorKind) {
+  const json ok = record_case({{"id", 1}}, [] { return json{{"value", 2}}; });
+  EXPECT_TRUE(ok["completed"].get<bool>());
+  EXPECT_EQ(ok["value"], 2);
+  const json bad = record_case({{"id", 1}}, []() -> json { throw NumericalFault("NaN at step 3"); });
+  EXPECT_FALSE(bad["completed"].get<bool>());
+  EXPECT_EQ(bad["error"]["kind"], "numerical");
+  EXPECT_EQ(bad["id"], 1);
+}
+
+TEST(Report, BadOptionsExitTwo) {
+  EXPECT_EQ(run_cli("report --quick --smoke --out x").exit_code, 2);
+  EXPECT_EQ(run_cli("report --tables-only --stability-only --out x").exit_code, 2);
+  TempDir empty;
+  const auto r = run_cli("report --models '" + empty.path().string() + "' --out x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bunny_L0.stl"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace corofem
