@@ -51,22 +51,26 @@ void MultigridSolver::set_matrix(const BrcMatrix& a) {
   } else {
     coarsest_->converter->update(hierarchy_.matrix(last));
   }
-  try {
-    coarsest_->cholmod.factorize(coarsest_->converter->matrix());
-  } catch (const std::runtime_error&) {
-    // E = R A R^T is only semidefinite when lattice vertices of thin parts have linearly dependent
-    // prolongation columns. Then null(E) = null(R^T): the restricted residual has no component
-    // there and R^T annihilates whatever the solve puts there, so a tiny diagonal shift changes
-    // the coarse correction only at the shift's relative size.
-    Eigen::SparseMatrix<double> shifted = coarsest_->converter->matrix();
-    const double shift = 1e-10 * shifted.diagonal().cwiseAbs().mean();
-    for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
+  // E = R A R^T is only semidefinite when lattice vertices of thin parts have linearly dependent
+  // prolongation columns. Then null(E) = null(R^T): the restricted residual has no component
+  // there and R^T annihilates whatever the solve puts there, so a tiny diagonal shift changes
+  // the coarse correction only at the shift's relative size. Once needed, it is kept (the
+  // pattern of dependence does not change with the values).
+  if (coarsest_shifts_ == 0) {
     try {
-      coarsest_->cholmod.factorize(shifted);
-      ++coarsest_shifts_;
-    } catch (const std::runtime_error& e) {
-      throw NumericalFault(std::string("multigrid coarsest level: ") + e.what());
+      coarsest_->cholmod.factorize(coarsest_->converter->matrix());
+      return;
+    } catch (const std::runtime_error&) {
     }
+  }
+  Eigen::SparseMatrix<double> shifted = coarsest_->converter->matrix();
+  const double shift = 1e-10 * shifted.diagonal().cwiseAbs().mean();
+  for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
+  try {
+    coarsest_->cholmod.factorize(shifted);
+    ++coarsest_shifts_;
+  } catch (const std::runtime_error& e) {
+    throw NumericalFault(std::string("multigrid coarsest level: ") + e.what());
   }
 }
 

@@ -33,10 +33,6 @@ json paper_table2_tps(const std::string& m) {
 
 namespace {
 
-json with_analysis(json scene, const json& changes) {
-  for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
-  return scene;
-}
 
 double tps_of(const TimedRun& run, int warmup) { return 1000.0 / run.median_ms("step", warmup); }
 
@@ -82,7 +78,7 @@ json run_paper_tables(const ReportConfig& config) {
         say("naive Galerkin update");
         const TimedRun naive = timed_run(with_analysis(scene, {{"galerkin", "naive"}}), id, {});
         say("CHOLMOD step");
-        const TimedRun cholmod = timed_run(with_analysis(scene, {{"solver", "cholmod"}, {"levels", 1}}), id, {});
+        const TimedRun cholmod = timed_run(with_analysis(scene, {{"solver", "cholmod"}}), id, {});
         return json{{"tets", main.tets},
                     {"vertices", main.vertices},
                     {"levels", main.levels},
@@ -138,7 +134,7 @@ json run_paper_tables(const ReportConfig& config) {
       say("Jacobi-PCG");
       tables["jacobi_pcg"].push_back(record_case({{"model", id}}, [&] {
         const TimedRun jacobi =
-            timed_run(with_analysis(scene, {{"solver", "jacobi-pcg"}, {"levels", 1}}), id, {});
+            timed_run(with_analysis(scene, {{"solver", "jacobi-pcg"}}), id, {});
         return json{{"step_ms", jacobi.median_ms("step", warmup)},
                     {"solve_ms", jacobi.median_ms("solve", warmup)},
                     {"iterations", jacobi.median_iterations(warmup)},

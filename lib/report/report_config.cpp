@@ -25,7 +25,11 @@ std::vector<std::string> ReportConfig::models() const {
 std::vector<SceneSize> ReportConfig::table_sizes(const std::string& model) const {
   if (mode != Mode::Full) return {SceneSize::Small};
   if (with_models()) return {file_model_size(model)};
-  return {SceneSize::S, SceneSize::M, SceneSize::L};
+  // The quadruped at the paper's three sizes stands in for its three models; the bars, whose
+  // lattice order flatters every kernel, at the bunny's size (their M and L meshes run in the
+  // resolution sweeps). This keeps the full report under 20 minutes on 2 cores.
+  if (model == "quadruped") return {SceneSize::S, SceneSize::M, SceneSize::L};
+  return {SceneSize::S};
 }
 
 int ReportConfig::table_warmup() const { return mode == Mode::Smoke ? 1 : 5; }

@@ -23,7 +23,7 @@ struct ReportConfig {
   std::string mode_name() const;
   bool with_models() const { return !models_dir.empty(); }
   /// The table models (procedural, or the files' with --models) and the sizes of each.
-  std::vector<std::string> models() const;
+  std::vector<std::string> models() const;  ///< quadruped first: the paper's rows
   std::vector<SceneSize> table_sizes(const std::string& model) const;
   int table_warmup() const;
   int table_measured() const;   ///< steps in each median (at least 20 outside smoke)

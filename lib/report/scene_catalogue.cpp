@@ -24,7 +24,7 @@ json bar_mesh(SceneSize size) {
 /// Quadruped mesh sizes for about 3.7k, 11.2k, 33.7k and 67.3k tets (calibrated with gmsh 4.11).
 json quadruped_mesh(SceneSize size) {
   static const double h[4] = {0.1, 0.0642, 0.0434, 0.0339};
-  return {{"shape", "quadruped"}, {"size", h[size_index(size)]}};
+  return {{"shape", "quadruped"}, {"size", h[size_index(size)]}, {"reorder", true}};
 }
 
 struct ModelSurface {
@@ -45,7 +45,8 @@ json model_mesh(const std::string& model, SceneSize size, const fs::path& models
   const ModelSurface s = model_surface(model);
   const bool fine = size != SceneSize::Small;
   return {{"surface", (models_dir / (fine ? s.fine : s.small)).string()},
-          {"size", fine ? s.fine_size : s.small_size}};
+          {"size", fine ? s.fine_size : s.small_size},
+          {"reorder", true}};
 }
 
 json dynamic_analysis(int steps, double tolerance, SceneSize size) {
@@ -83,7 +84,7 @@ int paper_levels(SceneSize size) {
   return levels[size_index(size)];
 }
 
-std::vector<std::string> procedural_models() { return {"cantilever", "twisting-bar", "quadruped"}; }
+std::vector<std::string> procedural_models() { return {"quadruped", "cantilever", "twisting-bar"}; }
 std::vector<std::string> file_models() { return {"bunny", "horse", "dragon"}; }
 
 SceneSize file_model_size(const std::string& model) {
@@ -130,6 +131,13 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
     }
   }
   return s;
+}
+
+json with_analysis(json scene, const json& changes) {
+  for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
+  const std::string solver = scene["analysis"].value("solver", "cholmod");
+  if (solver != "mgpcg" && solver != "multigrid") scene["analysis"]["levels"] = 1;
+  return scene;
 }
 
 json probe_box(const std::string& model) {

@@ -16,7 +16,7 @@ std::string size_name(SceneSize size);      ///< "small", "11k", "34k", "67k"
 std::string paper_model_of(SceneSize size);  ///< the paper row of that size: bunny, horse, dragon
 int paper_levels(SceneSize size);            ///< the paper's level count: 3, 4, 4 (2 for small)
 
-/// "cantilever", "twisting-bar", "quadruped".
+/// "quadruped", "cantilever", "twisting-bar" (the table's order).
 std::vector<std::string> procedural_models();
 /// "bunny", "horse", "dragon": the surfaces of the models folder.
 std::vector<std::string> file_models();
@@ -30,6 +30,9 @@ SceneSize file_model_size(const std::string& model);
 /// horse fixed at its hind hooves with its shoulders pulled up. Models read from `models_dir`.
 nlohmann::json table_scene(const std::string& model, SceneSize size, int steps, double tolerance,
                            const std::filesystem::path& models_dir = {});
+
+/// `scene` with analysis keys replaced by `changes` (levels reset to 1 for solvers without levels).
+nlohmann::json with_analysis(nlohmann::json scene, const nlohmann::json& changes);
 
 /// The region whose mean displacement the resolution sweep compares (a box [[lo],[hi]]).
 nlohmann::json probe_box(const std::string& model);

@@ -12,12 +12,6 @@ using nlohmann::json;
 
 namespace {
 
-json with_analysis(json scene, const json& changes) {
-  for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
-  if (changes.contains("solver") && changes["solver"] != "mgpcg" && changes["solver"] != "multigrid")
-    scene["analysis"]["levels"] = 1;
-  return scene;
-}
 
 double relative_error(const Eigen::VectorXd& u, const Eigen::VectorXd& reference) {
   const double norm = reference.norm();

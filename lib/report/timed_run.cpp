@@ -7,6 +7,7 @@
 #include "cholmod_solver.hpp"
 #include "galerkin_oracle.hpp"
 #include "multigrid/multigrid_solver.hpp"
+#include "mesh/vertex_selection.hpp"
 #include "multigrid/transfer.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene_simulation.hpp"
@@ -16,8 +17,8 @@ namespace corofem {
 namespace {
 
 /// Passes everything to the solver under test; on the checked steps also solves the same system
-/// with CHOLMOD (outside the step's timed phases only in the sense that it is excluded from the
-/// medians: checked steps are dropped from them).
+/// with CHOLMOD. The oracle's time lands in those steps' solve phase, so they are left out of the
+/// medians.
 class OracleCheckedSolver : public LinearSolver {
  public:
   OracleCheckedSolver(std::unique_ptr<LinearSolver> inner, std::vector<int> check_steps, TimedRun& out)
@@ -91,14 +92,10 @@ double TimedRun::median_iterations(int warmup) const {
 Vec3 TimedRun::probe(const nlohmann::json& box) const {
   const Vec3 lo(box[0][0].get<double>(), box[0][1].get<double>(), box[0][2].get<double>());
   const Vec3 hi(box[1][0].get<double>(), box[1][1].get<double>(), box[1][2].get<double>());
+  const std::vector<int> vertices = vertices_in_box(mesh.rest, {lo, hi});
   Vec3 sum = Vec3::Zero();
-  int count = 0;
-  for (std::size_t v = 0; v < mesh.rest.size(); ++v)
-    if ((mesh.rest[v].array() >= lo.array()).all() && (mesh.rest[v].array() <= hi.array()).all()) {
-      sum += result.displacement.segment<3>(3 * v);
-      ++count;
-    }
-  return count ? Vec3(sum / count) : Vec3::Zero();
+  for (int v : vertices) sum += result.displacement.segment<3>(3 * v);
+  return vertices.empty() ? Vec3::Zero() : Vec3(sum / static_cast<double>(vertices.size()));
 }
 
 TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,

@@ -48,6 +48,7 @@ std::string one_of(JsonFields& f, const std::string& key, const std::string& fal
 
 MeshSpec read_mesh(JsonFields f, const fs::path& base) {
   MeshSpec m;
+  m.reorder = f.boolean("reorder", false);
   const int sources = f.has("file") + f.has("surface") + f.has("box") + f.has("shape");
   if (sources != 1)
     f.fail("file", "given alone: a mesh is exactly one of file, surface+size, box+cells, shape+size");

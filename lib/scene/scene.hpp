@@ -20,6 +20,7 @@ struct MeshSpec {
   double size = 0;             ///< Surface, Quadruped: gmsh Mesh.MeshSizeMax
   Vec3 box = Vec3::Ones();     ///< Box: extents
   std::array<int, 3> cells{1, 1, 1};
+  bool reorder = false;        ///< sort vertices and tets for locality (mesh/locality_order.hpp)
 };
 
 /// When a load acts in a dynamic run: full strength from step ramp_steps on (linear ramp from

@@ -5,6 +5,7 @@
 #include "core/errors.hpp"
 #include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/locality_order.hpp"
 #include "mesh/quadruped_mesh.hpp"
 
 namespace corofem {
@@ -44,6 +45,7 @@ int affine_rank(const std::vector<Vec3>& points) {
 
 FeProblem build_problem(const Scene& scene, MeshValidation* validation) {
   TetMesh mesh = load_scene_mesh(scene.mesh);
+  if (scene.mesh.reorder) sort_for_locality(mesh);
   if (validation) *validation = validate_mesh(mesh);  // idempotent; reports what reading changed
   auto materials = materials_per_element(mesh, scene.material, scene.regions);
   FeProblem problem = make_fe_problem(std::move(mesh), std::move(materials));
