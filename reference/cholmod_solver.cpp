@@ -6,6 +6,9 @@
 namespace corofem::reference {
 
 struct CholmodSolver::Impl {
+  // CHOLMOD's own messages off: a failed factorization is reported by the exception below, with
+  // the caller's context (and the multigrid coarsest level retries a semidefinite one).
+  Impl() { llt.cholmod().print = 0; }
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
   bool analyzed = false;
 };

@@ -323,13 +323,17 @@ def render_stability(st, folder, md):
                      "diverged at step", "why"], rows))
     md.append("\n")
     # Status matrix.
-    md.append("Status by scene and method:\n\n")
+    md.append("Status by scene and method (and elements still inverted at the end: a body that "
+              "stays inside out is a failure the flutter measure does not see):\n\n")
     rows = []
     for s in scenes:
         row = [s]
         for m in methods:
             r = next((r for r in runs if r["scene"] == s and r["method"] == m), None)
-            row.append(r["status"] if r else "")
+            cell = r["status"] if r else ""
+            if r and r.get("inverted_final"):
+                cell += f", ends with {r['inverted_final']} inverted"
+            row.append(cell)
         rows.append(row)
     md.append(table(["scene"] + methods, rows))
     md.append("\n")
@@ -353,9 +357,11 @@ def render_stability(st, folder, md):
         md.append(f"![{s} flutter]({save(fig, folder, 'stability_flutter_' + s + '.png')})\n\n")
         poses = [p for p in st.get("poses", []) if p["scene"] == s]
         if poses:
-            fig = plt.figure(figsize=(2.4 * len(poses), 2.8))
+            columns = min(4, len(poses))
+            rows_of_plots = (len(poses) + columns - 1) // columns
+            fig = plt.figure(figsize=(3.2 * columns, 3.0 * rows_of_plots))
             for k, p in enumerate(poses):
-                ax = fig.add_subplot(1, len(poses), k + 1, projection="3d")
+                ax = fig.add_subplot(rows_of_plots, columns, k + 1, projection="3d")
                 xs, ys, zs = zip(*p["points"]) if p["points"] else ([], [], [])
                 values = [max(v, 1e-6) for v in p["rotation_change_max_rad"]]
                 ax.scatter(xs, ys, zs, c=[math.log10(v) for v in values], s=1, cmap="viridis",

@@ -149,8 +149,9 @@ json probe_box(const std::string& model) {
 }
 
 std::vector<std::string> stability_scene_ids(bool with_models) {
-  std::vector<std::string> ids{"bar-twist", "bar-stretch", "block-squash", "quadruped-stretched",
-                               "quadruped-posed"};
+  std::vector<std::string> ids{"bar-twist",           "bar-stretch",
+                               "block-squash",        "quadruped-stretched",
+                               "quadruped-stretched-far", "quadruped-posed"};
   if (with_models) {
     ids.push_back("horse-stretched");
     ids.push_back("horse-posed");
@@ -187,13 +188,14 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
     json move = ramp({{"box", box(0, 0, 0.5 - 1e-6, 0.5, 0.5, 0.5)}, {"translate", {0, 0, -0.6}}});
     move["release_step"] = ramp_steps + 1;
     s["moves"] = json::array({move});
-  } else if (id == "quadruped-stretched" || id == "quadruped-posed") {
+  } else if (id == "quadruped-stretched" || id == "quadruped-stretched-far" || id == "quadruped-posed") {
     s["mesh"] = quadruped_mesh(size);
     s["material"] = {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}};
     s["fixed"] = json::array({{{"box", kHindFeet}}});
-    if (id == "quadruped-stretched") {
-      s["forces"] = json::array({ramp({{"box", kHead}, {"total", {6e3, 0, 6e3}}}),
-                                 ramp({{"box", kShoulders}, {"total", {6e3, 0, 6e3}}})});
+    if (id != "quadruped-posed") {  // far: 2.5x the pull, the legs stretched well past 2x
+      const double pull = id == "quadruped-stretched" ? 6e3 : 1.5e4;
+      s["forces"] = json::array({ramp({{"box", kHead}, {"total", {pull, 0, pull}}}),
+                                 ramp({{"box", kShoulders}, {"total", {pull, 0, pull}}})});
     } else {  // legs 30x stiffer than the body, knees as soft as the body
       s["material"]["regions"] = json::array(
           {{{"box", box(-1, -1, -1, 3, 1, 1.0)}, {"young", 3e7}},

@@ -39,7 +39,8 @@ nlohmann::json probe_box(const std::string& model);
 
 /// Scenes built to break rotation extractors (issue: stability): "bar-twist" (past 360 degrees),
 /// "bar-stretch" (to 3x), "block-squash" (until elements invert, then released),
-/// "quadruped-stretched", "quadruped-posed" (stiff legs, soft knees, fore legs folded); with a
+/// "quadruped-stretched", "quadruped-stretched-far" (2.5x the pull), "quadruped-posed" (stiff legs,
+/// soft knees, fore legs folded); with a
 /// models folder also "horse-stretched" and "horse-posed". Load for `ramp_steps`, hold for
 /// `hold_steps` (the squash is released at the start of the hold). Solver: CHOLMOD.
 std::vector<std::string> stability_scene_ids(bool with_models);
