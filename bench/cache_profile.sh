@@ -88,6 +88,7 @@ record = {"producer": "bench/cache_profile.sh", "tool": tool,
 fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(out)))
 with os.fdopen(fd, "w") as f:
     json.dump(record, f, indent=1)
+os.chmod(tmp, 0o644)
 os.replace(tmp, out)
 for r in rows:
     print(f"{r['method']:12s} D1 {r['d1_misses_per_k_block']:8.2f}/block  LL {r['ll_misses_per_k_block']:8.3f}/block  "
