@@ -190,6 +190,20 @@ TEST(Report, FailingCasesAreRecordedAndTheReportGoesOn) {
   }
 }
 
+TEST(Report, VtuFramesOnRequest) {
+  TempDir out;
+  const auto r = run_cli("report --smoke --stability-only --only bar-twist --vtu --no-render --out '" +
+                         out.path().string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Every 10th step of every extractor's run (smoke: 12 steps, so frame 10), as VTK XML.
+  for (const char* method : {"energy-newton", "energy-exact", "polar", "polar-fixed", "polar-smoothed", "qr",
+                             "mueller2016"}) {
+    const fs::path frame = out / "vtu" / "bar-twist" / method / "frame_00010.vtu";
+    ASSERT_TRUE(fs::exists(frame)) << frame;
+    EXPECT_NE(read_text(frame).find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos) << frame;
+  }
+}
+
 TEST(Report, RecordCaseKeepsTheErrorKind) {
   const json ok = record_case({{"id", 1}}, [] { return json{{"value", 2}}; });
   EXPECT_TRUE(ok["completed"].get<bool>());
