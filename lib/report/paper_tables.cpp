@@ -60,7 +60,9 @@ json run_paper_tables(const ReportConfig& config) {
   for (const std::string& model : config.models()) {
     for (SceneSize size : config.table_sizes(model)) {
       const std::string id = model + "-" + size_name(size);
-      const std::string paper_model = config.with_models() ? model : paper_model_of(size);
+      // The paper's row sits beside ours only at the paper's size (not beside quick runs).
+      const std::string paper_model =
+          config.with_models() ? (size == file_model_size(model) ? model : "") : paper_model_of(size);
       const json scene = table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
       auto say = [&](const std::string& what) {
         if (config.progress) *config.progress << "report: tables: " << id << ": " << what << std::endl;
