@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "bench_support.hpp"
+#include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem::bench {
@@ -65,7 +66,7 @@ void BM_Rotation(benchmark::State& state, const std::string& method, bool warm) 
   // How far the warm start is from the answer: angle between the two frames' rotations.
   std::vector<double> change;
   for (std::size_t e = 0; e < rotations.size(); ++e)
-    change.push_back(2 * std::asin(std::min(1.0, (rotations[e] - prep.warm[e]).norm() / (2 * std::sqrt(2.0)))));
+    change.push_back(angle_between(rotations[e], prep.warm[e]));
   std::sort(change.begin(), change.end());
   state.counters["frame_change_median_rad"] = change[change.size() / 2];
   state.counters["frame_change_p99_rad"] = change[static_cast<std::size_t>(0.99 * (change.size() - 1))];

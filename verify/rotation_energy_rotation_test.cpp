@@ -8,6 +8,7 @@
 #include <random>
 
 #include "exact_rotation.hpp"
+#include "rotation/quaternion.hpp"
 #include "rotation/energy_rotation.hpp"
 
 namespace corofem {
@@ -16,12 +17,6 @@ namespace {
 using reference::brute_force_minimize;
 using reference::rotation_factor_horn;
 using reference::rotation_factor_svd;
-
-// |A - B|_F = 2 sqrt(2) sin(theta / 2) for rotations; acos of the trace would lose half the digits
-// near theta = 0 (acos(1 - d) ~ sqrt(2 d) resolves no better than 2e-8 rad).
-double angle_between(const Mat3& a, const Mat3& b) {
-  return 2 * std::asin(std::min(1.0, (a - b).norm() / (2 * std::sqrt(2.0))));
-}
 
 Mat3 random_rotation(std::mt19937& rng) {
   std::normal_distribution<double> n;

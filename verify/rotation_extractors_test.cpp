@@ -6,18 +6,13 @@
 #include <random>
 
 #include "cantilever_fixture.hpp"
+#include "rotation/quaternion.hpp"
 #include "fem/static_solver.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
 namespace {
-
-// |A - B|_F = 2 sqrt(2) sin(theta / 2) for rotations; acos of the trace would lose half the digits
-// near theta = 0 (acos(1 - d) ~ sqrt(2 d) resolves no better than 2e-8 rad).
-double angle_between(const Mat3& a, const Mat3& b) {
-  return 2 * std::asin(std::min(1.0, (a - b).norm() / (2 * std::sqrt(2.0))));
-}
 
 std::vector<std::string> corotated_methods() {
   std::vector<std::string> m;

@@ -18,6 +18,15 @@ std::uint64_t spread_bits(std::uint64_t x) {
   return x;
 }
 
+/// v[i] = old v[order[i]] (an empty v, such as absent tags, stays empty).
+template <class T>
+void permute(std::vector<T>& v, const std::vector<int>& order) {
+  if (v.empty()) return;
+  std::vector<T> out(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) out[i] = v[order[i]];
+  v = std::move(out);
+}
+
 }  // namespace
 
 void sort_for_locality(TetMesh& mesh) {
@@ -37,14 +46,8 @@ void sort_for_locality(TetMesh& mesh) {
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
   std::vector<int> new_index(nv);
   for (int i = 0; i < nv; ++i) new_index[order[i]] = i;
-  std::vector<Vec3> rest(nv);
-  std::vector<std::size_t> node_tags(mesh.node_tags.size());
-  for (int i = 0; i < nv; ++i) {
-    rest[i] = mesh.rest[order[i]];
-    if (!node_tags.empty()) node_tags[i] = mesh.node_tags[order[i]];
-  }
-  mesh.rest = std::move(rest);
-  mesh.node_tags = std::move(node_tags);
+  permute(mesh.rest, order);
+  permute(mesh.node_tags, order);
   for (Tet& t : mesh.tets)
     for (int& v : t) v = new_index[v];
   // Tets by their smallest vertex: an element's scatter lands near the previous one's.
@@ -53,14 +56,8 @@ void sort_for_locality(TetMesh& mesh) {
   std::iota(tet_order.begin(), tet_order.end(), 0);
   auto smallest = [&](int e) { return *std::min_element(mesh.tets[e].begin(), mesh.tets[e].end()); };
   std::stable_sort(tet_order.begin(), tet_order.end(), [&](int a, int b) { return smallest(a) < smallest(b); });
-  std::vector<Tet> tets(nt);
-  std::vector<std::size_t> element_tags(mesh.element_tags.size());
-  for (int i = 0; i < nt; ++i) {
-    tets[i] = mesh.tets[tet_order[i]];
-    if (!element_tags.empty()) element_tags[i] = mesh.element_tags[tet_order[i]];
-  }
-  mesh.tets = std::move(tets);
-  mesh.element_tags = std::move(element_tags);
+  permute(mesh.tets, tet_order);
+  permute(mesh.element_tags, tet_order);
 }
 
 }  // namespace corofem

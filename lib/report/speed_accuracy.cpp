@@ -53,17 +53,23 @@ json cheapest_meeting(const json& points, double tolerance) {
 
 }  // namespace
 
-void mark_pareto_front(json& points) {
+void mark_pareto_front(json& points, const std::string& sweep) {
+  auto candidate = [&](const json& p) {
+    return p.value("completed", false) && p.contains("rel_error") && p["rel_error"].is_number() &&
+           !p.value("is_reference", false) && (sweep.empty() || p.value("sweep", "") == sweep);
+  };
   for (json& p : points) {
-    if (!p.value("completed", false) || !p["rel_error"].is_number() || p.value("is_reference", false)) continue;
+    if (!candidate(p)) {
+      // A completed reference is on no front: it is what the errors are measured against.
+      if (p.value("completed", false) && (sweep.empty() || p.value("sweep", "") == sweep)) p["pareto"] = false;
+      continue;
+    }
     const double t = p["time_per_step_ms"], e = p["rel_error"];
     bool dominated = false;
     for (const json& q : points) {
-      if (&q == &p || !q.value("completed", false) || !q["rel_error"].is_number() ||
-          q.value("is_reference", false))
-        continue;
+      if (&q == &p || !candidate(q)) continue;
       const double tq = q["time_per_step_ms"], eq = q["rel_error"];
-      if (tq <= t && eq <= e && (tq < t || eq < e)) dominated = true;
+      dominated |= tq <= t && eq <= e && (tq < t || eq < e);
     }
     p["pareto"] = !dominated;
   }
@@ -157,15 +163,7 @@ json run_speed_accuracy(const ReportConfig& config) {
       p["is_reference"] = &p == finest;
       entry["points"].push_back(p);
     }
-    for (const char* sweep : {"solver", "rotation", "resolution"}) {
-      json subset = json::array();
-      for (const json& p : entry["points"])
-        if (p["sweep"] == sweep) subset.push_back(p);
-      mark_pareto_front(subset);
-      std::size_t k = 0;
-      for (json& p : entry["points"])
-        if (p["sweep"] == sweep) p["pareto"] = subset[k++].value("pareto", false);
-    }
+    for (const char* sweep : {"solver", "rotation", "resolution"}) mark_pareto_front(entry["points"], sweep);
     auto subset_of = [&](const char* sweep) {
       json subset = json::array();
       for (const json& p : entry["points"])

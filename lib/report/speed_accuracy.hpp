@@ -15,8 +15,10 @@ struct AccuracyTargets {
   double resolution = 0.05;  ///< probe displacement against the finest resolution
 };
 
-/// Marks "pareto": true on the completed points no other point beats in both time and error.
-void mark_pareto_front(nlohmann::json& points);
+/// Marks "pareto" on the completed, non-reference points of `sweep` (every sweep if empty): true
+/// where no other such point of the same sweep beats it in both time and error (false on the
+/// completed reference points).
+void mark_pareto_front(nlohmann::json& points, const std::string& sweep = "");
 
 nlohmann::json run_speed_accuracy(const ReportConfig& config);
 

@@ -10,6 +10,7 @@
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 #include "report/vtu_writer.hpp"
+#include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
@@ -21,10 +22,6 @@ namespace {
 struct BlowUp : NumericalFault {
   using NumericalFault::NumericalFault;
 };
-
-double angle_between(const Mat3& a, const Mat3& b) {
-  return 2 * std::asin(std::min(1.0, (a - b).norm() / (2 * std::sqrt(2.0))));
-}
 
 /// Vertices on the boundary (on a face that belongs to one tet only).
 std::vector<int> boundary_vertices(const TetMesh& mesh) {

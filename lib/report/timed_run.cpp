@@ -9,6 +9,7 @@
 #include "multigrid/multigrid_solver.hpp"
 #include "mesh/vertex_selection.hpp"
 #include "multigrid/transfer.hpp"
+#include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene_simulation.hpp"
 #include "sparse/brc_to_eigen.hpp"
@@ -59,10 +60,6 @@ double total_volume(const TetMesh& mesh, const std::vector<Vec3>& x) {
   double v = 0;
   for (const Tet& t : mesh.tets) v += signed_volume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
   return v;
-}
-
-double rotation_angle(const Mat3& a, const Mat3& b) {
-  return 2 * std::asin(std::min(1.0, (a - b).norm() / (2 * std::sqrt(2.0))));
 }
 
 }  // namespace
@@ -145,7 +142,7 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
       exact->extract(final_positions, oracle);
       out.rotation_error_max_rad = 0;
       for (std::size_t e = 0; e < newton.size(); ++e)
-        out.rotation_error_max_rad = std::max(out.rotation_error_max_rad, rotation_angle(newton[e], oracle[e]));
+        out.rotation_error_max_rad = std::max(out.rotation_error_max_rad, angle_between(newton[e], oracle[e]));
       out.rotation_elements_compared = static_cast<int>(newton.size());
     }
   }

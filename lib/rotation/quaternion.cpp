@@ -1,5 +1,8 @@
 #include "rotation/quaternion.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/LU>
 
 namespace corofem {
@@ -9,6 +12,10 @@ Eigen::Quaterniond to_quaternion(const Mat3& q) {
   quat.normalize();
   if (quat.w() < 0) quat.coeffs() = -quat.coeffs();
   return quat;
+}
+
+double angle_between(const Mat3& a, const Mat3& b) {
+  return 2 * std::asin(std::min(1.0, (a - b).norm() / (2 * std::sqrt(2.0))));
 }
 
 }  // namespace corofem
