@@ -12,6 +12,8 @@
 #include "rotation/rotation_extractor.hpp"
 #include "solver/linear_solver.hpp"
 #include "mesh/gmsh_mesh.hpp"
+#include "scene/coarse_meshes.hpp"
+#include "scene/scene_problem.hpp"
 
 namespace corofem::bench {
 namespace {
@@ -21,13 +23,14 @@ struct PaperModel {
   const char* surface;
   double size;                // gmsh MeshSizeMax of the models README
   std::array<int, 3> cells;   // procedural stand-in: 6 * nx * ny * nz tets
+  std::vector<std::pair<const char*, double>> coarse;  // the README's L1 and L2
 };
 
 const std::map<std::string, PaperModel> kModels = {
-    {"bunny", {"bunny_L0.stl", 0.045098, {19, 10, 10}}},   // 11400 tets (paper 11241)
-    {"horse", {"horse_L0.stl", 0.018747, {26, 15, 14}}},   // 32760 tets (paper 33689)
-    {"dragon", {"dragon_L0.stl", 0.0163, {28, 20, 20}}},   // 67200 tets (paper 67309)
-};
+    {"bunny", {"bunny_L0.stl", 0.045098, {19, 10, 10}, {{"bunny_L1.stl", 0.09365}, {"bunny_L2.stl", 0.18579}}}},
+    {"horse", {"horse_L0.stl", 0.018747, {26, 15, 14}, {{"horse_L1.stl", 0.038184}, {"horse_L2.stl", 0.08}}}},
+    {"dragon", {"dragon_L0.stl", 0.0163, {28, 20, 20}, {{"dragon_L1.stl", 0.033}, {"dragon_L2.stl", 0.068826}}}},
+};  // boxes: 11400, 32760, 67200 tets (paper 11241, 33689, 67309)
 }  // namespace
 
 void set_models_dir(const std::filesystem::path& dir) { g_models = dir; }
@@ -37,21 +40,56 @@ FeProblem& paper_problem(const std::string& model) {
   static std::map<std::string, std::unique_ptr<FeProblem>> cache;
   auto& slot = cache[model];
   if (slot) return *slot;
-  const PaperModel& spec = kModels.at(model);
-  TetMesh mesh;
-  if (!g_models.empty()) {
-    std::cerr << "corofem_bench: tetrahedralizing " << spec.surface << "\n";
-    mesh = tetrahedralize_surface(g_models / spec.surface, spec.size);
-  } else {
-    const auto& c = spec.cells;
-    mesh = make_box_mesh(Vec3(c[0], c[1], c[2]) * 0.05, c);
-  }
+  if (!g_models.empty()) std::cerr << "corofem_bench: tetrahedralizing " << kModels.at(model).surface << "\n";
+  TetMesh mesh = load_scene_mesh(paper_mesh_spec(model));
   std::vector<Material> materials(mesh.tets.size(), Material{1e5, 0.3, 1000});
   slot = std::make_unique<FeProblem>(make_fe_problem(std::move(mesh), std::move(materials)));
   return *slot;
 }
 
 int paper_levels(const std::string& model) { return model == "bunny" ? 3 : 4; }
+
+MeshSpec paper_mesh_spec(const std::string& model) {
+  const PaperModel& paper = kModels.at(model);
+  MeshSpec spec;
+  if (g_models.empty()) {
+    const auto& c = paper.cells;
+    spec.kind = MeshSpec::Kind::Box;
+    spec.box = Vec3(c[0], c[1], c[2]) * 0.05;
+    spec.cells = c;
+    return spec;
+  }
+  spec.kind = MeshSpec::Kind::Surface;
+  spec.path = g_models / paper.surface;
+  spec.size = paper.size;
+  for (const auto& [surface, size] : paper.coarse) {
+    MeshSpec level = spec;
+    level.path = g_models / surface;
+    level.size = size;
+    spec.levels.push_back(level);
+  }
+  return spec;
+}
+
+int hierarchy_levels(const std::string& model, HierarchyKind kind) {
+  return kind == HierarchyKind::Meshes && !g_models.empty() ? 3 : paper_levels(model);
+}
+
+BuiltHierarchy paper_transfers(const std::string& model, HierarchyKind kind) {
+  const FeProblem& p = paper_problem(model);
+  HierarchyParams params;
+  params.kind = kind;
+  params.levels = hierarchy_levels(model, kind);
+  std::vector<TetMesh> coarse;
+  if (kind == HierarchyKind::Meshes) {
+    const MeshSpec fine = paper_mesh_spec(model);
+    for (int h = 1; h < params.levels; ++h) {
+      coarse.push_back(load_scene_mesh(coarse_mesh_spec(fine, h, model)));
+      validate_mesh(coarse.back());
+    }
+  }
+  return build_hierarchy(p.mesh, paper_system(model).fixed, params, coarse);
+}
 
 const PaperSystem& paper_system(const std::string& model) {
   static std::map<std::string, PaperSystem> cache;

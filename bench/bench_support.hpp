@@ -4,6 +4,8 @@
 #include <string>
 
 #include "fem/fe_problem.hpp"
+#include "multigrid/hierarchy_builder.hpp"
+#include "scene/scene.hpp"
 
 namespace corofem::bench {
 
@@ -17,6 +19,18 @@ FeProblem& paper_problem(const std::string& model);
 
 /// Levels of the paper's hierarchies: bunny 3, horse 4, dragon 4.
 int paper_levels(const std::string& model);
+
+/// The mesh of paper_problem as a scene's mesh spec; with a models folder its coarse levels are
+/// the models' L1 and L2 surfaces at the sizes of their README.
+MeshSpec paper_mesh_spec(const std::string& model);
+
+/// Levels of the hierarchy a benchmark runs: the paper's, except on the models' meshes, which
+/// ship two coarse surfaces (a fourth level re-meshed from L2 keeps L2's surface vertices and
+/// would barely coarsen).
+int hierarchy_levels(const std::string& model, HierarchyKind kind);
+
+/// The transfers of the model's hierarchy of the given kind (x-min face fixed, as paper_system).
+BuiltHierarchy paper_transfers(const std::string& model, HierarchyKind kind);
 
 /// The corotated system of the bent state with the x-min face fixed, as a solver sees it
 /// (supports imposed), and a right-hand side (gravity). Cached per model.

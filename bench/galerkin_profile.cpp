@@ -34,18 +34,18 @@ int main(int argc, char** argv) {
       problem.external_force = gravity_load(problem.mesh, problem.materials, Vec3(0, 0, -9.81));
       auto rotations = make_rotation_extractor("energy-newton", problem.mesh);
       MultigridParams params;
-      params.levels = bench::paper_levels(model);
+      params.hierarchy.kind = HierarchyKind::Meshes;
+      params.hierarchy.levels = bench::hierarchy_levels(model, HierarchyKind::Meshes);
       params.tolerance = 1e-4;
-      MultigridSolver solver(problem.stiffness, problem.mesh.rest, system.fixed,
-                             mean_edge_length(problem.mesh), params, true);
+      MultigridSolver solver(problem.stiffness, bench::paper_transfers(model, HierarchyKind::Meshes),
+                             params, true);
       DynamicOptions options;
       options.steps = updates;
       solve_dynamic(problem, *rotations, solver, options);
       std::cout << "fine_blocks " << system.matrix.num_blocks() << "\ntets " << p.mesh.num_tets() << "\n";
       return 0;
     }
-    MultigridHierarchy h(system.matrix, p.mesh.rest, system.fixed, 1.5 * mean_edge_length(p.mesh),
-                         bench::paper_levels(model));
+    MultigridHierarchy h(system.matrix, bench::paper_transfers(model, HierarchyKind::Meshes).transfers);
     const GalerkinMethod m = galerkin_method(method);
     if (m == GalerkinMethod::StreamFull) h.update(system.matrix, m);  // builds the full stream
     for (int i = 0; i < updates; ++i) h.update(system.matrix, m);

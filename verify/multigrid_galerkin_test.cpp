@@ -9,6 +9,10 @@
 #include "mesh/box_mesh.hpp"
 #include "multigrid/galerkin.hpp"
 #include "multigrid/hierarchy.hpp"
+#include "multigrid/hierarchy_builder.hpp"
+#include "multigrid/lattice_level.hpp"
+#include "mesh/gmsh_mesh.hpp"
+#include "test_support.hpp"
 #include "sparse/brc_to_eigen.hpp"
 #include "fem/assembly_map.hpp"
 
@@ -115,23 +119,60 @@ TEST(Galerkin, ContinuationBytesBeyond127Pairs) {
   check_all_methods(a, t);
 }
 
-TEST(Galerkin, HierarchyUpdateMatchesEigenOnEveryLevel) {
+/// Every method on every level of the hierarchy against the dense and Eigen oracles.
+void check_hierarchy(const BrcMatrix& a, std::vector<Transfer> transfers, int levels) {
+  MultigridHierarchy hierarchy(a, std::move(transfers));
+  ASSERT_EQ(hierarchy.num_levels(), levels);
+  for (GalerkinMethod m : {GalerkinMethod::Naive, GalerkinMethod::Stream, GalerkinMethod::StreamFull,
+                           GalerkinMethod::Reuse}) {
+    hierarchy.update(a, m);
+    for (int h = 0; h + 1 < hierarchy.num_levels(); ++h) {
+      const Eigen::SparseMatrix<double> r = restriction_matrix(hierarchy.transfer(h));
+      const Eigen::MatrixXd fine = Eigen::MatrixXd(to_eigen(hierarchy.matrix(h)));
+      const Eigen::MatrixXd dense = reference::dense_galerkin(Eigen::MatrixXd(r), fine);
+      const Eigen::MatrixXd eigen = Eigen::MatrixXd(reference::eigen_galerkin(r, to_eigen(hierarchy.matrix(h))));
+      const Eigen::MatrixXd got = Eigen::MatrixXd(to_eigen(hierarchy.matrix(h + 1)));
+      // Sums of a few hundred products in different orders: round-off ~1e-15 relative.
+      EXPECT_LT(relative_frobenius(got, dense), 1e-13) << "level " << h + 1;
+      EXPECT_LT(relative_frobenius(got, eigen), 1e-13) << "level " << h + 1;
+    }
+  }
+}
+
+TEST(Galerkin, LatticeHierarchyUpdateMatchesOraclesOnEveryLevel) {
   const TetMesh mesh = make_box_mesh({1, 1, 1}, {6, 6, 6});
   AssemblyMap map;
   BrcMatrix a = make_stiffness_pattern(mesh, map);
   std::mt19937 rng(4);
   randomize(a, rng);
-  MultigridHierarchy hierarchy(a, mesh.rest, {}, 0.25, 3);
-  ASSERT_EQ(hierarchy.num_levels(), 3);
-  for (GalerkinMethod m : {GalerkinMethod::Naive, GalerkinMethod::Stream, GalerkinMethod::StreamFull,
-                           GalerkinMethod::Reuse}) {
-    hierarchy.update(a, m);
-    for (int h = 0; h + 1 < hierarchy.num_levels(); ++h) {
-      const Eigen::MatrixXd ref = Eigen::MatrixXd(
-          reference::eigen_galerkin(restriction_matrix(hierarchy.transfer(h)), to_eigen(hierarchy.matrix(h))));
-      EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(hierarchy.matrix(h + 1))), ref), 1e-13);
-    }
-  }
+  HierarchyParams params;
+  params.kind = HierarchyKind::Lattice;
+  params.first_cell_factor = 0.25 / mean_edge_length(mesh);  // cell 0.25
+  check_hierarchy(a, build_hierarchy(mesh, {}, params).transfers, 3);
+}
+
+TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
+  // Three gmsh meshes of one cube at sizes h, 2h, 4h: non-nested levels, as in the paper; the
+  // fine one with some vertices fixed (no weights) and a jittered copy of the middle level,
+  // so that fine vertices fall outside it and are extrapolated.
+  test::TempDir dir;
+  for (int n : {2, 4, 8}) test::write_text(dir / ("cube" + std::to_string(n) + ".stl"), test::cube_stl(n));
+  const TetMesh fine = tetrahedralize_surface(dir / "cube8.stl", 0.15);
+  std::vector<TetMesh> coarse = {tetrahedralize_surface(dir / "cube4.stl", 0.3),
+                                 tetrahedralize_surface(dir / "cube2.stl", 0.6)};
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  for (Vec3& x : coarse[0].rest) x += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  AssemblyMap map;
+  BrcMatrix a = make_stiffness_pattern(fine, map);
+  randomize(a, rng);
+  std::vector<char> fixed(fine.rest.size(), 0);
+  for (int v = 0; v < fine.num_vertices(); ++v) fixed[v] = fine.rest[v].x() < 1e-9;
+  HierarchyParams params;
+  params.kind = HierarchyKind::Meshes;
+  const BuiltHierarchy built = build_hierarchy(fine, fixed, params, coarse);
+  EXPECT_GT(built.levels[0]["outside_points"].get<int>(), 0) << "the jitter should leave points outside";
+  check_hierarchy(a, built.transfers, 3);
 }
 
 TEST(Transfer, LatticeWeightsInterpolateAffineFieldsExactly) {

@@ -2,24 +2,13 @@
 
 namespace corofem {
 
-MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern,
-                                       const std::vector<Vec3>& fine_points,
-                                       const std::vector<char>& fixed, double first_cell,
-                                       int levels) {
+MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern, std::vector<Transfer> transfers)
+    : transfers_(std::move(transfers)) {
   matrices_.push_back(fine_pattern);
-  std::vector<Vec3> points = fine_points;
-  std::vector<char> level_fixed = fixed;
-  double cell = first_cell;
-  for (int h = 1; h < levels; ++h) {
-    CoarseLevel coarse = make_lattice_level(points, level_fixed, cell);
-    if (coarse.transfer.coarse == 0) break;  // nothing left to coarsen
-    matrices_.push_back(galerkin_pattern(matrices_.back(), coarse.transfer));
-    streams_.emplace_back(matrices_[h - 1], coarse.transfer, matrices_[h]);
-    reuse_.push_back(std::make_unique<GalerkinReuse>(coarse.transfer.coarse));
-    transfers_.push_back(std::move(coarse.transfer));
-    points = std::move(coarse.points);
-    level_fixed.clear();  // coarse levels have no fixed vertices
-    cell *= 2;
+  for (std::size_t h = 0; h < transfers_.size(); ++h) {
+    matrices_.push_back(galerkin_pattern(matrices_[h], transfers_[h]));
+    streams_.emplace_back(matrices_[h], transfers_[h], matrices_[h + 1]);
+    reuse_.push_back(std::make_unique<GalerkinReuse>(transfers_[h].coarse));
   }
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// A multigrid hierarchy over a fine BRC matrix: coarse levels from covering lattices (cell size
-// doubling per level), transfer operators, coarse patterns and Galerkin streams, all built once;
+// A multigrid hierarchy over a fine BRC matrix: given the transfers of every level
+// (hierarchy_builder.hpp), the coarse patterns and Galerkin streams are built once;
 // update() rebuilds every coarse operator E_{h+1} = R_h A_h R_h^T from new fine values.
 #include <memory>
 
@@ -10,10 +10,8 @@ namespace corofem {
 
 class MultigridHierarchy {
  public:
-  /// `fixed` per fine vertex: its DOFs take no part in the transfer. `first_cell`: lattice cell of
-  /// level 1 (each further level doubles it). `levels` counts the fine level too (>= 1).
-  MultigridHierarchy(const BrcMatrix& fine_pattern, const std::vector<Vec3>& fine_points,
-                     const std::vector<char>& fixed, double first_cell, int levels);
+  /// `transfers[h]` takes level h to h + 1 (level 0 has the fine pattern's vertices).
+  MultigridHierarchy(const BrcMatrix& fine_pattern, std::vector<Transfer> transfers);
 
   /// Copies the fine values and recomputes every coarse level with the given method.
   void update(const BrcMatrix& fine, GalerkinMethod method = GalerkinMethod::Stream);

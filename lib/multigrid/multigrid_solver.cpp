@@ -1,10 +1,13 @@
 #include "multigrid/multigrid_solver.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 
 #include "cholmod_solver.hpp"
 #include "core/errors.hpp"
+#include "core/statistics.hpp"
 #include "solver/preconditioned_cg.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
@@ -12,14 +15,17 @@ namespace corofem {
 
 nlohmann::json MultigridParams::to_json() const {
   const char* names[] = {"naive", "stream", "stream-full", "reuse"};
-  return {{"levels", levels},
-          {"pre_smoothing", pre_smoothing},
-          {"post_smoothing", post_smoothing},
-          {"vcycles", vcycles},
-          {"max_iterations", max_iterations},
-          {"tolerance", tolerance},
-          {"first_cell_factor", first_cell_factor},
-          {"galerkin", names[static_cast<int>(galerkin)]}};
+  return {{"hierarchy", hierarchy.to_json()},
+          {"transfer", "barycentric in the containing or nearest coarse tet"},
+          {"galerkin", names[static_cast<int>(galerkin)]},
+          {"smoother", {{"kind", "block-gauss-seidel"},
+                        {"pre_smoothing", pre_smoothing},
+                        {"post_smoothing", post_smoothing}}},
+          {"cycle", {{"kind", "V"},
+                     {"vcycles", vcycles},
+                     {"max_iterations", max_iterations},
+                     {"tolerance", tolerance},
+                     {"coarsest", "cholmod"}}}};
 }
 
 struct MultigridSolver::Coarsest {
@@ -27,17 +33,48 @@ struct MultigridSolver::Coarsest {
   reference::CholmodSolver cholmod;
 };
 
-MultigridSolver::MultigridSolver(const BrcMatrix& pattern, const std::vector<Vec3>& points,
-                                 const std::vector<char>& fixed, double mean_edge,
+MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
                                  const MultigridParams& params, bool as_preconditioner)
     : params_(params),
       preconditioner_(as_preconditioner),
-      hierarchy_(pattern, points, fixed, params.first_cell_factor * mean_edge, params.levels),
+      hierarchy_(pattern, std::move(built.transfers)),
       smoothers_(hierarchy_.num_levels()),
       coarsest_(std::make_unique<Coarsest>()),
       residual_(hierarchy_.num_levels()),
       coarse_b_(hierarchy_.num_levels()),
-      coarse_x_(hierarchy_.num_levels()) {}
+      coarse_x_(hierarchy_.num_levels()),
+      level_info_(std::move(built.levels)),
+      setup_ms_(std::move(built.setup_ms)) {}
+
+nlohmann::json MultigridSolver::describe() const {
+  nlohmann::json levels = nlohmann::json::array();
+  double blocks = 0;
+  for (int h = 0; h < hierarchy_.num_levels(); ++h) {
+    const BrcMatrix& a = hierarchy_.matrix(h);
+    nlohmann::json level = {{"level", h}, {"vertices", a.block_rows}, {"blocks", a.col_index.size()}};
+    if (h > 0 && h - 1 < static_cast<int>(level_info_.size())) level["built_from"] = level_info_[h - 1];
+    levels.push_back(level);
+    blocks += static_cast<double>(a.col_index.size());
+  }
+  std::vector<double> rho, iterations;
+  for (const SolveStats& s : solve_log_) {
+    if (s.iterations == 0) continue;  // a zero right-hand side: nothing was solved
+    rho.push_back(s.convergence_factor);
+    iterations.push_back(s.iterations);
+  }
+  auto median_or_null = [](const std::vector<double>& v) -> nlohmann::json {
+    return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v));
+  };
+  return {{"params", params_.to_json()},
+          {"hierarchy", hierarchy_name(params_.hierarchy.kind)},
+          {"levels", levels},
+          {"operator_complexity", blocks / static_cast<double>(hierarchy_.matrix(0).col_index.size())},
+          {"setup_ms", setup_ms_},
+          {"solves", rho.size()},
+          {"rho", median_or_null(rho)},
+          {"iterations", median_or_null(iterations)},
+          {"coarsest_shifts", coarsest_shifts_}};
+}
 
 MultigridSolver::~MultigridSolver() = default;
 
@@ -92,6 +129,12 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
 }
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const SolveStats stats = run_solve(b, x);
+  solve_log_.push_back(stats);
+  return stats;
+}
+
+SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const BrcMatrix& a = hierarchy_.matrix(0);
   if (preconditioner_)
     return preconditioned_cg(

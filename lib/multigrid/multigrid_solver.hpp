@@ -2,22 +2,24 @@
 // Geometric multigrid with Galerkin coarse operators (paper section 4; Georgii and Westermann
 // 2005): V-cycles with block Gauss-Seidel smoothing and CHOLMOD on the coarsest level, as a
 // solver ("multigrid") or as the preconditioner of CG ("mgpcg").
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "multigrid/gauss_seidel.hpp"
 #include "multigrid/hierarchy.hpp"
+#include "multigrid/hierarchy_builder.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace corofem {
 
+/// The parameters of every component, written into every record of a multigrid solve.
 struct MultigridParams {
-  int levels = 3;                  ///< including the fine level
+  HierarchyParams hierarchy;       ///< builder and level count
   int pre_smoothing = 1;           ///< forward Gauss-Seidel sweeps before the coarse correction
   int post_smoothing = 1;          ///< backward sweeps after it
   int vcycles = 0;                 ///< multigrid: fixed count; 0 = iterate to the tolerance
   int max_iterations = 500;        ///< cap on V-cycles / CG iterations
   double tolerance = 1e-8;         ///< relative residual |b - A x| / |b|
-  double first_cell_factor = 1.5;  ///< level-1 lattice cell = factor x mean fine edge length
   GalerkinMethod galerkin = GalerkinMethod::Stream;
 
   nlohmann::json to_json() const;
@@ -25,9 +27,9 @@ struct MultigridParams {
 
 class MultigridSolver : public LinearSolver {
  public:
-  /// `fixed` per fine vertex (fully supported vertices; their rows are identity in A).
-  MultigridSolver(const BrcMatrix& pattern, const std::vector<Vec3>& points,
-                  const std::vector<char>& fixed, double mean_edge, const MultigridParams& params,
+  /// `built`: the transfers from hierarchy_builder.hpp (fixed fine vertices, whose rows are
+  /// identity in A, take no part in them).
+  MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built, const MultigridParams& params,
                   bool as_preconditioner);
   ~MultigridSolver() override;
 
@@ -38,10 +40,16 @@ class MultigridSolver : public LinearSolver {
   /// One V-cycle from level h for A_h x = b (x is the initial guess on entry).
   void vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
+  /// Statistics of every solve since construction.
+  const std::vector<SolveStats>& solve_log() const { return solve_log_; }
+  /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
+  /// complexity, setup times, and the median rho and iterations over the solves so far.
+  nlohmann::json describe() const;
   /// How many coarsest-level factorizations needed the semidefinite shift (see set_matrix).
   int coarsest_shifts() const { return coarsest_shifts_; }
 
  private:
+  SolveStats run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   MultigridParams params_;
   bool preconditioner_;
   MultigridHierarchy hierarchy_;
@@ -50,6 +58,9 @@ class MultigridSolver : public LinearSolver {
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
   int coarsest_shifts_ = 0;
+  nlohmann::json level_info_;
+  std::map<std::string, double> setup_ms_;
+  std::vector<SolveStats> solve_log_;
 };
 
 }  // namespace corofem

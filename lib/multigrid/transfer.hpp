@@ -28,20 +28,11 @@ struct Transfer {
 /// R as a scalar sparse matrix of DOFs (3 coarse x 3 fine; R = Rs (x) I3), DOF 3 v + c.
 Eigen::SparseMatrix<double> restriction_matrix(const Transfer& t);
 
-/// One coarser level: the transfer and the coarse vertex positions.
+/// One coarser level: the transfer from the level above and the coarse vertex positions.
 struct CoarseLevel {
   Transfer transfer;
   std::vector<Vec3> points;
 };
-
-/// Covering lattice of Kuhn-split cubes of edge `cell`: only cells containing a point of `points`
-/// are kept, so every point lies in a lattice tet; its weights are the barycentric coordinates
-/// there (a closed form: with local coordinates sorted t1 >= t2 >= t3, the weights of the path
-/// 000, e_a, e_a + e_b, 111 are 1 - t1, t1 - t2, t2 - t3, t3). Points with `fixed` set get no
-/// weights (their DOFs take no part in the transfer); coarse vertices supporting no point are
-/// dropped.
-CoarseLevel make_lattice_level(const std::vector<Vec3>& points, const std::vector<char>& fixed,
-                               double cell);
 
 /// Mean edge length of the mesh (sets the first lattice's cell size).
 double mean_edge_length(const TetMesh& mesh);

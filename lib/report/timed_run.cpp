@@ -64,13 +64,6 @@ double total_volume(const TetMesh& mesh, const std::vector<Vec3>& x) {
 
 }  // namespace
 
-double median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 double TimedRun::median_ms(const std::string& phase, int warmup) const {
   std::vector<double> values;
   for (std::size_t s = warmup; s < step_ms.size(); ++s) {

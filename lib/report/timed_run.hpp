@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/statistics.hpp"
 #include "fem/implicit_euler.hpp"
 
 namespace corofem {
@@ -45,8 +46,5 @@ struct TimedRun {
 /// Parses `scene` (named `name` in messages) and runs it. Throws InputError, NumericalFault, or
 /// whatever on_step throws.
 TimedRun timed_run(const nlohmann::json& scene, const std::string& name, const TimedRunOptions& options);
-
-/// Median of the values (NaN for none).
-double median(std::vector<double> values);
 
 }  // namespace corofem

@@ -6,6 +6,7 @@
 #include "fem/implicit_euler.hpp"
 #include "fem/static_solver.hpp"
 #include "report/matrix_market.hpp"
+#include "scene/coarse_meshes.hpp"
 #include "scene/scene_problem.hpp"
 #include "solver/solver_factory.hpp"
 #include "sparse/brc_to_eigen.hpp"
@@ -31,8 +32,8 @@ void export_matrices(const Scene& scene, const std::filesystem::path& dir) {
   AnalysisSpec a = scene.analysis;
   const bool corotational = a.formulation == "corotational";
   auto extractor = make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
-  MultigridSolver solver(problem.stiffness, problem.mesh.rest, fixed_vertices(problem.dirichlet),
-                         mean_edge_length(problem.mesh), multigrid_params(a), false);
+  auto multigrid = make_multigrid_solver(a, problem, coarse_meshes(scene), false);
+  MultigridSolver& solver = *multigrid;
   if (a.type == "static") {
     solve_static(problem, *extractor, solver, {corotational, a.load_steps, a.tolerance, 1});
   } else {

@@ -46,7 +46,11 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                    {"rotation", corotational ? a.rotation : "none"},
                    {"rotation_params", a.rotation_params.to_json()},
                    {"solver", solver->name()}};
-  if (a.solver == "multigrid" || a.solver == "mgpcg") r["analysis"]["multigrid"] = multigrid_params(a).to_json();
+  if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
+    r["analysis"]["multigrid"] = multigrid_params(a).to_json();
+    r["multigrid"] = mg->describe();
+    r["multigrid"]["setup_ms"]["coarse_meshes"] = simulation.coarse_meshing_ms();
+  }
   r["converged"] = result.converged;
   if (!result.converged) r["message"] = result.message;
   r["iterations"] = result.iterations;

@@ -46,9 +46,11 @@ std::string one_of(JsonFields& f, const std::string& key, const std::string& fal
   f.fail(key, "one of: " + list + " (got '" + value + "')");
 }
 
-MeshSpec read_mesh(JsonFields f, const fs::path& base) {
+MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
   MeshSpec m;
   m.reorder = f.boolean("reorder", false);
+  if (!coarse)
+    for_each_entry(f, "levels", [&](JsonFields level) { m.levels.push_back(read_mesh(level, base, true)); });
   const int sources = f.has("file") + f.has("surface") + f.has("box") + f.has("shape");
   if (sources != 1)
     f.fail("file", "given alone: a mesh is exactly one of file, surface+size, box+cells, shape+size");
@@ -131,6 +133,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
   a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse"});
+  a.hierarchy = one_of(f, "hierarchy", a.hierarchy, {"meshes", "lattice"});
   const bool multigrid = a.solver == "multigrid" || a.solver == "mgpcg";
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
@@ -221,8 +224,14 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
     f.reject_unknown_keys();
     s.moves.push_back(move);
   });
+  // Coarse meshes are the default hierarchy wherever there are some: given, or re-meshable.
+  const bool remeshable = !s.mesh.levels.empty() || s.mesh.kind != MeshSpec::Kind::File;
+  s.analysis.hierarchy = remeshable ? "meshes" : "lattice";
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
+  if (s.analysis.hierarchy == "meshes" && !remeshable)
+    throw InputError("scene '" + name + "': analysis.hierarchy 'meshes' needs mesh.levels for a "
+                     "mesh read from a file (it cannot be re-meshed); or use 'lattice'");
   if (const nlohmann::json* output = top.get("output")) {
     JsonFields o(*output, "output", name);
     s.output.rotations = o.boolean("rotations", false);

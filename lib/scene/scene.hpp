@@ -21,6 +21,9 @@ struct MeshSpec {
   Vec3 box = Vec3::Ones();     ///< Box: extents
   std::array<int, 3> cells{1, 1, 1};
   bool reorder = false;        ///< sort vertices and tets for locality (mesh/locality_order.hpp)
+  /// Coarser meshes of the same body for the multigrid hierarchy, finest first (`mesh.levels`);
+  /// levels beyond them are re-meshed (scene/coarse_meshes.hpp).
+  std::vector<MeshSpec> levels;
 };
 
 /// When a load acts in a dynamic run: full strength from step ramp_steps on (linear ramp from
@@ -56,6 +59,9 @@ struct AnalysisSpec {
   RotationParams rotation_params;
   std::string solver = "cholmod";           ///< cholmod | multigrid | mgpcg
   std::string galerkin = "stream";          ///< naive | stream | reuse (multigrid coarse operators)
+  /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
+  /// `mesh.levels` gives them) | lattice (covering Kuhn lattices)
+  std::string hierarchy = "lattice";
   int levels = 1;
   int vcycles = 0;          ///< 0: iterate to tolerance
   int smoothing = 1;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "scene/coarse_meshes.hpp"
 #include "scene/load_schedule.hpp"
 #include "scene/scene_problem.hpp"
 #include "solver/solver_factory.hpp"
@@ -22,7 +23,10 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
   extractor_ = make_rotation_extractor(corotational() ? a.rotation : "none", problem_.mesh,
                                        a.rotation_params);
   if (a.type == "dynamic") dynamic_ = dynamic_options(scene_, problem_);
-  solver_ = make_linear_solver(a, problem_);
+  const auto meshing = std::chrono::steady_clock::now();
+  const std::vector<TetMesh> coarse = coarse_meshes(scene_);
+  coarse_meshing_ms_ = ms_since(meshing);
+  solver_ = make_linear_solver(a, problem_, coarse);
   setup_ms_ = ms_since(start);
 }
 

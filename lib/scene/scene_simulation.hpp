@@ -23,6 +23,8 @@ class SceneSimulation {
   LinearSolver& solver() { return *solver_; }
   void set_solver(std::unique_ptr<LinearSolver> solver) { solver_ = std::move(solver); }
   std::unique_ptr<LinearSolver> release_solver() { return std::move(solver_); }
+  /// Time spent meshing the multigrid hierarchy's coarse levels (inside the setup time).
+  double coarse_meshing_ms() const { return coarse_meshing_ms_; }
   bool corotational() const { return scene_.analysis.formulation == "corotational"; }
 
   /// Static or dynamic, as the scene says; `on_step` follows every dynamic step. Phase times
@@ -37,6 +39,7 @@ class SceneSimulation {
   std::optional<DynamicOptions> dynamic_;
   std::unique_ptr<LinearSolver> solver_;
   double setup_ms_ = 0;
+  double coarse_meshing_ms_ = 0;
 };
 
 }  // namespace corofem

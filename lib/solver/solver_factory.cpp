@@ -8,7 +8,8 @@ std::vector<std::string> linear_solver_names() { return {"cholmod", "multigrid",
 
 MultigridParams multigrid_params(const AnalysisSpec& a) {
   MultigridParams p;
-  p.levels = a.levels;
+  p.hierarchy.kind = hierarchy_kind(a.hierarchy);
+  p.hierarchy.levels = a.levels;
   p.pre_smoothing = p.post_smoothing = a.smoothing;
   p.vcycles = a.vcycles;
   p.tolerance = a.tolerance;
@@ -23,13 +24,21 @@ std::vector<char> fixed_vertices(const DirichletConditions& bc) {
   return fixed;
 }
 
-std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem) {
+std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a, const FeProblem& problem,
+                                                       const std::vector<TetMesh>& coarse_meshes,
+                                                       bool as_preconditioner) {
+  const MultigridParams params = multigrid_params(a);
+  return std::make_unique<MultigridSolver>(
+      problem.stiffness,
+      build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy, coarse_meshes),
+      params, as_preconditioner);
+}
+
+std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem,
+                                                 const std::vector<TetMesh>& coarse_meshes) {
   if (a.solver == "cholmod") return make_cholmod_solver();
   if (a.solver == "jacobi-pcg") return make_jacobi_pcg_solver(a.tolerance, 100000);
-  return std::make_unique<MultigridSolver>(problem.stiffness, problem.mesh.rest,
-                                           fixed_vertices(problem.dirichlet),
-                                           mean_edge_length(problem.mesh), multigrid_params(a),
-                                           a.solver == "mgpcg");
+  return make_multigrid_solver(a, problem, coarse_meshes, a.solver == "mgpcg");
 }
 
 }  // namespace corofem

@@ -1,0 +1,69 @@
+#include "multigrid/hierarchy_builder.hpp"
+
+#include <chrono>
+
+#include "core/errors.hpp"
+#include "multigrid/lattice_level.hpp"
+#include "multigrid/mesh_level.hpp"
+
+namespace corofem {
+
+HierarchyKind hierarchy_kind(const std::string& name) {
+  if (name == "meshes") return HierarchyKind::Meshes;
+  if (name == "lattice") return HierarchyKind::Lattice;
+  throw InputError("unknown multigrid hierarchy '" + name + "' (meshes, lattice)");
+}
+
+std::string hierarchy_name(HierarchyKind kind) {
+  return kind == HierarchyKind::Meshes ? "meshes" : "lattice";
+}
+
+nlohmann::json HierarchyParams::to_json() const {
+  nlohmann::json j = {{"kind", hierarchy_name(kind)}, {"levels", levels}};
+  if (kind == HierarchyKind::Lattice) j["first_cell_factor"] = first_cell_factor;
+  return j;
+}
+
+BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
+                               const HierarchyParams& params,
+                               const std::vector<TetMesh>& coarse_meshes) {
+  const auto start = std::chrono::steady_clock::now();
+  BuiltHierarchy built;
+  std::vector<Vec3> points = fine.rest;
+  std::vector<char> level_fixed = fixed;
+  double cell = params.first_cell_factor * mean_edge_length(fine);
+  for (int h = 1; h < params.levels; ++h) {
+    CoarseLevel coarse;
+    nlohmann::json info;
+    if (params.kind == HierarchyKind::Lattice) {
+      coarse = make_lattice_level(points, level_fixed, cell);
+      if (coarse.transfer.coarse == 0) break;  // nothing left to coarsen
+      info = {{"source", "lattice"}, {"cell", cell}};
+      cell *= 2;
+    } else {
+      if (static_cast<int>(coarse_meshes.size()) < h)
+        throw InputError("multigrid hierarchy 'meshes' needs " + std::to_string(params.levels - 1) +
+                         " coarse meshes, got " + std::to_string(coarse_meshes.size()));
+      const TetMesh& mesh = coarse_meshes[h - 1];
+      MeshLevelFit fit;
+      coarse = make_mesh_level(points, level_fixed, mesh, mesh.source, &fit);
+      info = {{"source", mesh.source},
+              {"mesh_vertices", mesh.num_vertices()},
+              {"mesh_tets", mesh.num_tets()},
+              {"outside_points", fit.outside},
+              {"located_points", fit.located},
+              {"max_outside_distance_edges", fit.max_outside_distance},
+              {"max_abs_weight", fit.max_abs_weight},
+              {"dropped_vertices", fit.dropped_vertices}};
+    }
+    built.levels.push_back(info);
+    built.transfers.push_back(std::move(coarse.transfer));
+    points = std::move(coarse.points);
+    level_fixed.clear();  // coarse levels have no fixed vertices
+  }
+  built.setup_ms["transfers"] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return built;
+}
+
+}  // namespace corofem

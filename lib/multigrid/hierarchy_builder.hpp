@@ -1,0 +1,41 @@
+#pragma once
+// Hierarchy builders: the transfers of every level of a multigrid hierarchy, by one of
+//  - meshes: coarser tet meshes of the same body, as in the paper (non-nested; mesh_level.hpp);
+//  - lattice: covering Kuhn lattices with the cell doubling per level (lattice_level.hpp).
+// The parameters are written into every record of a multigrid solve.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "multigrid/transfer.hpp"
+
+namespace corofem {
+
+enum class HierarchyKind { Meshes, Lattice };
+HierarchyKind hierarchy_kind(const std::string& name);  ///< "meshes" | "lattice"
+std::string hierarchy_name(HierarchyKind kind);
+
+struct HierarchyParams {
+  HierarchyKind kind = HierarchyKind::Lattice;
+  int levels = 3;                  ///< including the fine level
+  double first_cell_factor = 1.5;  ///< lattice: level-1 cell = factor x mean fine edge length
+
+  nlohmann::json to_json() const;
+};
+
+struct BuiltHierarchy {
+  std::vector<Transfer> transfers;  ///< level h to h + 1
+  nlohmann::json levels = nlohmann::json::array();  ///< per coarse level: where it came from, fit
+  std::map<std::string, double> setup_ms;           ///< what building it cost, by part
+};
+
+/// Transfers for `params.levels` levels below the fine mesh. `fixed` per fine vertex (its DOFs
+/// take no part in the transfer). Meshes: `coarse_meshes[h - 1]` is level h (at least
+/// levels - 1 of them; `names` for messages). Lattice: stops early when nothing is left to
+/// coarsen. Throws InputError for a coarse mesh that does not cover the level above.
+BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
+                               const HierarchyParams& params,
+                               const std::vector<TetMesh>& coarse_meshes = {});
+
+}  // namespace corofem

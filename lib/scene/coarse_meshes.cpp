@@ -1,0 +1,50 @@
+#include "scene/coarse_meshes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "mesh/locality_order.hpp"
+#include "scene/scene_problem.hpp"
+
+namespace corofem {
+
+MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_name) {
+  const int given = static_cast<int>(fine.levels.size());
+  if (h <= given) return fine.levels[h - 1];
+  MeshSpec spec = given > 0 ? fine.levels[given - 1] : fine;
+  spec.levels.clear();
+  const int doublings = h - given;
+  const double factor = std::ldexp(1.0, doublings);
+  switch (spec.kind) {
+    case MeshSpec::Kind::File:
+      throw InputError("scene '" + scene_name + "': multigrid level " + std::to_string(h) +
+                       " needs a coarse mesh: a mesh file cannot be re-meshed, so mesh.levels must "
+                       "give one per level below the fine one (or use analysis.hierarchy 'lattice')");
+    case MeshSpec::Kind::Surface:
+    case MeshSpec::Kind::Quadruped:
+      spec.size *= factor;
+      break;
+    case MeshSpec::Kind::Box:
+      for (int& n : spec.cells) n = std::max(std::min(n, 2), static_cast<int>(std::ceil(n / factor)));
+      break;
+  }
+  return spec;
+}
+
+std::vector<TetMesh> coarse_meshes(const Scene& scene) {
+  const AnalysisSpec& a = scene.analysis;
+  std::vector<TetMesh> meshes;
+  if (!(a.solver == "multigrid" || a.solver == "mgpcg") || a.hierarchy != "meshes") return meshes;
+  for (int h = 1; h < a.levels; ++h) {
+    const MeshSpec spec = coarse_mesh_spec(scene.mesh, h, scene.name);
+    TetMesh mesh = load_scene_mesh(spec);
+    if (spec.reorder) sort_for_locality(mesh);
+    mesh.source = "level " + std::to_string(h) + " (" + mesh.source + ")";
+    validate_mesh(mesh);
+    meshes.push_back(std::move(mesh));
+  }
+  return meshes;
+}
+
+}  // namespace corofem

@@ -1,0 +1,22 @@
+#pragma once
+// The coarse meshes of a scene's multigrid hierarchy (`analysis.hierarchy: "meshes"`): those the
+// scene gives in `mesh.levels`, then the same geometry re-meshed at 2x, 4x, ... the size of the
+// last one given (or of the fine mesh): the surface and the quadruped with a doubled gmsh mesh
+// size, the box with half the cells per axis, but never fewer than 2 across (a body one element
+// thick locks in bending, and its coarse correction with it).
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "scene/scene.hpp"
+
+namespace corofem {
+
+/// The spec of coarse level h >= 1 (mesh.levels[h - 1], or derived as above). Throws InputError
+/// for a mesh file without enough levels (a volume file cannot be re-meshed).
+MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_name);
+
+/// Levels 1 .. analysis.levels - 1 as validated meshes, when the scene runs multigrid on the
+/// meshes hierarchy; otherwise none.
+std::vector<TetMesh> coarse_meshes(const Scene& scene);
+
+}  // namespace corofem
