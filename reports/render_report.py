@@ -185,6 +185,7 @@ def render_tables(tables, folder, md):
     md.append("### Jacobi-PCG at the same accuracy\n\n")
     md.append(table(["model", "Jacobi-PCG step ms", "CG iterations", "MG-PCG step ms", "MG-PCG iterations"], rows))
     md.append("\n")
+    render_multigrid_quality(tables, md)
     # Phase chart.
     ok = [r for r in tables.get("table1", []) if not failed(r)]
     if HAVE_MPL and ok:
@@ -215,6 +216,28 @@ def render_tables(tables, folder, md):
             rows.append([v["model"], c["oracle"], c["quantity"], c["count"], num(c["largest"], 2)])
     md.append(table(["model", "oracle", "quantity", "compared", "largest"], rows))
     md.append("\nThe full gate suite (`ci/test`) checks more: see verify/.\n\n")
+
+
+def render_multigrid_quality(tables, md):
+    rows = []
+    for r in tables.get("multigrid", []):
+        if failed(r):
+            rows.append([r["model"], failure_text(r)] + [""] * 10)
+            continue
+        rows.append([r["model"], r["hierarchy"], r["levels"], " / ".join(str(v) for v in r["level_vertices"]),
+                     num(r["operator_complexity"], 3), num(r["rho"], 2), num(r["vcycles"]),
+                     num(r["mgpcg_iterations"]), t(r["setup_ms"]), t(r["update_ms"]), t(r["solve_ms"]),
+                     t(r["step_ms"])])
+    if not rows:
+        return
+    md.append("### Multigrid quality: the paper's re-meshed hierarchy against the covering lattice\n\n")
+    md.append("- rho: median over the steps of the stationary V(1,1) cycle's mean residual reduction per "
+              "cycle; V-cycles and MG-PCG iterations: median per step to the table's tolerance. Setup: "
+              "coarse meshing (gmsh) and transfers, once per run; update, solve and step: ms per step of "
+              "the MG-PCG run. Operator complexity: blocks of all levels / blocks of the fine matrix.\n\n")
+    md.append(table(["model", "hierarchy", "levels", "vertices per level", "operator complexity", "rho",
+                     "V-cycles", "MG-PCG iterations", "setup ms", "update ms", "solve ms", "step ms"], rows))
+    md.append("\n")
 
 
 # ----------------------------------------------------------------------------------------------

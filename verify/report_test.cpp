@@ -70,6 +70,26 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     for (const json& row : t[section]) EXPECT_TRUE(row["completed"].get<bool>()) << section << row.dump();
   }
   expect_keys(t["table2"][0], {"model", "tps", "paper_tps"}, "table2 row");
+  // Multigrid quality: both hierarchies for every table row, each coarsening the fine mesh of
+  // that row, with a contracting V-cycle.
+  ASSERT_EQ(t["multigrid"].size(), 2 * t["table1"].size());
+  std::set<std::string> hierarchies;
+  for (const json& row : t["multigrid"]) {
+    ASSERT_TRUE(row["completed"].get<bool>()) << row.dump();
+    expect_keys(row, {"hierarchy", "levels", "level_vertices", "operator_complexity", "rho", "vcycles",
+                      "mgpcg_iterations", "setup_ms", "update_ms", "solve_ms", "step_ms"},
+                "multigrid row");
+    hierarchies.insert(row["hierarchy"].get<std::string>());
+    const json& sizes = row["level_vertices"];
+    ASSERT_EQ(sizes.size(), row["levels"].get<std::size_t>());
+    EXPECT_EQ(sizes[0], t["table1"][0]["vertices"]);
+    for (std::size_t h = 1; h < sizes.size(); ++h) EXPECT_LT(sizes[h], sizes[h - 1]) << row.dump();
+    EXPECT_GT(row["operator_complexity"].get<double>(), 1.0);
+    EXPECT_GT(row["rho"].get<double>(), 0.0);
+    EXPECT_LT(row["rho"].get<double>(), 1.0);
+    EXPECT_GE(row["mgpcg_iterations"].get<double>(), 1.0);
+  }
+  EXPECT_EQ(hierarchies, (std::set<std::string>{"meshes", "lattice"}));
   expect_keys(t["small_strain"][0], {"tps", "volume_change", "corotated_volume_change"}, "small_strain row");
   // The verification summary: the same oracles as the gates, on the report's own states.
   ASSERT_FALSE(t["verification"].empty());

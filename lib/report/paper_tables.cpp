@@ -36,12 +36,36 @@ namespace {
 
 double tps_of(const TimedRun& run, int warmup) { return 1000.0 / run.median_ms("step", warmup); }
 
+/// One row of the multigrid quality table: the hierarchy of `pcg` (an MG-PCG run) and its
+/// iterations and times, with the convergence factor of the stationary V(1,1) cycle (`vcycle`,
+/// the same scene solved by V-cycles to the same tolerance).
+json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warmup) {
+  const json& mg = pcg.multigrid;
+  json sizes = json::array();
+  for (const json& level : mg["levels"]) sizes.push_back(level["vertices"]);
+  double setup = 0;
+  for (auto& [phase, ms] : mg["setup_ms"].items()) setup += ms.get<double>();
+  return {{"hierarchy", mg["hierarchy"]},
+          {"levels", sizes.size()},
+          {"level_vertices", sizes},
+          {"operator_complexity", mg["operator_complexity"]},
+          {"rho", vcycle.multigrid["rho"]},
+          {"vcycles", vcycle.multigrid["iterations"]},
+          {"mgpcg_iterations", mg["iterations"]},
+          {"setup_ms", setup},
+          {"setup_phases_ms", mg["setup_ms"]},
+          {"update_ms", pcg.median_ms("update", warmup)},
+          {"solve_ms", pcg.median_ms("solve", warmup)},
+          {"vcycle_solve_ms", vcycle.median_ms("solve", warmup)},
+          {"step_ms", pcg.median_ms("step", warmup)}};
+}
+
 }  // namespace
 
 json run_paper_tables(const ReportConfig& config) {
   json tables = {{"table1", json::array()},   {"table2", json::array()},
                  {"small_strain", json::array()}, {"jacobi_pcg", json::array()},
-                 {"verification", json::array()}};
+                 {"verification", json::array()}, {"multigrid", json::array()}};
   const int warmup = config.table_warmup(), measured = config.table_measured();
   const int steps = warmup + measured;
   tables["settings"] = {{"warmup_steps", warmup},
@@ -132,6 +156,17 @@ json run_paper_tables(const ReportConfig& config) {
                     {"volume_change", linear.final_volume / linear.rest_volume - 1},
                     {"corotated_volume_change", main.final_volume / main.rest_volume - 1}};
       }));
+      // Multigrid quality: the paper's re-meshed hierarchy against the covering lattice.
+      for (const char* hierarchy : {"meshes", "lattice"}) {
+        say(std::string("multigrid quality: ") + hierarchy);
+        tables["multigrid"].push_back(record_case({{"model", id}}, [&] {
+          const json on = with_analysis(scene, {{"hierarchy", hierarchy}});
+          const std::string kind = main.multigrid.is_null() ? "" : main.multigrid.value("hierarchy", "");
+          const TimedRun pcg = kind == hierarchy ? main : timed_run(on, id, {});
+          const TimedRun vcycle = timed_run(with_analysis(on, {{"solver", "multigrid"}, {"vcycles", 0}}), id, {});
+          return multigrid_quality_row(pcg, vcycle, warmup);
+        }));
+      }
       // The baseline preconditioner at the same accuracy.
       say("Jacobi-PCG");
       tables["jacobi_pcg"].push_back(record_case({{"model", id}}, [&] {

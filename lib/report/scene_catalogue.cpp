@@ -1,5 +1,7 @@
 #include "report/scene_catalogue.hpp"
 
+#include <array>
+
 #include "core/errors.hpp"
 
 namespace corofem {
@@ -27,26 +29,33 @@ json quadruped_mesh(SceneSize size) {
   return {{"shape", "quadruped"}, {"size", h[size_index(size)]}, {"reorder", true}};
 }
 
-struct ModelSurface {
-  const char* fine;
-  double fine_size;
-  const char* small;
-  double small_size;
+/// The models folder's surfaces of one model, finest first (`<model>_L<k>.stl`), with the mesh
+/// size each was simplified for (models README).
+struct ModelSurfaces {
+  std::array<double, 3> size;
 };
 
-ModelSurface model_surface(const std::string& model) {
-  if (model == "bunny") return {"bunny_L0.stl", 0.045098, "bunny_L1.stl", 0.09365};
-  if (model == "horse") return {"horse_L0.stl", 0.018747, "horse_L1.stl", 0.038184};
-  if (model == "dragon") return {"dragon_L0.stl", 0.0163, "dragon_L1.stl", 0.033};
+ModelSurfaces model_surfaces(const std::string& model) {
+  if (model == "bunny") return {{0.045098, 0.09365, 0.18579}};
+  if (model == "horse") return {{0.018747, 0.038184, 0.08}};
+  if (model == "dragon") return {{0.0163, 0.033, 0.068826}};
   throw InputError("unknown model '" + model + "' (bunny, horse, dragon)");
 }
 
-json model_mesh(const std::string& model, SceneSize size, const fs::path& models_dir) {
-  const ModelSurface s = model_surface(model);
-  const bool fine = size != SceneSize::Small;
-  return {{"surface", (models_dir / (fine ? s.fine : s.small)).string()},
-          {"size", fine ? s.fine_size : s.small_size},
+json model_level(const std::string& model, int k, const fs::path& models_dir) {
+  return {{"surface", (models_dir / (model + "_L" + std::to_string(k) + ".stl")).string()},
+          {"size", model_surfaces(model).size[k]},
           {"reorder", true}};
+}
+
+/// The fine mesh from L0 (L1 for the small size) with the coarser surfaces as the multigrid's
+/// coarse meshes, as the paper builds its hierarchy (section 4).
+json model_mesh(const std::string& model, SceneSize size, const fs::path& models_dir) {
+  const int fine = size == SceneSize::Small ? 1 : 0;
+  json mesh = model_level(model, fine, models_dir);
+  mesh["levels"] = json::array();
+  for (int k = fine + 1; k < 3; ++k) mesh["levels"].push_back(model_level(model, k, models_dir));
+  return mesh;
 }
 
 json dynamic_analysis(int steps, double tolerance, SceneSize size) {
@@ -116,6 +125,9 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
     s["forces"] = json::array({{{"box", kShoulders}, {"total", {0, 0, 2e4}}, {"ramp_steps", 10}}});
   } else {
     s["mesh"] = model_mesh(model, size, models_dir);
+    // One level per surface in the folder: the paper's 4th level for the horse and dragon would
+    // be a re-meshing of the coarsest surface, which its triangles keep from coarsening.
+    s["analysis"]["levels"] = 1 + s["mesh"]["levels"].size();
     s["material"] = {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}};
     if (model == "horse") {
       s["fixed"] = json::array({{{"box", kHorseHind}}});

@@ -24,7 +24,8 @@ std::vector<std::string> file_models();
 SceneSize file_model_size(const std::string& model);
 
 /// A dynamic corotated scene of `model` at `size`, `steps` long, with the report's default
-/// analysis (energy-newton, MG-PCG to `tolerance`, paper_levels(size) levels). The table runs:
+/// analysis (energy-newton, MG-PCG to `tolerance`, paper_levels(size) levels on re-meshed
+/// hierarchies; the models: one level per surface of the folder, L0 to L2). The table runs:
 /// bars fixed at x = 0 (sagging under gravity; twisted at the far end), the quadruped fixed at its
 /// hind feet with its shoulders pulled up, the bunny and dragon fixed at their base and pulled, the
 /// horse fixed at its hind hooves with its shoulders pulled up. Models read from `models_dir`.

@@ -18,7 +18,8 @@ double relative_error(const Eigen::VectorXd& u, const Eigen::VectorXd& reference
   return norm > 0 ? (u - reference).norm() / norm : (u - reference).norm();
 }
 
-/// Settings of the solver sweep (all with energy-newton rotations).
+/// Settings of the solver sweep (all with energy-newton rotations; multigrid on the scene's
+/// re-meshed hierarchy unless the setting says "hierarchy": "lattice").
 std::vector<json> solver_settings(const ReportConfig& config, int levels) {
   std::vector<json> settings;
   for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8})
@@ -28,6 +29,11 @@ std::vector<json> solver_settings(const ReportConfig& config, int levels) {
     settings.push_back({{"solver", "multigrid"}, {"vcycles", 1}, {"smoothing", smoothing}});
   for (int l = 2; l <= levels + 1; ++l)
     if (l != levels) settings.push_back({{"solver", "mgpcg"}, {"tolerance", 1e-4}, {"levels", l}});
+  // The same solvers on the covering lattice hierarchy (the others run on re-meshed levels).
+  for (double tolerance : {1e-2, 1e-4, 1e-6})
+    settings.push_back({{"solver", "mgpcg"}, {"tolerance", tolerance}, {"hierarchy", "lattice"}});
+  for (int vcycles : {1, 2})
+    settings.push_back({{"solver", "multigrid"}, {"vcycles", vcycles}, {"hierarchy", "lattice"}});
   settings.push_back({{"solver", "jacobi-pcg"}, {"tolerance", 1e-4}});
   if (config.mode == ReportConfig::Mode::Smoke) settings.resize(3);
   return settings;

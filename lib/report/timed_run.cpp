@@ -114,6 +114,7 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     out.solves.push_back(s.solve);
     if (options.on_step) options.on_step(s, problem);
   });
+  out.multigrid = simulation.describe_multigrid(under_test);
   out.rest_volume = total_volume(problem.mesh, problem.mesh.rest);
   const auto final_positions = problem.positions(out.result.displacement);
   out.final_volume = total_volume(problem.mesh, final_positions);

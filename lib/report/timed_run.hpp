@@ -34,6 +34,9 @@ struct TimedRun {
   double galerkin_error_max = -1;   ///< |E_h - R A R^T|_F / |R A R^T|_F over levels (Eigen oracle)
   double rotation_error_max_rad = -1;  ///< energy-newton against energy-exact at the final state
   int rotation_elements_compared = 0;
+  /// A multigrid solve's description (MultigridSolver::describe() with setup_ms.coarse_meshes);
+  /// null for other solvers.
+  nlohmann::json multigrid;
 
   /// Median of a phase over the steps after warm-up.
   double median_ms(const std::string& phase, int warmup) const;

@@ -48,8 +48,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                    {"solver", solver->name()}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
     r["analysis"]["multigrid"] = multigrid_params(a).to_json();
-    r["multigrid"] = mg->describe();
-    r["multigrid"]["setup_ms"]["coarse_meshes"] = simulation.coarse_meshing_ms();
+    r["multigrid"] = simulation.describe_multigrid(*mg);
   }
   r["converged"] = result.converged;
   if (!result.converged) r["message"] = result.message;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "multigrid/multigrid_solver.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/load_schedule.hpp"
 #include "scene/scene_problem.hpp"
@@ -28,6 +29,14 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
   coarse_meshing_ms_ = ms_since(meshing);
   solver_ = make_linear_solver(a, problem_, coarse);
   setup_ms_ = ms_since(start);
+}
+
+nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) const {
+  const auto* mg = dynamic_cast<const MultigridSolver*>(&solver);
+  if (!mg) return nullptr;
+  nlohmann::json d = mg->describe();
+  d["setup_ms"]["coarse_meshes"] = coarse_meshing_ms_;
+  return d;
 }
 
 SimulationResult SceneSimulation::run(const std::function<void(const StepState&)>& on_step) {

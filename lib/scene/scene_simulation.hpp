@@ -2,6 +2,7 @@
 // A scene ready to run: its problem, rotation extractor, linear solver and load schedule, built
 // once. `corofem run` and the report's drivers share it; the report swaps in instrumented solvers.
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "fem/implicit_euler.hpp"
@@ -26,6 +27,9 @@ class SceneSimulation {
   /// Time spent meshing the multigrid hierarchy's coarse levels (inside the setup time).
   double coarse_meshing_ms() const { return coarse_meshing_ms_; }
   bool corotational() const { return scene_.analysis.formulation == "corotational"; }
+  /// The record's `multigrid` entry for `solver` (this scene's solver, or the one it wraps):
+  /// MultigridSolver::describe() with setup_ms.coarse_meshes; null for other solvers.
+  nlohmann::json describe_multigrid(const LinearSolver& solver) const;
 
   /// Static or dynamic, as the scene says; `on_step` follows every dynamic step. Phase times
   /// include "setup" (building) and "total".
