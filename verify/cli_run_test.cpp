@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "test_support.hpp"
@@ -116,6 +118,87 @@ TEST(CliRun, NonConvergenceExitsOneAndSaysSo) {
   EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
   const auto j = nlohmann::json::parse(test::read_text(dir / "result.json"));
   EXPECT_FALSE(j["converged"].get<bool>());
+}
+
+/// A cube [0,1]^3 in Kuhn cells, fixed at x = 0, solved statically by multigrid on two levels;
+/// the coarse level is `coarse` (a mesh spec).
+nlohmann::json multigrid_cube(const nlohmann::json& coarse) {
+  return {{"mesh", {{"box", {1, 1, 1}}, {"cells", {4, 4, 4}}, {"levels", {coarse}}}},
+          {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+          {"fixed", {{{"box", {{0, 0, 0}, {0, 1, 1}}}}}},
+          {"gravity", {0, 0, -9.81}},
+          {"analysis", {{"type", "static"}, {"formulation", "linear"}, {"solver", "multigrid"}, {"levels", 2},
+                        {"tolerance", 1e-10}}}};
+}
+
+/// One ASCII gmsh 2.2 file with the given nodes (tags 1..n) and linear tets.
+std::string msh_v2(const std::vector<std::array<double, 3>>& nodes, const std::vector<std::array<int, 4>>& tets) {
+  std::string s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + std::to_string(nodes.size()) + "\n";
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    s += std::to_string(i + 1) + " " + std::to_string(nodes[i][0]) + " " + std::to_string(nodes[i][1]) + " " +
+         std::to_string(nodes[i][2]) + "\n";
+  s += "$EndNodes\n$Elements\n" + std::to_string(tets.size()) + "\n";
+  for (std::size_t e = 0; e < tets.size(); ++e)
+    s += std::to_string(e + 1) + " 4 2 0 1 " + std::to_string(tets[e][0]) + " " + std::to_string(tets[e][1]) + " " +
+         std::to_string(tets[e][2]) + " " + std::to_string(tets[e][3]) + "\n";
+  return s + "$EndElements\n";
+}
+
+TEST(CliRun, MultigridRecordDescribesTheHierarchy) {
+  TempDir dir;
+  write_text(dir / "cube.json", multigrid_cube({{"box", {1, 1, 1}}, {"cells", {2, 2, 2}}}).dump());
+  const auto r = run_cli("run '" + (dir / "cube.json").string() + "' --out '" + (dir / "r.json").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::read_text(dir / "r.json"));
+  const auto& mg = j["multigrid"];
+  EXPECT_EQ(mg["hierarchy"], "meshes");
+  ASSERT_EQ(mg["levels"].size(), 2u);
+  EXPECT_EQ(mg["levels"][0]["vertices"], 125);  // 5^3 box vertices
+  // 3^3 coarse vertices: those at x = 0 also interpolate the free fine vertices at x = 0.25.
+  EXPECT_EQ(mg["levels"][1]["vertices"], 27);
+  EXPECT_EQ(mg["levels"][1]["built_from"]["outside_points"], 0);  // same box: all inside
+  // Blocks: the fine pattern plus the coarse one, over the fine one.
+  const double blocks0 = mg["levels"][0]["blocks"], blocks1 = mg["levels"][1]["blocks"];
+  EXPECT_NEAR(mg["operator_complexity"].get<double>(), (blocks0 + blocks1) / blocks0, 1e-12);
+  EXPECT_GT(mg["rho"].get<double>(), 0.0);
+  EXPECT_LT(mg["rho"].get<double>(), 1.0);
+  EXPECT_GE(mg["iterations"].get<double>(), 1.0);
+  for (const char* key : {"params", "setup_ms", "solves"}) EXPECT_TRUE(mg.contains(key)) << key;
+  for (const char* key : {"hierarchy", "galerkin", "smoother", "cycle"})
+    EXPECT_TRUE(mg["params"].contains(key)) << key;
+}
+
+TEST(CliRun, BadCoarseMeshIsBadInput) {
+  // A coarse level away from the body, a degenerate one, and one that covers too little: exit 2,
+  // a message naming the fault, no output.
+  struct Case {
+    const char* name;
+    std::string msh;
+    const char* fragment;
+  };
+  const std::vector<std::array<int, 4>> one_tet{{1, 2, 3, 4}};
+  std::vector<std::array<double, 3>> short_box;
+  for (int v = 0; v < 8; ++v) short_box.push_back({v & 1 ? 0.55 : 0.0, v & 2 ? 1.0 : 0.0, v & 4 ? 1.0 : 0.0});
+  const std::vector<std::array<int, 4>> kuhn_cube{{1, 2, 4, 8}, {1, 2, 6, 8}, {1, 3, 4, 8},
+                                                  {1, 3, 7, 8}, {1, 5, 6, 8}, {1, 5, 7, 8}};
+  const Case cases[] = {
+      {"away", msh_v2({{{10, 0, 0}}, {{11, 0, 0}}, {{10, 1, 0}}, {{10, 0, 1}}}, one_tet), "does not overlap"},
+      {"flat", msh_v2({{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1, 1, 0}}}, one_tet), "degenerate"},
+      {"corner", msh_v2({{{0, 0, 0}}, {{0.3, 0, 0}}, {{0, 0.3, 0}}, {{0, 0, 0.3}}}, one_tet), "lie outside it"},
+      // [0, 0.55] x [0, 1]^2 in 6 tets: the fine vertices at x = 1 are 0.45 from it, more than
+      // a quarter of the cube's diagonal.
+      {"short", msh_v2(short_box, kuhn_cube), "does not cover"},
+  };
+  for (const Case& c : cases) {
+    TempDir dir;
+    write_text(dir / "coarse.msh", c.msh);
+    write_text(dir / "cube.json", multigrid_cube({{"file", "coarse.msh"}}).dump());
+    const auto out = dir / "r.json";
+    const auto r = run_cli("run '" + (dir / "cube.json").string() + "' --out '" + out.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.err;
+    EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.name << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << c.name;
+  }
 }
 
 TEST(CliHelp, ToolAndCommandHelp) {

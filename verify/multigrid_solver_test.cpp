@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "core/errors.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/implicit_euler.hpp"
 #include "fem/loads.hpp"
@@ -16,6 +17,7 @@
 #include "scene/coarse_meshes.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_problem.hpp"
+#include "solver/preconditioned_cg.hpp"
 #include "solver/solver_factory.hpp"
 #include "sparse/brc_to_eigen.hpp"
 #include "test_support.hpp"
@@ -28,6 +30,10 @@ struct MeshCase {
   MeshSpec spec;  ///< the fine mesh and how its coarse levels are made
   TetMesh mesh;
   std::vector<MaterialRegion> regions;
+  int fixed_axis = 0;  ///< fixed: the vertices near the lowest coordinate along this axis
+  /// Stationary V-cycles on the lattice crawl on curved, thin bodies (static, 500 cycles: the
+  /// quadruped to 2.5e-3, the bunny to 3.4e-10, rate 0.957); MG-PCG on the same lattice converges.
+  bool lattice_vcycles_stall = false;
   /// Levels 1 and 2 of the meshes hierarchy.
   std::vector<TetMesh> coarse() const {
     return {load_scene_mesh(coarse_mesh_spec(spec, 1, name)), load_scene_mesh(coarse_mesh_spec(spec, 2, name))};
@@ -65,9 +71,13 @@ std::vector<MeshCase> meshes() {
 FeProblem problem_for(const MeshCase& c) {
   auto materials = materials_per_element(c.mesh, Material{1e6, 0.3, 1000}, c.regions);
   FeProblem p = make_fe_problem(c.mesh, std::move(materials));
+  // Fixed: the vertices within 2% of the extent from the lowest coordinate along fixed_axis (a
+  // face of the boxes, a patch of a curved body: the bunny's base).
   const auto box = bounding_box(p.mesh.rest);
+  const int k = c.fixed_axis;
+  const double slab = 0.02 * (box[1][k] - box[0][k]);
   for (int v = 0; v < p.mesh.num_vertices(); ++v)
-    if (p.mesh.rest[v].x() < box[0].x() + 1e-9) p.dirichlet.fix_vertex(v);
+    if (p.mesh.rest[v][k] < box[0][k] + slab) p.dirichlet.fix_vertex(v);
   p.external_force = gravity_load(p.mesh, p.materials, Vec3(0, -3, -9.81));
   return p;
 }
@@ -93,27 +103,33 @@ BrcMatrix small_strain_system(FeProblem& p, Eigen::VectorXd& b) {
   return system;
 }
 
-TEST(MultigridSolver, StaticAndDynamicSolutionsEqualCholmod) {
-  for (const MeshCase& c : meshes()) {
-    const std::vector<TetMesh> coarse = c.coarse();
-    for (const auto& [name, hierarchy] : {std::pair{"multigrid", "meshes"}, {"mgpcg", "meshes"},
-                                          {"multigrid", "lattice"}, {"mgpcg", "lattice"},
-                                          {"jacobi-pcg", "lattice"}}) {
-      SCOPED_TRACE(std::string(name) + " on " + hierarchy);
-      // Static linear: one solve of K u = f. Solver tolerance 1e-12 on the residual leaves a
-      // solution error of ~cond(K)/1e4 x 1e-12 << 1e-8 for these meshes.
+/// Multigrid and MG-PCG on both hierarchies (and Jacobi-PCG) against CHOLMOD: one static linear
+/// solve and three corotated dynamic steps.
+void expect_solutions_equal_cholmod(const MeshCase& c) {
+  const std::vector<TetMesh> coarse = c.coarse();
+  for (const auto& [name, hierarchy] : {std::pair{"multigrid", "meshes"}, {"mgpcg", "meshes"},
+                                        {"multigrid", "lattice"}, {"mgpcg", "lattice"},
+                                        {"jacobi-pcg", "lattice"}}) {
+    const std::string what = c.name + ": " + name + " on " + hierarchy;
+    try {
+      // Static linear: one solve of K u = f to relative residual 1e-10, which leaves a solution
+      // error of ~cond(K) x 1e-10 / 1e4 << 1e-8 for these meshes.
       FeProblem p = problem_for(c);
       auto none = make_rotation_extractor("none", p.mesh);
       auto direct = make_cholmod_solver();
       const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
-      auto mg = make_linear_solver(analysis(name, 1e-12, hierarchy), p, coarse);
+      auto mg = make_linear_solver(analysis(name, 1e-10, hierarchy), p, coarse);
+      if (c.lattice_vcycles_stall && std::string(name) == "multigrid" && std::string(hierarchy) == "lattice") {
+        // Says so instead of returning a solution that misses its tolerance.
+        EXPECT_THROW(solve_static(p, *none, *mg, {false, 1, 1e-8, 1}), NotConverged) << what;
+        continue;
+      }
       const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
-      EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm())
-          << c.name << " " << name;
+      EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm()) << what;
       // Fixed DOFs exactly fixed (the transfer never touches them).
       for (int d = 0; d < p.num_dofs(); ++d)
         if (p.dirichlet.fixed[d]) {
-          ASSERT_EQ(got.displacement[d], 0.0) << c.name << " " << name;
+          ASSERT_EQ(got.displacement[d], 0.0) << what;
         }
       // Three corotated dynamic steps: A = M + dt^2 Ktilde changes every step.
       auto polar_a = make_rotation_extractor("polar", p.mesh);
@@ -126,7 +142,65 @@ TEST(MultigridSolver, StaticAndDynamicSolutionsEqualCholmod) {
       auto mg_dyn = make_linear_solver(analysis(name, 1e-12, hierarchy), p, coarse);
       const SimulationResult dgot = solve_dynamic(p, *polar_b, *mg_dyn, o);
       EXPECT_LT((dgot.displacement - dref.displacement).norm(), 1e-8 * dref.displacement.norm())
-          << c.name << " " << name << " dynamic";
+          << what << " dynamic";
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << what << ": " << e.what();
+    }
+  }
+}
+
+TEST(MultigridSolver, StaticAndDynamicSolutionsEqualCholmod) {
+  for (const MeshCase& c : meshes()) expect_solutions_equal_cholmod(c);
+}
+
+TEST(MultigridSolver, QuadrupedSolutionsEqualCholmod) {
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::Quadruped;
+  spec.size = 0.1;  // about 3.7k tets; coarse levels re-meshed at 0.2 and 0.4
+  expect_solutions_equal_cholmod({"quadruped", spec, load_scene_mesh(spec), {}, 0, true});
+}
+
+TEST(MultigridSolver, BunnySolutionsEqualCholmod) {
+  const auto models = test::models_dir();
+  if (models.empty() || !std::filesystem::exists(models / "bunny_L2.stl"))
+    GTEST_SKIP() << "models folder not found (set COROFEM_MODELS)";
+  // The small bunny (L1) over the coarsest surface (L2), as the report builds its hierarchy.
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::Surface;
+  spec.path = models / "bunny_L1.stl";
+  spec.size = 0.09365;
+  MeshSpec coarse = spec;
+  coarse.path = models / "bunny_L2.stl";
+  coarse.size = 0.18579;
+  spec.levels = {coarse};
+  expect_solutions_equal_cholmod({"bunny", spec, load_scene_mesh(spec), {}, 2, true});
+}
+
+TEST(MultigridSolver, IterationCapAboveToleranceIsNotConverged) {
+  // Two iterations cannot reach 1e-14: every iterative solver says so, naming itself.
+  const std::vector<MeshCase> cases = meshes();
+  FeProblem p = problem_for(cases[0]);
+  Eigen::VectorXd b;
+  const BrcMatrix system = small_strain_system(p, b);
+  for (const char* name : {"multigrid", "mgpcg", "jacobi-pcg"}) {
+    std::unique_ptr<LinearSolver> solver;
+    if (name == std::string("jacobi-pcg")) {
+      solver = make_jacobi_pcg_solver(1e-14, 2);
+    } else {
+      MultigridParams params = multigrid_params(analysis(name, 1e-14, "lattice"));
+      params.max_iterations = 2;
+      solver = std::make_unique<MultigridSolver>(
+          p.stiffness, build_hierarchy(p.mesh, fixed_vertices(p.dirichlet), params.hierarchy, {}), params,
+          name == std::string("mgpcg"));
+    }
+    solver->set_matrix(system);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+    try {
+      solver->solve(b, x);
+      ADD_FAILURE() << name << " returned a solution above its tolerance";
+    } catch (const NotConverged& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("after 2 "), std::string::npos) << e.what();
     }
   }
 }

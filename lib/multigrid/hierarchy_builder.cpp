@@ -51,6 +51,7 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
               {"mesh_vertices", mesh.num_vertices()},
               {"mesh_tets", mesh.num_tets()},
               {"outside_points", fit.outside},
+              {"far_outside_points", fit.far_outside},
               {"located_points", fit.located},
               {"max_outside_distance_edges", fit.max_outside_distance},
               {"max_abs_weight", fit.max_abs_weight},

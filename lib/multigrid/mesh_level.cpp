@@ -28,6 +28,7 @@ CoarseLevel make_mesh_level(const std::vector<Vec3>& points, const std::vector<c
       if (where.distance > 0) {
         ++fit.outside;
         farthest = std::max(farthest, where.distance);
+        if (where.distance > edge) ++fit.far_outside;
       }
       std::array<std::pair<int, double>, 4> entries;
       for (int v = 0; v < 4; ++v) entries[v] = {coarse.tets[where.tet][v], where.weights[v]};
@@ -42,10 +43,10 @@ CoarseLevel make_mesh_level(const std::vector<Vec3>& points, const std::vector<c
     t.p_start.push_back(static_cast<int>(t.p_col.size()));
   }
   fit.max_outside_distance = edge > 0 ? farthest / edge : 0;
-  if (fit.located > 0 && 2 * fit.outside > fit.located)
+  if (fit.located > 0 && 2 * fit.far_outside > fit.located)
     throw InputError("coarse mesh '" + name + "' does not overlap the level above: " +
-                     std::to_string(fit.outside) + " of " + std::to_string(fit.located) +
-                     " points lie outside it");
+                     std::to_string(fit.far_outside) + " of " + std::to_string(fit.located) +
+                     " points lie outside it, farther than its mean edge length " + std::to_string(edge));
   if (farthest > 0.25 * diagonal)
     throw InputError("coarse mesh '" + name + "' does not cover the level above: a point lies " +
                      std::to_string(farthest) + " outside it (bounding-box diagonal " +

@@ -160,6 +160,7 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
   stats.residual = rk / b_norm;
   stats.convergence_factor =
       stats.iterations > 0 && r0 > 0 ? std::pow(rk / r0, 1.0 / stats.iterations) : 0;
+  if (params_.vcycles == 0) require_converged(stats, params_.tolerance, "multigrid", "V-cycles");
   return stats;
 }
 

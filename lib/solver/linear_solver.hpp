@@ -15,6 +15,12 @@ struct SolveStats {
   double convergence_factor = 0;  ///< (r_k / r_0)^(1/k) for iterative solvers
 };
 
+/// Throws NotConverged when an iterative solve stopped at its cap above `tolerance`: a solution
+/// that silently misses its accuracy would pass as a result. `what` names the solver and its
+/// unit of work ("multigrid", "V-cycles").
+void require_converged(const SolveStats& stats, double tolerance, const std::string& solver,
+                       const std::string& unit);
+
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;

@@ -43,6 +43,7 @@ SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen
   stats.residual = rk / b_norm;
   stats.convergence_factor =
       stats.iterations > 0 && r0 > 0 ? std::pow(rk / r0, 1.0 / stats.iterations) : 0;
+  require_converged(stats, tolerance, name, "CG iterations");
   return stats;
 }
 

@@ -12,8 +12,8 @@ namespace corofem {
 using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& z)>;
 
 /// Iterates from x (the initial guess) until |b - A x| <= tolerance |b| or max_iterations.
-/// `name` prefixes the NumericalFault thrown on a non-finite residual. Returns the relative
-/// residual and the convergence factor.
+/// `name` prefixes the NumericalFault thrown on a non-finite residual and the NotConverged thrown
+/// at max_iterations above the tolerance. Returns the relative residual and the convergence factor.
 SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                              const Preconditioner& precondition, double tolerance,
                              int max_iterations, const char* name);
