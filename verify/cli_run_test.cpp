@@ -89,6 +89,8 @@ const BadRun kBadRuns[] = {
        "fixed": [{"box": [[5,5,5],[6,6,6]]}]})", "fixed[0].box selects no vertex"},
     {"RigidMotionFree", R"({"mesh": {"box": [1,1,1], "cells": [2,2,2]}, "material": {"young": 1, "poisson": 0.3},
        "fixed": [{"box": [[0,0,0],[0,0,1]]}]})", "leaves rigid motions free"},
+    {"NumberOverflow", R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": -1e400, "poisson": 0.3}})",
+     "key 'young' is outside the range of a double"},
     {"NoSupportsStatic", R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3}})",
      "leaves rigid motions free"},
 };

@@ -2,6 +2,8 @@
 // value.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/errors.hpp"
 #include "scene/scene.hpp"
 
@@ -32,6 +34,37 @@ TEST(Scene, RelativePathsResolveAgainstSceneFolder) {
   const Scene s = parse_scene(j, "/base/dir", "s.json");
   EXPECT_EQ(s.mesh.path, std::filesystem::path("/base/dir/meshes/a.msh"));
   EXPECT_EQ(*s.output.vtu, std::filesystem::path("/base/dir/out/r.vtu"));
+}
+
+TEST(Scene, MultigridKeysOfAnotherSolverAreIgnoredWithAWarning) {
+  // A scene that sweeps solvers keeps its multigrid settings when it switches to CHOLMOD.
+  auto j = minimal();
+  j["analysis"] = {{"solver", "cholmod"}, {"levels", 4}, {"smoothing", 2}, {"hierarchy", "lattice"}};
+  testing::internal::CaptureStderr();
+  const Scene s = parse_scene(j, "/", "s.json");
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(s.analysis.levels, 1);
+  EXPECT_NE(err.find("analysis.levels, analysis.smoothing, analysis.hierarchy belong to multigrid solvers"),
+            std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;  // one line
+}
+
+TEST(Scene, CoarseMeshesAndHierarchy) {
+  auto j = minimal();
+  j["mesh"]["levels"] = {{{"box", {1, 0.1, 0.1}}, {"cells", {2, 1, 1}}}, {{"file", "c.msh"}}};
+  j["analysis"] = {{"solver", "mgpcg"}};
+  Scene s = parse_scene(j, "/base", "s.json");
+  ASSERT_EQ(s.mesh.levels.size(), 2u);
+  EXPECT_EQ(s.mesh.levels[0].kind, MeshSpec::Kind::Box);
+  EXPECT_EQ(s.mesh.levels[1].path, std::filesystem::path("/base/c.msh"));
+  EXPECT_EQ(s.analysis.hierarchy, "meshes");  // the default where coarse meshes exist
+  // A mesh file without coarse meshes cannot be re-meshed: lattice by default, meshes refused.
+  j = minimal();
+  j["mesh"] = {{"file", "a.msh"}};
+  j["analysis"] = {{"solver", "multigrid"}};
+  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.hierarchy, "lattice");
+  j["analysis"]["hierarchy"] = "meshes";
+  EXPECT_THROW(parse_scene(j, "/", "s.json"), InputError);
 }
 
 struct BadCase {
@@ -79,7 +112,13 @@ const BadCase kBadCases[] = {
     {"GravityNeedsDensity", R"({"gravity": [0, 0, -9.81]})", "material.density is required"},
     {"DynamicNeedsDensity", R"({"analysis": {"type": "dynamic"}})", "material.density is required"},
     {"OutputRotationsType", R"({"output": {"rotations": 1}})", "output.rotations must be true or false"},
-    {"LevelsWithCholmod", R"({"analysis": {"levels": 3}})", "analysis.levels must be 1 with solver"},
+    {"LevelsOutOfRange", R"({"analysis": {"levels": 17}})", "analysis.levels must be in [1, 16]"},
+    {"UnknownHierarchy", R"({"analysis": {"solver": "mgpcg", "hierarchy": "octree"}})",
+     "analysis.hierarchy must be one of"},
+    {"CoarseMeshUnknownKey", R"({"mesh": {"levels": [{"box": [1, 1, 1], "cells": [2, 1, 1], "colour": 1}]}})",
+     "mesh.levels[0].colour is not a known key"},
+    {"CoarseMeshTwoSources", R"({"mesh": {"levels": [{"box": [1, 1, 1], "cells": [2, 1, 1], "file": "c.msh"}]}})",
+     "mesh.levels[0].file must be given alone"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Cases, BadScenes, ::testing::ValuesIn(kBadCases),

@@ -148,7 +148,8 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
 json with_analysis(json scene, const json& changes) {
   for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
   const std::string solver = scene["analysis"].value("solver", "cholmod");
-  if (solver != "mgpcg" && solver != "multigrid") scene["analysis"]["levels"] = 1;
+  if (solver != "mgpcg" && solver != "multigrid")
+    for (const char* key : {"levels", "vcycles", "smoothing", "galerkin", "hierarchy"}) scene["analysis"].erase(key);
   return scene;
 }
 

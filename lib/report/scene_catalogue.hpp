@@ -32,7 +32,7 @@ SceneSize file_model_size(const std::string& model);
 nlohmann::json table_scene(const std::string& model, SceneSize size, int steps, double tolerance,
                            const std::filesystem::path& models_dir = {});
 
-/// `scene` with analysis keys replaced by `changes` (levels reset to 1 for solvers without levels).
+/// `scene` with analysis keys replaced by `changes` (the multigrid keys dropped for other solvers).
 nlohmann::json with_analysis(nlohmann::json scene, const nlohmann::json& changes);
 
 /// The region whose mean displacement the resolution sweep compares (a box [[lo],[hi]]).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -165,8 +166,16 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
     r.reject_unknown_keys();
   }
-  if (a.levels > 1 && !multigrid)
-    f.fail("levels", "1 with solver '" + a.solver + "' (levels belong to multigrid solvers)");
+  if (!multigrid) {
+    // A scene that sweeps solvers keeps its multigrid settings: ignored here, said once.
+    std::string ignored;
+    for (const char* key : {"levels", "vcycles", "smoothing", "galerkin", "hierarchy"})
+      if (f.has(key)) ignored += (ignored.empty() ? "" : ", ") + f.path_of(key);
+    if (!ignored.empty())
+      std::cerr << "corofem: warning: scene '" << f.file() << "': " << ignored
+                << " belong to multigrid solvers; ignored with solver '" << a.solver << "'\n";
+    a.levels = 1;
+  }
   f.reject_unknown_keys();
 }
 
@@ -229,7 +238,8 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   s.analysis.hierarchy = remeshable ? "meshes" : "lattice";
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
-  if (s.analysis.hierarchy == "meshes" && !remeshable)
+  const bool multigrid = s.analysis.solver == "multigrid" || s.analysis.solver == "mgpcg";
+  if (multigrid && s.analysis.hierarchy == "meshes" && !remeshable)
     throw InputError("scene '" + name + "': analysis.hierarchy 'meshes' needs mesh.levels for a "
                      "mesh read from a file (it cannot be re-meshed); or use 'lattice'");
   if (const nlohmann::json* output = top.get("output")) {
@@ -255,10 +265,19 @@ Scene load_scene(const fs::path& file) {
   std::ifstream in(file);
   if (!in) throw InputError("scene file '" + file.string() + "' cannot be read");
   nlohmann::json json;
+  std::string last_key;  // the key whose value the parser was reading when it failed
+  const nlohmann::json::parser_callback_t track = [&](int, nlohmann::json::parse_event_t event,
+                                                      nlohmann::json& parsed) {
+    if (event == nlohmann::json::parse_event_t::key) last_key = parsed.get<std::string>();
+    return true;
+  };
   try {
-    json = nlohmann::json::parse(in);
+    json = nlohmann::json::parse(in, track);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError("scene '" + file.string() + "' is not valid JSON: " + e.what());
+  } catch (const nlohmann::json::out_of_range& e) {  // a number beyond a double's range
+    throw InputError("scene '" + file.string() + "': the value of key '" + last_key +
+                     "' is outside the range of a double (" + e.what() + ")");
   }
   return parse_scene(json, file.parent_path(), file.string());
 }
