@@ -275,7 +275,12 @@ TEST(MultigridSolver, TwoGridEqualsDenseOperator) {
     }
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
   const Eigen::MatrixXd coarse_correction = I - R.transpose() * (R * A * R.transpose()).ldlt().solve(R * A);
-  const Eigen::MatrixXd E = (I - U.lu().solve(A)) * coarse_correction * (I - L.lu().solve(A));
+  // Row-major LU: libgmsh carries its own PartialPivLU<MatrixXd>, and one instantiation of it in
+  // this binary would be bound into gmsh's calls too (ASan: bad-free inside gmsh's Eigen).
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::PartialPivLU<RowMajorMatrix> lu_u{RowMajorMatrix(U)}, lu_l{RowMajorMatrix(L)};
+  const Eigen::MatrixXd E = (I - Eigen::MatrixXd(lu_u.solve(RowMajorMatrix(A)))) * coarse_correction *
+                            (I - Eigen::MatrixXd(lu_l.solve(RowMajorMatrix(A))));
   Eigen::VectorXd x = Eigen::VectorXd::Random(n);
   for (int d = 0; d < n; ++d)
     if (p.dirichlet.fixed[d]) x[d] = 0;
