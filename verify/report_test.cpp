@@ -195,6 +195,31 @@ TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
   EXPECT_EQ(got, expected);
 }
 
+TEST(Report, RendererDrawsEveryChartOfTheFixtureWithoutWarnings) {
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  const fs::path golden = test::source_dir() / "verify" / "golden" / "report";
+  TempDir copy;
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
+    fs::copy_file(golden / file, copy / file);
+  const std::string script = (test::source_dir() / "reports" / "render").string();
+  const fs::path err = copy / "stderr.txt";
+  ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>'" + err.string() + "' >/dev/null").c_str()), 0);
+  const std::string messages = read_text(err);
+  const std::string report = read_text(copy / "REPORT.md");
+  if (report.find("matplotlib was not available") != std::string::npos) GTEST_SKIP() << "no matplotlib";
+  EXPECT_EQ(messages.find("Warning"), std::string::npos) << messages;
+  // Every chart REPORT.md links to exists.
+  std::size_t at = 0, links = 0;
+  while ((at = report.find("](charts/", at)) != std::string::npos) {
+    const std::size_t end = report.find(')', at);
+    const std::string name = report.substr(at + 2, end - at - 2);
+    EXPECT_TRUE(fs::exists(copy / name)) << name;
+    ++links;
+    at = end;
+  }
+  EXPECT_GE(links, 4u);  // phases, speed-accuracy, two flutter charts
+}
+
 TEST(Report, FailingCasesAreRecordedAndTheReportGoesOn) {
   // A models folder whose surfaces are not STL: every table, sweep and model case fails with an
   // input error naming the file; the report still writes all its records and exits 0.
