@@ -178,18 +178,26 @@ TEST(Report, MarkdownIsRedrawnFromTheJsonAlone) {
   EXPECT_EQ(original, redrawn);
 }
 
+fs::path golden_dir() { return test::source_dir() / "verify" / "golden" / "report"; }
+
+/// Copies the golden JSON records into `dir` and runs the renderer on them with `options`,
+/// its stderr to `stderr_file`; returns its exit status.
+int render_golden_fixture(const TempDir& dir, const std::string& options, const std::string& stderr_file) {
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
+    fs::copy_file(golden_dir() / file, dir / file);
+  const std::string script = (test::source_dir() / "reports" / "render").string();
+  return std::system(("'" + script + "' '" + dir.path().string() + "' " + options + " 2>'" + stderr_file +
+                      "' >/dev/null").c_str());
+}
+
 TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
   if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
   // verify/golden/report: JSON records of a smoke run and the REPORT.md drawn from them with
   // --blank-times. A change of the report's format shows here; regenerate with
   // reports/render verify/golden/report --blank-times and review the diff.
-  const fs::path golden = test::source_dir() / "verify" / "golden" / "report";
   TempDir copy;
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
-    fs::copy_file(golden / file, copy / file);
-  const std::string script = (test::source_dir() / "reports" / "render").string();
-  ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' --blank-times 2>/dev/null").c_str()), 0);
-  std::string expected = read_text(golden / "REPORT.md"), got = read_text(copy / "REPORT.md");
+  ASSERT_EQ(render_golden_fixture(copy, "--blank-times", "/dev/null"), 0);
+  std::string expected = read_text(golden_dir() / "REPORT.md"), got = read_text(copy / "REPORT.md");
   if (got.find("matplotlib was not available") != std::string::npos)
     GTEST_SKIP() << "no matplotlib: the golden file has the charts' links";
   EXPECT_EQ(got, expected);
@@ -197,13 +205,9 @@ TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
 
 TEST(Report, RendererDrawsEveryChartOfTheFixtureWithoutWarnings) {
   if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
-  const fs::path golden = test::source_dir() / "verify" / "golden" / "report";
   TempDir copy;
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
-    fs::copy_file(golden / file, copy / file);
-  const std::string script = (test::source_dir() / "reports" / "render").string();
   const fs::path err = copy / "stderr.txt";
-  ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>'" + err.string() + "' >/dev/null").c_str()), 0);
+  ASSERT_EQ(render_golden_fixture(copy, "", err.string()), 0);
   const std::string messages = read_text(err);
   const std::string report = read_text(copy / "REPORT.md");
   if (report.find("matplotlib was not available") != std::string::npos) GTEST_SKIP() << "no matplotlib";
