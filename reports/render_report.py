@@ -18,6 +18,7 @@ try:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.patches
     import matplotlib.ticker
 
     HAVE_MPL = True
@@ -355,6 +356,44 @@ def render_cache(cache, md):
 
 
 # ----------------------------------------------------------------------------------------------
+STATUS_COLOURS = {"stable": "#8fd18f", "flutter": "#f2c14e", "diverged": "#e76f6f"}
+
+
+def status_cause(r):
+    """One short line on why a run is not stable (empty when it is)."""
+    if r["status"] == "flutter":
+        return f"RMS {num(r.get('flutter_rms_rad'), 2)} rad/step"
+    if r["status"] == "diverged":
+        return f"step {r.get('diverged_step')}: {(r.get('divergence') or {}).get('kind', 'diverged')}"
+    return f"{r['inverted_final']} inverted" if r.get("inverted_final") else ""
+
+
+def draw_status_matrix(runs, scenes, methods, folder):
+    """Scene x method grid coloured by status, each cell with its cause when not stable."""
+    fig, ax = plt.subplots(figsize=(1.5 * len(methods) + 2.2, 0.62 * len(scenes) + 1.2))
+    for i, scene in enumerate(scenes):
+        for j, method in enumerate(methods):
+            r = next((r for r in runs if r["scene"] == scene and r["method"] == method), None)
+            status = r["status"] if r else "not run"
+            ax.add_patch(matplotlib.patches.Rectangle((j, i), 1, 1, facecolor=STATUS_COLOURS.get(status, "white"),
+                                                      edgecolor="white", linewidth=2))
+            cause = status_cause(r) if r else ""
+            ax.text(j + 0.5, i + 0.5, status + ("\n" + cause if cause else ""), ha="center", va="center",
+                    fontsize=8)
+    ax.set_xlim(0, len(methods))
+    ax.set_ylim(len(scenes), 0)
+    ax.set_xticks([j + 0.5 for j in range(len(methods))])
+    ax.set_xticklabels(methods, fontsize=8, rotation=20, ha="right")
+    ax.set_yticks([i + 0.5 for i in range(len(scenes))])
+    ax.set_yticklabels(scenes, fontsize=8)
+    ax.tick_params(length=0)
+    for side in ax.spines.values():
+        side.set_visible(False)
+    ax.set_title("Stability: status by scene and rotation method", fontsize=10)
+    fig.tight_layout()
+    return save(fig, folder, "stability_status.png")
+
+
 def render_stability(st, folder, md):
     md.append("## Stability where methods fail\n\n")
     md.append(context_lines(st))
@@ -401,6 +440,7 @@ def render_stability(st, folder, md):
     md.append("\n")
     if not HAVE_MPL:
         return
+    md.append(f"![status]({draw_status_matrix(runs, scenes, methods, folder)})\n\n")
     for s in scenes:
         fig, ax = plt.subplots(figsize=(7, 3.6))
         for r in runs:
