@@ -19,7 +19,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   const double dt = options.dt;
   result.displacement = Eigen::VectorXd::Zero(n);
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
-  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), f0;
+  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), f0, b;
+  BrcMatrix system = problem.stiffness;  // the step's matrix; its pattern is allocated once
   for (int step = 1; step <= options.steps; ++step) {
     const auto step_start = std::chrono::steady_clock::now();
     const std::map<std::string, double> before = result.timings_ms;
@@ -28,28 +29,36 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     for (int i = 0; i < n; ++i)
       bc.value[i] = bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
     const auto p = problem.positions(result.displacement);
-    result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
+    clock.time("checks", [&] { result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p)); });
     linearize(problem, rotate, p, result.rotations, f0, clock);
-    Eigen::VectorXd b =
-        problem.mass.cwiseProduct(velocity) +
-        dt * (problem.external_force -
-              internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement));
-    // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks.
-    BrcMatrix system = problem.stiffness;
-    const double k_scale = dt * options.rayleigh_beta + dt * dt;
-    for (double& value : system.values) value *= k_scale;
-    for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
-      auto block = system.block(problem.assembly.diagonal[v]);
-      for (int c = 0; c < 3; ++c) block(c, c) += (1 + dt * options.rayleigh_alpha) * problem.mass[3 * v + c];
-    }
-    check_finite(problem, b, "force", "step " + std::to_string(step));
-    apply_dirichlet(bc, system, b);
+    // Every pass of the step is in a named phase: "forces" (the right-hand side) and "system"
+    // (A and its supports) besides rotate, assemble, update and solve.
+    clock.time("forces", [&] {
+      b = problem.mass.cwiseProduct(velocity) +
+          dt * (problem.external_force -
+                internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement));
+    });
+    clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
+    clock.time("system", [&] {
+      // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks; the
+      // scaled copy is one pass over Ktilde into the preallocated A.
+      const double k_scale = dt * options.rayleigh_beta + dt * dt;
+      const std::vector<double>& k = problem.stiffness.values;
+      for (std::size_t i = 0; i < k.size(); ++i) system.values[i] = k_scale * k[i];
+      for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
+        auto block = system.block(problem.assembly.diagonal[v]);
+        for (int c = 0; c < 3; ++c) block(c, c) += (1 + dt * options.rayleigh_alpha) * problem.mass[3 * v + c];
+      }
+      apply_dirichlet(bc, system, b);
+    });
     // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
     clock.time("update", [&] { solver.set_matrix(system); });
     const SolveStats stats = clock.time("solve", [&] { return solver.solve(b, velocity); });
     result.linear_iterations += stats.iterations;
     result.displacement += dt * velocity;
-    check_finite(problem, result.displacement, "displacement", "step " + std::to_string(step));
+    clock.time("checks", [&] {
+      check_finite(problem, result.displacement, "displacement", "step " + std::to_string(step));
+    });
     result.steps = step;
     if (on_step) {
       std::map<std::string, double> phase_ms;
