@@ -80,14 +80,9 @@ BuiltHierarchy paper_transfers(const std::string& model, HierarchyKind kind) {
   HierarchyParams params;
   params.kind = kind;
   params.levels = hierarchy_levels(model, kind);
-  std::vector<TetMesh> coarse;
-  if (kind == HierarchyKind::Meshes) {
-    const MeshSpec fine = paper_mesh_spec(model);
-    for (int h = 1; h < params.levels; ++h) {
-      coarse.push_back(load_scene_mesh(coarse_mesh_spec(fine, h, model)));
-      validate_mesh(coarse.back());
-    }
-  }
+  const std::vector<TetMesh> coarse =
+      kind == HierarchyKind::Meshes ? coarse_meshes(paper_mesh_spec(model), params.levels, model)
+                                    : std::vector<TetMesh>{};
   return build_hierarchy(p.mesh, paper_system(model).fixed, params, coarse);
 }
 

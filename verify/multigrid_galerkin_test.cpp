@@ -33,6 +33,14 @@ void randomize(BrcMatrix& a, std::mt19937& rng) {
       }
 }
 
+/// The mesh's stiffness pattern with random symmetric values.
+BrcMatrix random_symmetric(const TetMesh& mesh, std::mt19937& rng) {
+  AssemblyMap map;
+  BrcMatrix a = make_stiffness_pattern(mesh, map);
+  randomize(a, rng);
+  return a;
+}
+
 double relative_frobenius(const Eigen::MatrixXd& x, const Eigen::MatrixXd& ref) {
   return (x - ref).norm() / ref.norm();
 }
@@ -59,10 +67,8 @@ void check_all_methods(const BrcMatrix& a, const Transfer& t) {
 
 TEST(Galerkin, AllMethodsEqualOraclesOnBoxHierarchy) {
   const TetMesh mesh = make_box_mesh({1, 0.8, 0.6}, {5, 4, 3});
-  AssemblyMap map;
-  BrcMatrix a = make_stiffness_pattern(mesh, map);
   std::mt19937 rng(1);
-  randomize(a, rng);
+  BrcMatrix a = random_symmetric(mesh, rng);
   const CoarseLevel coarse = make_lattice_level(mesh.rest, {}, 0.35);
   ASSERT_GT(coarse.transfer.coarse, 8);
   check_all_methods(a, coarse.transfer);
@@ -75,9 +81,7 @@ TEST(Galerkin, RandomSmallHierarchies) {
   for (int trial = 0; trial < 10; ++trial) {
     std::uniform_int_distribution<int> n(2, 4);
     const TetMesh mesh = make_box_mesh({1, 1, 1}, {n(rng), n(rng), n(rng)});
-    AssemblyMap map;
-    BrcMatrix a = make_stiffness_pattern(mesh, map);
-    randomize(a, rng);
+    BrcMatrix a = random_symmetric(mesh, rng);
     std::vector<Vec3> jittered = mesh.rest;
     std::uniform_real_distribution<double> u(-0.05, 0.05);
     for (auto& p : jittered) p += Vec3(u(rng), u(rng), u(rng));
@@ -92,10 +96,8 @@ TEST(Galerkin, ContinuationBytesBeyond127Pairs) {
   // Two fine vertices, each interpolated from 12 coarse vertices: the block A_01 is scattered to
   // 12 x 12 = 144 blocks of E, more than one control byte holds.
   TetMesh mesh = make_box_mesh({1, 1, 1}, {1, 1, 1});
-  AssemblyMap map;
-  BrcMatrix a = make_stiffness_pattern(mesh, map);
   std::mt19937 rng(3);
-  randomize(a, rng);
+  BrcMatrix a = random_symmetric(mesh, rng);
   Transfer t;
   t.fine = mesh.num_vertices();
   t.coarse = 30;
@@ -141,10 +143,8 @@ void check_hierarchy(const BrcMatrix& a, std::vector<Transfer> transfers, int le
 
 TEST(Galerkin, LatticeHierarchyUpdateMatchesOraclesOnEveryLevel) {
   const TetMesh mesh = make_box_mesh({1, 1, 1}, {6, 6, 6});
-  AssemblyMap map;
-  BrcMatrix a = make_stiffness_pattern(mesh, map);
   std::mt19937 rng(4);
-  randomize(a, rng);
+  BrcMatrix a = random_symmetric(mesh, rng);
   HierarchyParams params;
   params.kind = HierarchyKind::Lattice;
   params.first_cell_factor = 0.25 / mean_edge_length(mesh);  // cell 0.25
@@ -163,9 +163,7 @@ TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> jitter(-0.02, 0.02);
   for (Vec3& x : coarse[0].rest) x += Vec3(jitter(rng), jitter(rng), jitter(rng));
-  AssemblyMap map;
-  BrcMatrix a = make_stiffness_pattern(fine, map);
-  randomize(a, rng);
+  BrcMatrix a = random_symmetric(fine, rng);
   std::vector<char> fixed(fine.rest.size(), 0);
   for (int v = 0; v < fine.num_vertices(); ++v) fixed[v] = fine.rest[v].x() < 1e-9;
   HierarchyParams params;

@@ -35,9 +35,7 @@ struct MeshCase {
   /// quadruped to 2.5e-3, the bunny to 3.4e-10, rate 0.957); MG-PCG on the same lattice converges.
   bool lattice_vcycles_stall = false;
   /// Levels 1 and 2 of the meshes hierarchy.
-  std::vector<TetMesh> coarse() const {
-    return {load_scene_mesh(coarse_mesh_spec(spec, 1, name)), load_scene_mesh(coarse_mesh_spec(spec, 2, name))};
-  }
+  std::vector<TetMesh> coarse() const { return coarse_meshes(spec, 3, name); }
 };
 
 MeshSpec box_spec(const Vec3& size, std::array<int, 3> cells) {

@@ -51,27 +51,8 @@ CoarseLevel make_lattice_level(const std::vector<Vec3>& points, const std::vecto
       }
     t.p_start.push_back(static_cast<int>(t.p_col.size()));
   }
-  // Drop lattice vertices without support and renumber.
-  std::vector<int> renumber(coords.size(), -1);
-  for (int i : t.p_col) renumber[i] = 0;
-  int next = 0;
-  for (std::size_t i = 0; i < coords.size(); ++i)
-    if (renumber[i] == 0) {
-      renumber[i] = next++;
-      level.points.push_back(origin + cell * Vec3(coords[i][0], coords[i][1], coords[i][2]));
-    }
-  for (int& i : t.p_col) i = renumber[i];
-  for (int l = 0; l < t.fine; ++l) {  // renumbering keeps ids unique; restore sorted order
-    std::vector<std::pair<int, double>> row;
-    for (int k = t.p_start[l]; k < t.p_start[l + 1]; ++k) row.emplace_back(t.p_col[k], t.p_weight[k]);
-    std::sort(row.begin(), row.end());
-    for (std::size_t m = 0; m < row.size(); ++m) {
-      t.p_col[t.p_start[l] + m] = row[m].first;
-      t.p_weight[t.p_start[l] + m] = row[m].second;
-    }
-  }
-  t.coarse = next;
-  t.transpose_prolongation();
+  for (int i : t.keep_supported_coarse_vertices(static_cast<int>(coords.size())))
+    level.points.push_back(origin + cell * Vec3(coords[i][0], coords[i][1], coords[i][2]));
   return level;
 }
 

@@ -51,19 +51,8 @@ CoarseLevel make_mesh_level(const std::vector<Vec3>& points, const std::vector<c
     throw InputError("coarse mesh '" + name + "' does not cover the level above: a point lies " +
                      std::to_string(farthest) + " outside it (bounding-box diagonal " +
                      std::to_string(diagonal) + ")");
-  // Keep only coarse vertices with support, in their original order (ids stay sorted per row).
-  std::vector<int> renumber(coarse.rest.size(), -1);
-  for (int i : t.p_col) renumber[i] = 0;
-  int next = 0;
-  for (std::size_t i = 0; i < renumber.size(); ++i)
-    if (renumber[i] == 0) {
-      renumber[i] = next++;
-      level.points.push_back(coarse.rest[i]);
-    }
-  fit.dropped_vertices = static_cast<int>(coarse.rest.size()) - next;
-  for (int& i : t.p_col) i = renumber[i];
-  t.coarse = next;
-  t.transpose_prolongation();
+  for (int i : t.keep_supported_coarse_vertices(coarse.num_vertices())) level.points.push_back(coarse.rest[i]);
+  fit.dropped_vertices = coarse.num_vertices() - t.coarse;
   if (fit_out) *fit_out = fit;
   return level;
 }

@@ -40,8 +40,6 @@ class MultigridSolver : public LinearSolver {
   /// One V-cycle from level h for A_h x = b (x is the initial guess on entry).
   void vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
-  /// Statistics of every solve since construction.
-  const std::vector<SolveStats>& solve_log() const { return solve_log_; }
   /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
   /// complexity, setup times, and the median rho and iterations over the solves so far.
   nlohmann::json describe() const;

@@ -20,6 +20,20 @@ void Transfer::transpose_prolongation() {
     }
 }
 
+std::vector<int> Transfer::keep_supported_coarse_vertices(int candidates) {
+  std::vector<int> renumber(candidates, -1), kept;
+  for (int i : p_col) renumber[i] = 0;
+  for (int i = 0; i < candidates; ++i)
+    if (renumber[i] == 0) {
+      renumber[i] = static_cast<int>(kept.size());
+      kept.push_back(i);
+    }
+  for (int& i : p_col) i = renumber[i];  // monotone: rows stay sorted
+  coarse = static_cast<int>(kept.size());
+  transpose_prolongation();
+  return kept;
+}
+
 void Transfer::restrict_to(const Eigen::VectorXd& f, Eigen::VectorXd& c) const {
   c.setZero(3 * coarse);
   for (int i = 0; i < coarse; ++i) {

@@ -20,6 +20,10 @@ struct Transfer {
 
   /// Builds R's rows from P's (call after filling p_*).
   void transpose_prolongation();
+  /// Finishes a transfer whose p_col index `candidates` coarse vertices: drops those that support
+  /// no fine vertex (their rows of E would be zero), renumbers the rest in their original order
+  /// (so P's rows stay sorted), sets `coarse` and builds R. Returns the kept candidates' ids.
+  std::vector<int> keep_supported_coarse_vertices(int candidates);
   /// x_coarse = R x_fine and x_fine += R^T x_coarse (3 components per vertex).
   void restrict_to(const Eigen::VectorXd& fine, Eigen::VectorXd& coarse) const;
   void prolongate_add(const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/errors.hpp"
+#include "scene/scene.hpp"
 
 namespace corofem {
 namespace fs = std::filesystem;
@@ -148,8 +149,8 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
 json with_analysis(json scene, const json& changes) {
   for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
   const std::string solver = scene["analysis"].value("solver", "cholmod");
-  if (solver != "mgpcg" && solver != "multigrid")
-    for (const char* key : {"levels", "vcycles", "smoothing", "galerkin", "hierarchy"}) scene["analysis"].erase(key);
+  if (!is_multigrid_solver(solver))
+    for (const char* key : kMultigridAnalysisKeys) scene["analysis"].erase(key);
   return scene;
 }
 

@@ -32,12 +32,10 @@ MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_
   return spec;
 }
 
-std::vector<TetMesh> coarse_meshes(const Scene& scene) {
-  const AnalysisSpec& a = scene.analysis;
+std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name) {
   std::vector<TetMesh> meshes;
-  if (!(a.solver == "multigrid" || a.solver == "mgpcg") || a.hierarchy != "meshes") return meshes;
-  for (int h = 1; h < a.levels; ++h) {
-    const MeshSpec spec = coarse_mesh_spec(scene.mesh, h, scene.name);
+  for (int h = 1; h < levels; ++h) {
+    const MeshSpec spec = coarse_mesh_spec(fine, h, name);
     TetMesh mesh = load_scene_mesh(spec);
     if (spec.reorder) sort_for_locality(mesh);
     mesh.source = "level " + std::to_string(h) + " (" + mesh.source + ")";
@@ -45,6 +43,12 @@ std::vector<TetMesh> coarse_meshes(const Scene& scene) {
     meshes.push_back(std::move(mesh));
   }
   return meshes;
+}
+
+std::vector<TetMesh> coarse_meshes(const Scene& scene) {
+  const AnalysisSpec& a = scene.analysis;
+  if (!is_multigrid_solver(a.solver) || a.hierarchy != "meshes") return {};
+  return coarse_meshes(scene.mesh, a.levels, scene.name);
 }
 
 }  // namespace corofem

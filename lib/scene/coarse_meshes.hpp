@@ -15,8 +15,11 @@ namespace corofem {
 /// for a mesh file without enough levels (a volume file cannot be re-meshed).
 MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_name);
 
-/// Levels 1 .. analysis.levels - 1 as validated meshes, when the scene runs multigrid on the
-/// meshes hierarchy; otherwise none.
+/// Coarse levels 1 .. levels - 1 of `fine` as validated meshes (reordered where the spec says),
+/// named "level h (source)"; `name` (the scene) for messages.
+std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name);
+
+/// The scene's coarse meshes when it runs multigrid on the meshes hierarchy; otherwise none.
 std::vector<TetMesh> coarse_meshes(const Scene& scene);
 
 }  // namespace corofem

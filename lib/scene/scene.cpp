@@ -135,7 +135,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
   a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse"});
   a.hierarchy = one_of(f, "hierarchy", a.hierarchy, {"meshes", "lattice"});
-  const bool multigrid = a.solver == "multigrid" || a.solver == "mgpcg";
+  const bool multigrid = is_multigrid_solver(a.solver);
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
@@ -169,7 +169,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   if (!multigrid) {
     // A scene that sweeps solvers keeps its multigrid settings: ignored here, said once.
     std::string ignored;
-    for (const char* key : {"levels", "vcycles", "smoothing", "galerkin", "hierarchy"})
+    for (const char* key : kMultigridAnalysisKeys)
       if (f.has(key)) ignored += (ignored.empty() ? "" : ", ") + f.path_of(key);
     if (!ignored.empty())
       std::cerr << "corofem: warning: scene '" << f.file() << "': " << ignored
@@ -238,8 +238,7 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   s.analysis.hierarchy = remeshable ? "meshes" : "lattice";
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
-  const bool multigrid = s.analysis.solver == "multigrid" || s.analysis.solver == "mgpcg";
-  if (multigrid && s.analysis.hierarchy == "meshes" && !remeshable)
+  if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == "meshes" && !remeshable)
     throw InputError("scene '" + name + "': analysis.hierarchy 'meshes' needs mesh.levels for a "
                      "mesh read from a file (it cannot be re-meshed); or use 'lattice'");
   if (const nlohmann::json* output = top.get("output")) {

@@ -52,6 +52,13 @@ struct MoveSpec {
   LoadTiming timing;
 };
 
+/// The `analysis` keys that belong to the multigrid solvers (ignored, with a warning, by others).
+inline constexpr const char* kMultigridAnalysisKeys[] = {"levels", "vcycles", "smoothing", "galerkin",
+                                                         "hierarchy"};
+
+/// multigrid and mgpcg: the solvers with a hierarchy.
+inline bool is_multigrid_solver(const std::string& solver) { return solver == "multigrid" || solver == "mgpcg"; }
+
 struct AnalysisSpec {
   std::string type = "static";              ///< static | dynamic
   std::string formulation = "corotational"; ///< linear | corotational

@@ -16,8 +16,8 @@ struct SolveStats {
 };
 
 /// Throws NotConverged when an iterative solve stopped at its cap above `tolerance`: a solution
-/// that silently misses its accuracy would pass as a result. `what` names the solver and its
-/// unit of work ("multigrid", "V-cycles").
+/// that silently misses its accuracy would pass as a result. `solver` and `unit` name the solver
+/// and its unit of work in the message ("multigrid", "V-cycles").
 void require_converged(const SolveStats& stats, double tolerance, const std::string& solver,
                        const std::string& unit);
 
