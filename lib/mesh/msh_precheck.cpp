@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "mesh/msh_binary_check.hpp"
 
 namespace corofem {
 namespace {
@@ -156,6 +157,18 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
   }
 }
 
+/// ASCII files: $PhysicalNames lists as many names as it declares, each well formed.
+void check_ascii_physical_names(const std::string& bytes, const std::filesystem::path& file) {
+  const std::size_t at = section_start(bytes, "PhysicalNames");
+  if (at == std::string::npos) return;
+  const auto lines = section_lines(bytes, at, "PhysicalNames", file);
+  if (lines.empty()) reject(file, "empty $PhysicalNames");
+  const auto head = integers(lines[0], file, "PhysicalNames");
+  if (head.size() != 1 || head[0] < 0 || static_cast<std::size_t>(head[0]) != lines.size() - 1)
+    reject(file, "$PhysicalNames declares " + lines[0] + " names but lists " + std::to_string(lines.size() - 1));
+  for (std::size_t i = 1; i < lines.size(); ++i) check_physical_name_line(lines[i], file);
+}
+
 /// ASCII files: every "$" line is a known section header. gmsh matches section names by prefix,
 /// so "$Nodes1" is read as $Nodes by gmsh but skipped by the checks above; a fuzzed file built
 /// that way corrupted gmsh's heap.
@@ -191,12 +204,10 @@ void precheck_msh(const std::filesystem::path& file) {
   if ((major != 2 && major != 4) || (type != 0 && type != 1) || data_size != 8)
     reject(file, "unsupported $MeshFormat '" + bytes.substr(format, bytes.find('\n', format) - format) +
                      "' (need version 2.x or 4.x, type 0 or 1, data size 8)");
-  if (type == 1)
-    throw InputError("mesh file '" + file.string() +
-                     "' is a binary .msh, which corofem does not accept: gmsh 4.8 trusts the counts "
-                     "in binary files and crashes on hostile ones, and their bodies cannot be "
-                     "checked here. Convert it to ASCII: gmsh '" + file.string() +
-                     "' -save -bin 0 -o ascii.msh");
+  if (type == 1) {
+    check_binary_msh(bytes, version, file);
+    return;
+  }
   struct Section {
     const char* name;
     int v4_counts;  // numbers in the v4 header (v2 and $PhysicalNames: 1)
@@ -220,7 +231,21 @@ void precheck_msh(const std::filesystem::path& file) {
                        std::to_string(counts[3]) + "] (tags above 1e9 are not accepted)");
   }
   check_section_names(bytes, file);
+  check_ascii_physical_names(bytes, file);
   check_ascii_references(bytes, major, file);
+}
+
+void check_physical_name_line(const std::string& line, const std::filesystem::path& file) {
+  std::istringstream in(line);
+  long long dim = -1, tag = 0;
+  std::string rest;
+  const bool parsed = static_cast<bool>(in >> dim >> tag) && std::getline(in, rest);
+  const std::size_t open = rest.find_first_not_of(" \t");
+  std::string name = open == std::string::npos ? "" : rest.substr(open);
+  while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
+  if (!parsed || dim < 0 || dim > 3 || tag <= 0 || tag > 2147483647LL || name.size() < 2 || name.front() != '"' ||
+      name.back() != '"')
+    reject(file, "bad $PhysicalNames line '" + line.substr(0, 60) + "' (need: dimension 0-3, tag > 0, \"name\")");
 }
 
 void precheck_stl(const std::filesystem::path& file) {
