@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/errors.hpp"
+#include "core/memory_usage.hpp"
 #include "mesh/gmsh_session.hpp"
 #include "mesh/msh_precheck.hpp"
 
@@ -43,6 +44,11 @@ TetMesh tetrahedralize_surface(const fs::path& file, double size) {
   GmshSession session;
   call_gmsh(file, "tetrahedralize", [&] {
     gmsh::merge(file.string());
+    // A regular tet of edge h has volume h^3 / 8.5: the bounding box bounds the count from above.
+    double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+    require_memory_for_tets(8.5 * (x1 - x0) * (y1 - y0) * (z1 - z0) / (size * size * size),
+                            "mesh size " + std::to_string(size) + " for '" + file.string() + "'");
     gmsh::vectorpair surfaces;
     gmsh::model::getEntities(surfaces, 2);
     if (surfaces.empty()) throw InputError("surface file '" + file.string() + "' has no triangles");

@@ -1,6 +1,7 @@
 #include "scene/json_fields.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "core/errors.hpp"
 
@@ -9,6 +10,8 @@ namespace {
 [[noreturn]] void error(const std::string& file, const std::string& path, const std::string& what) {
   throw InputError("scene '" + file + "': " + path + " " + what);
 }
+/// Nonzero and below the smallest normal double: arithmetic on it is slow and loses digits.
+bool is_denormal(double x) { return x != 0 && std::abs(x) < std::numeric_limits<double>::min(); }
 }  // namespace
 
 JsonFields::JsonFields(const nlohmann::json& object, std::string path, std::string file)
@@ -52,6 +55,7 @@ double JsonFields::number(const std::string& key, std::optional<double> fallback
   if (!v->is_number()) error(file_, path_of(key), "must be a number");
   const double d = v->get<double>();
   if (!std::isfinite(d)) error(file_, path_of(key), "must be finite");
+  if (is_denormal(d)) error(file_, path_of(key), "must not be a denormal number (0 < |x| < 2.2e-308)");
   return d;
 }
 
@@ -100,6 +104,7 @@ Vec3 json_vec3(const nlohmann::json& value, const std::string& path, const std::
     if (!value[i].is_number()) error(file, path, "must be an array of 3 numbers");
     v[i] = value[i].get<double>();
     if (!std::isfinite(v[i])) error(file, path, "must contain finite numbers");
+    if (is_denormal(v[i])) error(file, path, "must not contain a denormal number (0 < |x| < 2.2e-308)");
   }
   return v;
 }

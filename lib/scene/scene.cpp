@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/memory_usage.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/json_fields.hpp"
 #include "solver/linear_solver.hpp"
@@ -16,12 +17,48 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr long long kMaxBoxTets = 20'000'000;  // beyond this a box would not fit in memory
+// Ranges of scene numbers (README, "Scene limits"). Within them every product a run forms
+// (stiffness ~ E L, mass ~ rho L^3, M / dt^2, rho g L^3, forces over areas) stays between 1e-100
+// and 1e100, far from a double's range, however absurd the combination.
+constexpr double kMaxLength = 1e9;      // every coordinate, extent, size, translation, centre
+constexpr double kMinLength = 1e-9;     // extents and mesh sizes
+constexpr double kMinMaterial = 1e-9;   // young, density
+constexpr double kMaxYoung = 1e15;      // Pa: diamond is 1.2e12
+constexpr double kMaxDensity = 1e9;
+constexpr double kMaxAcceleration = 1e9;  // gravity components
+constexpr double kMaxForce = 1e18;        // forces[].total components
+constexpr double kMinDt = 1e-9, kMaxDt = 1e6;
+constexpr double kMaxDamping = 1e9;       // rayleigh alpha (1/s) and beta (s)
+constexpr double kMinTolerance = 1e-15;   // below this no double residual gets
+
+std::string number_text(double x) {
+  std::ostringstream text;
+  text << x;
+  return text.str();
+}
+
+std::string range_text(double lo, double hi) { return "in [" + number_text(lo) + ", " + number_text(hi) + "]"; }
+
+/// A number key with its fallback, required to lie in [lo, hi].
+double number_in(JsonFields& f, const std::string& key, std::optional<double> fallback, double lo, double hi) {
+  const double value = f.number(key, fallback);
+  if (!(value >= lo && value <= hi)) f.fail(key, range_text(lo, hi));
+  return value;
+}
+
+/// [x, y, z] with every |component| <= bound.
+Vec3 vec3_within(JsonFields& f, const std::string& key, std::optional<Vec3> fallback, double bound) {
+  const Vec3 v = f.vec3(key, fallback);
+  if (!(v.cwiseAbs().maxCoeff() <= bound)) f.fail(key, "3 numbers within +-" + number_text(bound));
+  return v;
+}
 
 AxisBox read_box(const nlohmann::json& value, const std::string& path, const std::string& file) {
   if (!value.is_array() || value.size() != 2)
     throw InputError("scene '" + file + "': " + path + " must be [[x0,y0,z0],[x1,y1,z1]]");
   AxisBox box{json_vec3(value[0], path + "[0]", file), json_vec3(value[1], path + "[1]", file)};
+  if (!(std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()) <= kMaxLength))
+    throw InputError("scene '" + file + "': " + path + " must have coordinates within +-" + number_text(kMaxLength));
   if ((box.lo.array() > box.hi.array()).any())
     throw InputError("scene '" + file + "': " + path + " has a lower corner above its upper corner");
   return box;
@@ -66,34 +103,35 @@ MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
       m.kind = MeshSpec::Kind::Quadruped;
       one_of(f, "shape", "", {"quadruped"});
     }
-    m.size = f.number("size");
-    if (!(m.size > 0)) f.fail("size", "> 0");
-    if (m.kind == MeshSpec::Kind::Quadruped && m.size < 0.005)
-      f.fail("size", ">= 0.005 for the quadruped (smaller would need billions of tets)");
+    m.size = number_in(f, "size", std::nullopt, kMinLength, kMaxLength);
+    if (m.kind == MeshSpec::Kind::Quadruped)  // gmsh gives about 2.6 / size^3 tets (11k at 0.062, 67k at 0.033)
+      require_memory_for_tets(2.6 / std::pow(m.size, 3), "scene '" + f.file() + "': " + f.path_of("size"));
   } else {
     m.kind = MeshSpec::Kind::Box;
     m.box = f.vec3("box");
-    if (!(m.box.minCoeff() > 0)) f.fail("box", "positive extents");
+    if (!(m.box.minCoeff() >= kMinLength && m.box.maxCoeff() <= kMaxLength))
+      f.fail("box", "3 extents " + range_text(kMinLength, kMaxLength));
     const nlohmann::json& cells = f.require("cells");
     if (!cells.is_array() || cells.size() != 3) f.fail("cells", "an array of 3 integers");
-    long long total = 6;
+    double tets = 6;
     for (int i = 0; i < 3; ++i) {
       if (!cells[i].is_number_integer() || cells[i].get<long long>() < 1 ||
           cells[i].get<long long>() > 100000)
         f.fail("cells", "3 integers in [1, 100000]");
       m.cells[i] = cells[i].get<int>();
-      total *= m.cells[i];
+      tets *= m.cells[i];
     }
-    if (total > kMaxBoxTets) f.fail("cells", "at most " + std::to_string(kMaxBoxTets) + " tets in all");
+    require_memory_for_tets(tets, "scene '" + f.file() + "': " + f.path_of("cells"));
   }
   f.reject_unknown_keys();
   return m;
 }
 
 void check_material(JsonFields& f, const std::string& key, double value) {
-  if (key == "young" && !(value > 0)) f.fail(key, "> 0");
+  if (key == "young" && !(value >= kMinMaterial && value <= kMaxYoung)) f.fail(key, range_text(kMinMaterial, kMaxYoung));
   if (key == "poisson" && !(value > -1 && value < 0.5)) f.fail(key, "in (-1, 0.5)");
-  if (key == "density" && !(value > 0)) f.fail(key, "> 0");
+  if (key == "density" && !(value >= kMinMaterial && value <= kMaxDensity))
+    f.fail(key, range_text(kMinMaterial, kMaxDensity));
 }
 
 void read_material(JsonFields f, Scene& s) {
@@ -139,30 +177,24 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  a.dt = f.number("dt", a.dt);
-  if (!(a.dt > 0)) f.fail("dt", "> 0");
+  a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);
-  a.tolerance = f.number("tolerance", a.tolerance);
-  if (!(a.tolerance > 0 && a.tolerance < 1)) f.fail("tolerance", "in (0, 1)");
+  a.tolerance = number_in(f, "tolerance", a.tolerance, kMinTolerance, 0.5);
   a.max_iterations = integer_in(f, "max_iterations", a.max_iterations, 1, 100000);
   if (const nlohmann::json* damping = f.get("rayleigh")) {
     JsonFields d(*damping, f.path_of("rayleigh"), f.file());
-    a.rayleigh_alpha = d.number("alpha", 0.0);
-    a.rayleigh_beta = d.number("beta", 0.0);
-    if (a.rayleigh_alpha < 0) d.fail("alpha", ">= 0");
-    if (a.rayleigh_beta < 0) d.fail("beta", ">= 0");
+    a.rayleigh_alpha = number_in(d, "alpha", 0.0, 0.0, kMaxDamping);
+    a.rayleigh_beta = number_in(d, "beta", 0.0, 0.0, kMaxDamping);
     d.reject_unknown_keys();
   }
   if (const nlohmann::json* params = f.get("rotation_params")) {
     JsonFields r(*params, f.path_of("rotation_params"), f.file());
     RotationParams& p = a.rotation_params;
-    p.newton_tolerance = r.number("newton_tolerance", p.newton_tolerance);
-    if (!(p.newton_tolerance > 0 && p.newton_tolerance < 1)) r.fail("newton_tolerance", "in (0, 1)");
+    p.newton_tolerance = number_in(r, "newton_tolerance", p.newton_tolerance, kMinTolerance, 0.5);
     p.newton_max_iterations = integer_in(r, "newton_max_iterations", p.newton_max_iterations, 1, 100);
     p.mueller_iterations = integer_in(r, "mueller_iterations", p.mueller_iterations, 1, 200);
-    p.mueller_tolerance = r.number("mueller_tolerance", p.mueller_tolerance);
-    if (!(p.mueller_tolerance > 0 && p.mueller_tolerance < 1)) r.fail("mueller_tolerance", "in (0, 1)");
+    p.mueller_tolerance = number_in(r, "mueller_tolerance", p.mueller_tolerance, kMinTolerance, 0.5);
     p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
     r.reject_unknown_keys();
   }
@@ -206,11 +238,11 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
     s.fixed.push_back(read_box(f.require("box"), f.path_of("box"), f.file()));
     f.reject_unknown_keys();
   });
-  s.gravity = top.vec3("gravity", Vec3::Zero());
+  s.gravity = vec3_within(top, "gravity", Vec3::Zero(), kMaxAcceleration);
   for_each_entry(top, "forces", [&](JsonFields f) {
     ForceSpec force;
     force.box = read_box(f.require("box"), f.path_of("box"), f.file());
-    force.total = f.vec3("total");
+    force.total = vec3_within(f, "total", std::nullopt, kMaxForce);
     force.timing = read_timing(f);
     f.reject_unknown_keys();
     s.forces.push_back(force);
@@ -218,13 +250,13 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   for_each_entry(top, "moves", [&](JsonFields f) {
     MoveSpec move;
     move.box = read_box(f.require("box"), f.path_of("box"), f.file());
-    move.translate = f.vec3("translate", Vec3::Zero());
+    move.translate = vec3_within(f, "translate", Vec3::Zero(), kMaxLength);
     if (const nlohmann::json* rotate = f.get("rotate")) {
       JsonFields r(*rotate, f.path_of("rotate"), f.file());
-      move.axis = r.vec3("axis");
+      move.axis = vec3_within(r, "axis", std::nullopt, kMaxLength);
       if (!(move.axis.norm() > 0)) r.fail("axis", "a nonzero vector");
       move.axis.normalize();
-      move.center = r.vec3("center");
+      move.center = vec3_within(r, "center", std::nullopt, kMaxLength);
       move.degrees = r.number("degrees");
       if (std::abs(move.degrees) > 36000) r.fail("degrees", "within +-36000");
       r.reject_unknown_keys();
