@@ -23,6 +23,22 @@ void assemble_corotated(const std::vector<ElementRest>& elements, const std::vec
   }
 }
 
+namespace {
+
+/// s_e = Q^T p_e - x_e up to a translation: s_0 = 0, s_b = (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0).
+Vec12 corotated_strain(const TetMesh& mesh, const Tet& t, const Mat3& q, const Eigen::VectorXd& displacement) {
+  const Mat3 q_minus_i = q.transpose() - Mat3::Identity();
+  const Vec3 u0 = displacement.segment<3>(3 * t[0]);
+  Vec12 s;
+  s.segment<3>(0).setZero();
+  for (int b = 1; b < 4; ++b)
+    s.segment<3>(3 * b) =
+        q_minus_i * (mesh.rest[t[b]] - mesh.rest[t[0]]) + q.transpose() * (displacement.segment<3>(3 * t[b]) - u0);
+  return s;
+}
+
+}  // namespace
+
 Eigen::VectorXd internal_forces(const std::vector<ElementRest>& elements, const TetMesh& mesh,
                                 const std::vector<Mat3>& rotations,
                                 const Eigen::VectorXd& displacement) {
@@ -30,18 +46,20 @@ Eigen::VectorXd internal_forces(const std::vector<ElementRest>& elements, const 
   for (std::size_t e = 0; e < elements.size(); ++e) {
     const Tet& t = mesh.tets[e];
     const Mat3& q = rotations[e];
-    const Mat3 q_minus_i = q.transpose() - Mat3::Identity();
-    const Vec3 u0 = displacement.segment<3>(3 * t[0]);
-    Vec12 strain_displacement;  // Q^T p_e - x_e up to a translation
-    strain_displacement.segment<3>(0).setZero();
-    for (int b = 1; b < 4; ++b)
-      strain_displacement.segment<3>(3 * b) =
-          q_minus_i * (mesh.rest[t[b]] - mesh.rest[t[0]]) +
-          q.transpose() * (displacement.segment<3>(3 * t[b]) - u0);
-    const Vec12 local = elements[e].stiffness * strain_displacement;
+    const Vec12 local = elements[e].stiffness * corotated_strain(mesh, t, q, displacement);
     for (int a = 0; a < 4; ++a) f.segment<3>(3 * t[a]) += q * local.segment<3>(3 * a);
   }
   return f;
+}
+
+double elastic_energy(const std::vector<ElementRest>& elements, const TetMesh& mesh,
+                      const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement) {
+  double energy = 0;
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const Vec12 s = corotated_strain(mesh, mesh.tets[e], rotations[e], displacement);
+    energy += 0.5 * s.dot(elements[e].stiffness * s);
+  }
+  return energy;
 }
 
 }  // namespace corofem

@@ -24,4 +24,10 @@ Eigen::VectorXd internal_forces(const std::vector<ElementRest>& elements, const 
                                 const std::vector<Mat3>& rotations,
                                 const Eigen::VectorXd& displacement);
 
+/// Corotated elastic energy sum_e 1/2 s_e^T K_e s_e, s_e = Q_e^T p_e - x_e (from vertex-0 offsets,
+/// as internal_forces). With Q = polar(F) it is the potential of internal_forces; with other
+/// rotations it is the same expression, but no longer a potential (the force is not its gradient).
+double elastic_energy(const std::vector<ElementRest>& elements, const TetMesh& mesh,
+                      const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement);
+
 }  // namespace corofem

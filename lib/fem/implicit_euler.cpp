@@ -1,12 +1,92 @@
 #include "fem/implicit_euler.hpp"
 
 #include <chrono>
+#include <memory>
 
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
+#include "fem/rotation_tangent.hpp"
+#include "core/errors.hpp"
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
+
+namespace {
+
+/// M scaled by `factor` added to the diagonal blocks of `a`.
+void add_lumped_mass(const FeProblem& problem, double factor, BrcMatrix& a) {
+  for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
+    auto block = a.block(problem.assembly.diagonal[v]);
+    for (int c = 0; c < 3; ++c) block(c, c) += factor * problem.mass[3 * v + c];
+  }
+}
+
+/// What the Newton steps keep from step to step: the tangent's rest data, the LU, a matrix.
+struct NewtonStepper {
+  NewtonStepper(const FeProblem& problem, const std::string& method)
+      : tangent(problem, method), lu(problem.stiffness), jacobian(problem.stiffness) {}
+  RotationTangent tangent;
+  SparseLuSolve lu;
+  BrcMatrix jacobian;
+};
+
+/// One fully implicit Euler step: v' from g(v') = 0 (see the header), starting from v.
+SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStepper& newton,
+                       const DynamicOptions& options, int step, const DirichletConditions& bc,
+                       SimulationResult& result, Eigen::VectorXd& velocity, PhaseClock& clock) {
+  const double dt = options.dt;
+  const double mass_factor = 1 + dt * options.rayleigh_alpha, damping = dt * options.rayleigh_beta;
+  const Eigen::VectorXd momentum = problem.mass.cwiseProduct(velocity);
+  Eigen::VectorXd internal_start;
+  clock.time("forces", [&] {
+    internal_start = internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement);
+  });
+  // |g| is measured against the size of its terms at the step's start.
+  const double scale = std::max(free_norm(bc, momentum) + dt * (free_norm(bc, problem.external_force) +
+                                                                free_norm(bc, internal_start)),
+                                1e-300);
+  std::vector<Mat3> rotations = result.rotations;
+  std::vector<Vec3> positions;
+  const auto residual = [&](const Eigen::VectorXd& v1) {
+    const Eigen::VectorXd u1 = result.displacement + dt * v1;
+    positions = problem.positions(u1);
+    clock.time("rotate", [&] { rotate.extract(positions, rotations); });
+    Eigen::VectorXd g;
+    clock.time("forces", [&] {
+      g = mass_factor * problem.mass.cwiseProduct(v1) - momentum -
+          dt * (problem.external_force - internal_forces(problem.elements, problem.mesh, rotations, u1));
+      if (damping != 0) {
+        Eigen::VectorXd kv;
+        problem.stiffness.multiply(v1, kv);
+        g += damping * kv;
+      }
+    });
+    return g;
+  };
+  const auto jacobian = [&](BrcMatrix& j) {
+    clock.time("assemble", [&] { newton.tangent.assemble(positions, rotations, j); });
+    clock.time("system", [&] {
+      const std::vector<double>& k = problem.stiffness.values;
+      for (std::size_t i = 0; i < k.size(); ++i) j.values[i] = dt * dt * j.values[i] + damping * k[i];
+      add_lumped_mass(problem, mass_factor, j);
+    });
+  };
+  Eigen::VectorXd v1 = velocity;
+  for (int i = 0; i < v1.size(); ++i)
+    if (bc.fixed[i]) v1[i] = bc.value[i];
+  const NewtonReport report = newton_iterate(v1, residual, jacobian, bc, scale, options.newton_settings, newton.lu,
+                                             newton.jacobian, clock);
+  if (!report.converged)
+    throw NotConverged("step " + std::to_string(step) + ": Newton did not reach " +
+                       std::to_string(options.newton_settings.tolerance) + " in " +
+                       std::to_string(report.iterations) + " iterations (residual " +
+                       std::to_string(report.residual) + ")");
+  velocity = v1;
+  result.rotations = rotations;
+  return {report.iterations, report.residual, 0.0};
+}
+
+}  // namespace
 
 SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
                                LinearSolver& solver, const DynamicOptions& options,
@@ -21,6 +101,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), f0, b;
   BrcMatrix system = problem.stiffness;  // the step's matrix; its pattern is allocated once
+  std::unique_ptr<NewtonStepper> newton;
+  if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.name());
   for (int step = 1; step <= options.steps; ++step) {
     const auto step_start = std::chrono::steady_clock::now();
     const std::map<std::string, double> before = result.timings_ms;
@@ -31,29 +113,31 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     const auto p = problem.positions(result.displacement);
     clock.time("checks", [&] { result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p)); });
     linearize(problem, rotate, p, result.rotations, f0, clock);
-    // Every pass of the step is in a named phase: "forces" (the right-hand side) and "system"
-    // (A and its supports) besides rotate, assemble, update and solve.
-    clock.time("forces", [&] {
-      b = problem.mass.cwiseProduct(velocity) +
-          dt * (problem.external_force -
-                internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement));
-    });
-    clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
-    clock.time("system", [&] {
-      // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks; the
-      // scaled copy is one pass over Ktilde into the preallocated A.
-      const double k_scale = dt * options.rayleigh_beta + dt * dt;
-      const std::vector<double>& k = problem.stiffness.values;
-      for (std::size_t i = 0; i < k.size(); ++i) system.values[i] = k_scale * k[i];
-      for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
-        auto block = system.block(problem.assembly.diagonal[v]);
-        for (int c = 0; c < 3; ++c) block(c, c) += (1 + dt * options.rayleigh_alpha) * problem.mass[3 * v + c];
-      }
-      apply_dirichlet(bc, system, b);
-    });
-    // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
-    clock.time("update", [&] { solver.set_matrix(system); });
-    const SolveStats stats = clock.time("solve", [&] { return solver.solve(b, velocity); });
+    SolveStats stats;
+    if (options.newton) {
+      stats = newton_step(problem, rotate, *newton, options, step, bc, result, velocity, clock);
+    } else {
+      // Every pass of the step is in a named phase: "forces" (the right-hand side) and "system"
+      // (A and its supports) besides rotate, assemble, update and solve.
+      clock.time("forces", [&] {
+        b = problem.mass.cwiseProduct(velocity) +
+            dt * (problem.external_force -
+                  internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement));
+      });
+      clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
+      clock.time("system", [&] {
+        // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks; the
+        // scaled copy is one pass over Ktilde into the preallocated A.
+        const double k_scale = dt * options.rayleigh_beta + dt * dt;
+        const std::vector<double>& k = problem.stiffness.values;
+        for (std::size_t i = 0; i < k.size(); ++i) system.values[i] = k_scale * k[i];
+        add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, system);
+        apply_dirichlet(bc, system, b);
+      });
+      // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
+      clock.time("update", [&] { solver.set_matrix(system); });
+      stats = clock.time("solve", [&] { return solver.solve(b, velocity); });
+    }
     result.linear_iterations += stats.iterations;
     result.displacement += dt * velocity;
     clock.time("checks", [&] {

@@ -3,9 +3,13 @@
 // mass and Rayleigh damping C = alpha M + beta Ktilde. Per step, with rotations from the current
 // positions p:  (M + dt C + dt^2 Ktilde) v' = M v + dt (f + f0 - Ktilde p),  p' = p + dt v',
 // with f0 - Ktilde p = -f_int(u) evaluated element-wise (see internal_forces).
+// With `newton`, fully implicit Euler instead: per step Newton iterations on
+//   g(v') = (1 + dt alpha) M v' + dt beta Ktilde_n v' - M v - dt (f - f_int(u + dt v')) = 0
+// with the consistent tangent (fem/rotation_tangent.hpp), Ktilde_n frozen at the step's start.
 #include <functional>
 
 #include "fem/fe_problem.hpp"
+#include "fem/newton_iteration.hpp"
 #include "fem/simulation_result.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "solver/linear_solver.hpp"
@@ -24,6 +28,8 @@ struct DynamicOptions {
   /// problem.external_force, and problem.dirichlet with the displacement prescribed at the end of
   /// the step. Without it both stay as they are.
   std::function<void(int step, FeProblem& problem)> before_step;
+  bool newton = false;           ///< fully implicit Euler by Newton (else linearly implicit)
+  NewtonSettings newton_settings;  ///< per step; a step that misses the tolerance throws NotConverged
 };
 
 /// State after each step, for records that follow a run (flutter, energy, VTU frames, timings).
@@ -33,7 +39,7 @@ struct StepState {
   const Eigen::VectorXd& velocity;
   const std::vector<Mat3>& rotations;        ///< the ones this step's system used
   const std::map<std::string, double>& phase_ms;  ///< this step: rotate, assemble, update, solve, step
-  const SolveStats& solve;
+  const SolveStats& solve;  ///< newton: iterations = Newton iterations, residual = |g| / scale
 };
 
 /// Fixed DOFs keep zero velocity. Throws NumericalFault naming the step on NaN/inf.

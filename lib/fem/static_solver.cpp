@@ -1,7 +1,11 @@
 #include "fem/static_solver.hpp"
 
+#include <memory>
+
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
+#include "fem/newton_iteration.hpp"
+#include "fem/rotation_tangent.hpp"
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
@@ -18,12 +22,43 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   Eigen::VectorXd f0, du = Eigen::VectorXd::Zero(problem.num_dofs());
   const int increments = options.corotational ? options.load_steps : 1;
   result.converged = true;
+  std::unique_ptr<RotationTangent> tangent;
+  std::unique_ptr<SparseLuSolve> lu;
+  BrcMatrix jacobian_matrix;
+  if (options.newton && options.corotational) {
+    tangent = std::make_unique<RotationTangent>(problem, rotate.name());
+    lu = std::make_unique<SparseLuSolve>(problem.stiffness);
+    jacobian_matrix = problem.stiffness;
+  }
   for (int inc = 1; inc <= increments; ++inc) {
     const double scale = static_cast<double>(inc) / increments;
     const Eigen::VectorXd f = scale * problem.external_force;
     const double f_norm = free_norm(problem.dirichlet, f);
     bool inc_converged = false;
-    for (int it = 0; it <= options.max_iterations; ++it) {
+    if (tangent) {
+      // g(u) = f_int(u) - f, J = d f_int / du; fixed DOFs at their (scaled) prescribed values.
+      for (int i = 0; i < u.size(); ++i)
+        if (problem.dirichlet.fixed[i]) u[i] = scale * problem.dirichlet.value[i];
+      std::vector<Vec3> positions;
+      const auto residual = [&](const Eigen::VectorXd& z) {
+        positions = problem.positions(z);
+        result.inverted_max = std::max(result.inverted_max, count_inverted(problem, positions));
+        clock.time("rotate", [&] { rotate.extract(positions, result.rotations); });
+        return Eigen::VectorXd(internal_forces(problem.elements, problem.mesh, result.rotations, z) - f);
+      };
+      const auto jacobian = [&](BrcMatrix& j) {
+        clock.time("assemble", [&] { tangent->assemble(positions, result.rotations, j); });
+      };
+      const NewtonReport report =
+          newton_iterate(u, residual, jacobian, problem.dirichlet, f_norm > 0 ? f_norm : 1.0,
+                         {options.tolerance, options.max_iterations}, *lu, jacobian_matrix, clock);
+      check_finite(problem, u, "displacement", "load increment " + std::to_string(inc));
+      result.iterations += report.iterations;
+      result.linear_iterations += report.iterations;
+      result.residual = report.residual;
+      inc_converged = report.converged;
+    }
+    for (int it = 0; !tangent && it <= options.max_iterations; ++it) {
       const auto p = problem.positions(u);
       result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
       linearize(problem, rotate, p, result.rotations, f0, clock);

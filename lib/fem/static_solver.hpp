@@ -3,6 +3,8 @@
 // increments; per increment iterate {extract rotations at x + u, assemble Ktilde and f0, solve
 // Ktilde u = f + f0 - Ktilde x} until |f - f_int(u)| / |f| < tolerance (the rotations are lagged,
 // the standard corotational fixed point; each solve is exact for the current rotations).
+// With `newton`: per increment, Newton iterations on f_int(u) = f with the consistent tangent
+// (fem/rotation_tangent.hpp, sparse LU), converging quadratically where the lagged ones crawl.
 #include "fem/fe_problem.hpp"
 #include "fem/simulation_result.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -15,6 +17,7 @@ struct StaticOptions {
   int load_steps = 1;
   double tolerance = 1e-8;
   int max_iterations = 100;  ///< per increment
+  bool newton = false;
 };
 
 /// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).

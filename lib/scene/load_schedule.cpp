@@ -50,6 +50,9 @@ DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem) {
   const AnalysisSpec& a = scene.analysis;
   DynamicOptions options{a.formulation == "corotational", a.dt, a.steps, a.rayleigh_alpha,
                          a.rayleigh_beta, {}};
+  options.newton = a.integrator == "newton";
+  options.newton_settings.tolerance = a.tolerance;
+  options.newton_settings.max_iterations = a.max_iterations;
   auto schedule = std::make_shared<const LoadSchedule>(scene, problem);
   schedule->apply(1, problem);
   options.before_step = [schedule](int step, FeProblem& p) { schedule->apply(step, p); };

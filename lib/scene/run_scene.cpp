@@ -43,9 +43,10 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                {"unused_vertices_removed", validation.unused_removed}};
   r["analysis"] = {{"type", a.type},
                    {"formulation", a.formulation},
+                   {"integrator", a.integrator},
                    {"rotation", corotational ? a.rotation : "none"},
                    {"rotation_params", a.rotation_params.to_json()},
-                   {"solver", solver->name()}};
+                   {"solver", a.integrator == "newton" && corotational ? "sparse LU (UMFPACK), Newton" : solver->name()}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
     r["analysis"]["multigrid"] = multigrid_params(a).to_json();
     r["multigrid"] = simulation.describe_multigrid(*mg);

@@ -62,6 +62,9 @@ inline bool is_multigrid_solver(const std::string& solver) { return solver == "m
 struct AnalysisSpec {
   std::string type = "static";              ///< static | dynamic
   std::string formulation = "corotational"; ///< linear | corotational
+  /// linear-implicit (dynamic: one linear solve per step; static: lagged-rotation iterations) |
+  /// newton (fully implicit Euler / static Newton with the consistent tangent, sparse LU)
+  std::string integrator = "linear-implicit";
   std::string rotation = "polar";           ///< an extractor name (rotation_method_names())
   RotationParams rotation_params;
   std::string solver = "cholmod";           ///< cholmod | multigrid | mgpcg

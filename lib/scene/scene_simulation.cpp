@@ -45,7 +45,7 @@ SimulationResult SceneSimulation::run(const std::function<void(const StepState&)
   SimulationResult result =
       dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
                : solve_static(problem_, *extractor_, *solver_,
-                              {corotational(), a.load_steps, a.tolerance, a.max_iterations});
+                              {corotational(), a.load_steps, a.tolerance, a.max_iterations, a.integrator == "newton"});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

@@ -1,0 +1,56 @@
+#pragma once
+// Damped Newton for the nonlinear systems of the corotated model, g(z) = 0 over the free DOFs:
+// static equilibrium f_ext - f_int(u) = 0 and the fully implicit Euler step. Each iteration solves
+// J dz = -g with a sparse LU (UMFPACK): J is non-symmetric for the non-conservative rotation
+// methods and indefinite past a buckling point, so neither CG nor Cholesky applies. Steps are full
+// Newton steps, halved only when the residual would become non-finite or grow by more than
+// max_growth: a line search on |g| (Armijo) stalls corotated problems, whose first step from a
+// straight state rotates elements linearly and stretches them (on the soft cantilever of the gates
+// the full step raises |g| 100-fold, then Newton converges in 3 more iterations; with Armijo
+// halving it took 57 iterations for the first load increment).
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+
+#include "fem/dirichlet.hpp"
+#include "fem/simulation_result.hpp"
+#include "sparse/brc_matrix.hpp"
+
+namespace corofem {
+
+struct NewtonSettings {
+  double tolerance = 1e-10;   ///< converged when |g|_free <= tolerance * scale
+  int max_iterations = 50;
+  int max_halvings = 12;      ///< smallest step 2^-12
+  double max_growth = 1e4;    ///< largest accepted |g_new| / |g|
+};
+
+struct NewtonReport {
+  int iterations = 0;
+  int halvings = 0;           ///< line-search halvings in all
+  double residual = 0;        ///< |g|_free / scale at the end
+  bool converged = false;
+};
+
+/// The LU of the iteration matrices, built once per pattern and refactored each iteration.
+class SparseLuSolve {
+ public:
+  explicit SparseLuSolve(const BrcMatrix& pattern);
+  ~SparseLuSolve();
+  /// x = A^{-1} b; throws NumericalFault when A is singular.
+  Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// Solves g(z) = 0 from `z` (fixed DOFs of `fixed` keep their values in z). `residual(z)` returns
+/// g at z (and may update state such as rotations); `jacobian(z, J)` fills J at the z of the last
+/// residual call. Phases "rotate"/"assemble" are the callers'; the LU solve is timed as "solve".
+NewtonReport newton_iterate(Eigen::VectorXd& z, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
+                            const std::function<void(BrcMatrix&)>& jacobian, const DirichletConditions& fixed,
+                            double scale, const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
+                            PhaseClock& clock);
+
+}  // namespace corofem
