@@ -361,42 +361,80 @@ STATUS_COLOURS = {"stable": "#8fd18f", "flutter": "#f2c14e", "diverged": "#e76f6
 
 def status_cause(r):
     """One short line on why a run is not stable (empty when it is)."""
+    cause = f"; cause: {r['cause']}" if r.get("cause") else ""
     if r["status"] == "flutter":
-        return f"RMS {num(r.get('flutter_rms_rad'), 2)} rad/step"
+        return f"RMS {num(r.get('flutter_rms_rad'), 2)} rad/step{cause}"
     if r["status"] == "diverged":
-        return f"step {r.get('diverged_step')}: {(r.get('divergence') or {}).get('kind', 'diverged')}"
+        return f"step {r.get('diverged_step')}: {(r.get('divergence') or {}).get('kind', 'diverged')}{cause}"
     return f"{r['inverted_final']} inverted" if r.get("inverted_final") else ""
 
 
+def run_setting(r):
+    """The integrator and step of a run ("linear-implicit, dt 0.01"); old records had only the first."""
+    return f"{r.get('integrator', 'linear-implicit')}, dt {r.get('dt', '')}"
+
+
 def draw_status_matrix(runs, scenes, methods, folder):
-    """Scene x method grid coloured by status, each cell with its cause when not stable."""
-    fig, ax = plt.subplots(figsize=(1.5 * len(methods) + 2.2, 0.62 * len(scenes) + 1.2))
-    for i, scene in enumerate(scenes):
+    """(Scene, integrator, step) x method grid coloured by status, each cell with its cause when not
+    stable."""
+    rows = list(dict.fromkeys((r["scene"], run_setting(r)) for r in runs))
+    fig, ax = plt.subplots(figsize=(1.6 * len(methods) + 3.2, 0.62 * len(rows) + 1.2))
+    for i, (scene, setting) in enumerate(rows):
         for j, method in enumerate(methods):
-            r = next((r for r in runs if r["scene"] == scene and r["method"] == method), None)
+            r = next((r for r in runs if r["scene"] == scene and run_setting(r) == setting and r["method"] == method),
+                     None)
             status = r["status"] if r else "not run"
             ax.add_patch(matplotlib.patches.Rectangle((j, i), 1, 1, facecolor=STATUS_COLOURS.get(status, "white"),
                                                       edgecolor="white", linewidth=2))
-            cause = status_cause(r) if r else ""
+            cause = status_cause(r).replace("; ", "\n") if r else "(nothing to attribute)"
             ax.text(j + 0.5, i + 0.5, status + ("\n" + cause if cause else ""), ha="center", va="center",
                     fontsize=8)
     ax.set_xlim(0, len(methods))
-    ax.set_ylim(len(scenes), 0)
+    ax.set_ylim(len(rows), 0)
     ax.set_xticks([j + 0.5 for j in range(len(methods))])
     ax.set_xticklabels(methods, fontsize=8, rotation=20, ha="right")
-    ax.set_yticks([i + 0.5 for i in range(len(scenes))])
-    ax.set_yticklabels(scenes, fontsize=8)
+    ax.set_yticks([i + 0.5 for i in range(len(rows))])
+    ax.set_yticklabels([f"{scene}\n{setting}" for scene, setting in rows], fontsize=8)
     ax.tick_params(length=0)
     for side in ax.spines.values():
         side.set_visible(False)
-    ax.set_title("Stability: status by scene and rotation method", fontsize=10)
+    ax.set_title("Stability: status by scene, integrator and step (rows) and rotation method (columns)",
+                 fontsize=10)
     fig.tight_layout()
     return save(fig, folder, "stability_status.png")
+
+
+def render_verdicts(st, md):
+    """The verdict on the paper's claim, method by method, with its cause."""
+    verdicts = st.get("verdicts")
+    if not verdicts:
+        return
+    md.append("\n**Verdict on the paper's claim (stable corotation), method by method.** A run that is not "
+              "stable is caused by the *method* when the method fails under fully implicit Euler (Newton, "
+              "consistent tangent) at the smaller step too, by the *integrator* when it is stable there. "
+              "Asymmetry: median over elements of |J - J^T| / |J| of the element force Jacobian at the end "
+              "(0: a conservative force). Energy error: the largest energy created over the hold, relative to "
+              "the hold's energy (E + damping - work of the loads; backward Euler with a conservative force "
+              "keeps it at 0).\n\n")
+    runs = st.get("runs", [])
+    rows = []
+    for method, v in verdicts.items():
+        mine = [r for r in runs if r["method"] == method]
+        asym = [r["asymmetry"] for r in mine if isinstance(r.get("asymmetry"), (int, float))]
+        energy = [r["energy_error"] for r in mine if isinstance(r.get("energy_error"), (int, float))]
+        failures = "; ".join(f"{f['scene']} ({f['integrator']}, dt {f['dt']}): {f['status']}, cause "
+                             f"{f.get('cause') or 'undetermined'}" for f in v.get("not_stable", []))
+        rows.append([method, v.get("verdict", ""), f"{len(v.get('not_stable', []))} of {v.get('runs')}",
+                     num(max(asym), 2) if asym else "", num(max(energy), 2) if energy else "", failures])
+    md.append(table(["method", "verdict", "not stable", "largest asymmetry", "largest energy error",
+                     "runs not stable and their cause"], rows))
+    md.append("\n")
 
 
 def render_stability(st, folder, md):
     md.append("## Stability where methods fail\n\n")
     md.append(context_lines(st))
+    render_verdicts(st, md)
     th = st.get("thresholds", {})
     first = next(iter(st.get("scenes", {}).values()), {}).get("analysis", {})
     damping = first.get("rayleigh", {})
@@ -414,37 +452,40 @@ def render_stability(st, folder, md):
     methods = list(dict.fromkeys(r["method"] for r in runs))
     rows = []
     for r in runs:
-        rows.append([r["scene"], r["method"], f"**{r['status']}**" if r["status"] != "stable" else r["status"],
+        why = r.get("cause_detail") or (r.get("divergence") or {}).get("message", "")
+        rows.append([r["scene"], r["method"], run_setting(r),
+                     f"**{r['status']}**" if r["status"] != "stable" else r["status"],
                      num(r.get("flutter_rms_rad"), 2), num(r.get("flutter_max_rad"), 2), r.get("inverted_max"),
                      r.get("inverted_final"), num(r.get("kinetic_energy_final"), 2),
-                     num(r.get("residual_final"), 2), r.get("diverged_step") or "",
-                     (r.get("divergence") or {}).get("message", "")[:80]])
-    md.append(table(["scene", "method", "status", "flutter RMS (rad)", "flutter max (rad)", "inverted max",
-                     "inverted at end", "kinetic energy at end (J)", "equilibrium residual",
-                     "diverged at step", "why"], rows))
+                     num(r.get("residual_final"), 2), num(r.get("asymmetry"), 2), num(r.get("energy_error"), 2),
+                     r.get("diverged_step") or "", r.get("cause") or "", why[:160]])
+    md.append(table(["scene", "method", "integrator, dt (s)", "status", "flutter RMS (rad)", "flutter max (rad)",
+                     "inverted max", "inverted at end", "kinetic energy at end (J)", "equilibrium residual",
+                     "asymmetry", "energy error", "diverged at step", "cause", "why"], rows))
     md.append("\n")
     # Status matrix.
     md.append("Status by scene and method (and elements still inverted at the end: a body that "
               "stays inside out is a failure the flutter measure does not see):\n\n")
     rows = []
-    for s in scenes:
-        row = [s]
+    for s, setting in dict.fromkeys((r["scene"], run_setting(r)) for r in runs):
+        row = [s, setting]
         for m in methods:
-            r = next((r for r in runs if r["scene"] == s and r["method"] == m), None)
+            r = next((r for r in runs if r["scene"] == s and run_setting(r) == setting and r["method"] == m), None)
             cell = r["status"] if r else ""
             if r and r.get("inverted_final"):
                 cell += f", ends with {r['inverted_final']} inverted"
             row.append(cell)
         rows.append(row)
-    md.append(table(["scene"] + methods, rows))
+    md.append(table(["scene", "integrator, dt (s)"] + methods, rows))
     md.append("\n")
     if not HAVE_MPL:
         return
     md.append(f"![status]({draw_status_matrix(runs, scenes, methods, folder)})\n\n")
     for s in scenes:
         fig, ax = plt.subplots(figsize=(7, 3.6))
+        base = next((run_setting(r) for r in runs if r["scene"] == s), "")
         for r in runs:
-            if r["scene"] != s:
+            if r["scene"] != s or run_setting(r) != base:
                 continue
             series = r["series"]["rotation_change_max_rad"]
             ax.plot(range(1, len(series) + 1), [max(v, 1e-12) for v in series], label=r["method"], linewidth=0.9)
@@ -453,11 +494,11 @@ def render_stability(st, folder, md):
         ax.set_yscale("log")
         ax.set_xlabel("step (dotted: end of loading; dashed: flutter threshold)")
         ax.set_ylabel("largest rotation change per step (rad)")
-        ax.set_title(f"{s}: flutter per step", fontsize=9)
+        ax.set_title(f"{s}: flutter per step ({base})", fontsize=9)
         ax.legend(fontsize=6, ncol=2)
         fig.tight_layout()
         md.append(f"![{s} flutter]({save(fig, folder, 'stability_flutter_' + s + '.png')})\n\n")
-        poses = [p for p in st.get("poses", []) if p["scene"] == s]
+        poses = [p for p in st.get("poses", []) if p["scene"] == s and p.get("integrator", "linear-implicit") == "linear-implicit"]
         if poses:
             columns = min(4, len(poses))
             rows_of_plots = (len(poses) + columns - 1) // columns

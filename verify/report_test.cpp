@@ -144,19 +144,23 @@ TEST(Report, ParetoFrontIsTheSetOfUndominatedPoints) {
 TEST(Report, StabilityRunsHaveTheDocumentedSchema) {
   const json st = load(smoke_report() / "stability.json");
   expect_context(st, "stability.json");
-  expect_keys(st, {"thresholds", "runs", "scenes"}, "stability.json");
+  expect_keys(st, {"thresholds", "runs", "scenes", "verdicts"}, "stability.json");
   ASSERT_FALSE(st["runs"].empty());
-  std::set<std::string> methods;
+  std::set<std::string> methods, integrators;
   for (const json& run : st["runs"]) {
-    expect_keys(run, {"scene", "method", "status", "flutter_rms_rad", "flutter_max_rad", "inverted_max",
-                      "diverged_step", "series"},
+    expect_keys(run, {"scene", "method", "integrator", "dt", "status", "flutter_rms_rad", "flutter_max_rad",
+                      "inverted_max", "diverged_step", "asymmetry", "energy_error", "cause", "series"},
                 "run");
     const std::string status = run["status"];
     EXPECT_TRUE(status == "stable" || status == "flutter" || status == "diverged") << status;
     EXPECT_EQ(run["diverged_step"].is_null(), status != "diverged");
+    if (status == "stable") EXPECT_TRUE(run["cause"].is_null());
     methods.insert(run["method"]);
+    integrators.insert(run["integrator"]);
   }
   EXPECT_EQ(methods.size(), 7u);  // every extractor
+  EXPECT_EQ(integrators, (std::set<std::string>{"linear-implicit", "newton"}));
+  for (const std::string& method : methods) EXPECT_TRUE(st["verdicts"].contains(method)) << method;
 }
 
 TEST(Report, MarkdownIsRedrawnFromTheJsonAlone) {
@@ -251,7 +255,7 @@ TEST(Report, VtuFramesOnRequest) {
   // Every 10th step of every extractor's run (smoke: 12 steps, so frame 10), as VTK XML.
   for (const char* method : {"energy-newton", "energy-exact", "polar", "polar-fixed", "polar-smoothed", "qr",
                              "mueller2016"}) {
-    const fs::path frame = out / "vtu" / "bar-twist" / method / "frame_00010.vtu";
+    const fs::path frame = out / "vtu" / "bar-twist" / (std::string(method) + "-linear-implicit") / "frame_00010.vtu";
     ASSERT_TRUE(fs::exists(frame)) << frame;
     EXPECT_NE(read_text(frame).find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos) << frame;
   }

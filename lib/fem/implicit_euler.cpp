@@ -30,7 +30,8 @@ struct NewtonStepper {
   BrcMatrix jacobian;
 };
 
-/// One fully implicit Euler step: v' from g(v') = 0 (see the header), starting from v.
+/// One fully implicit Euler step: v' from g(v') = 0 (see the header), starting from the
+/// linearly implicit step's v'.
 SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStepper& newton,
                        const DynamicOptions& options, int step, const DirichletConditions& bc,
                        SimulationResult& result, Eigen::VectorXd& velocity, PhaseClock& clock) {
@@ -41,10 +42,6 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
   clock.time("forces", [&] {
     internal_start = internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement);
   });
-  // |g| is measured against the size of its terms at the step's start.
-  const double scale = std::max(free_norm(bc, momentum) + dt * (free_norm(bc, problem.external_force) +
-                                                                free_norm(bc, internal_start)),
-                                1e-300);
   std::vector<Mat3> rotations = result.rotations;
   std::vector<Vec3> positions;
   const auto residual = [&](const Eigen::VectorXd& v1) {
@@ -71,9 +68,26 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
       add_lumped_mass(problem, mass_factor, j);
     });
   };
-  Eigen::VectorXd v1 = velocity;
-  for (int i = 0; i < v1.size(); ++i)
-    if (bc.fixed[i]) v1[i] = bc.value[i];
+  // Start from the linearly implicit step (the paper's; rotation-aware through Ktilde_n), solved
+  // with the same LU: from v itself, a prescribed turn of the supports (bar-twist: 75 degrees in
+  // the smoke run's first step) sends Newton off to residuals of 1e300.
+  Eigen::VectorXd v1;
+  {
+    Eigen::VectorXd b;
+    clock.time("forces", [&] { b = momentum + dt * (problem.external_force - internal_start); });
+    clock.time("system", [&] {
+      const std::vector<double>& k = problem.stiffness.values;
+      for (std::size_t i = 0; i < k.size(); ++i) newton.jacobian.values[i] = (damping + dt * dt) * k[i];
+      add_lumped_mass(problem, mass_factor, newton.jacobian);
+      apply_dirichlet(bc, newton.jacobian, b);
+    });
+    v1 = clock.time("solve", [&] { return newton.lu.solve(newton.jacobian, b); });
+  }
+  // |g| is measured against the size of its terms: the momenta before and after (the predictor's;
+  // a step driven only by moving supports has nothing else) and the forces at the step's start.
+  const double scale = std::max(free_norm(bc, momentum) + mass_factor * free_norm(bc, problem.mass.cwiseProduct(v1)) +
+                                    dt * (free_norm(bc, problem.external_force) + free_norm(bc, internal_start)),
+                                1e-300);
   const NewtonReport report = newton_iterate(v1, residual, jacobian, bc, scale, options.newton_settings, newton.lu,
                                              newton.jacobian, clock);
   if (!report.converged)
@@ -83,7 +97,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
                        std::to_string(report.residual) + ")");
   velocity = v1;
   result.rotations = rotations;
-  return {report.iterations, report.residual, 0.0};
+  return {report.iterations + 1, report.residual, 0.0};  // the predictor's solve counts
 }
 
 }  // namespace

@@ -17,6 +17,9 @@ nlohmann::json record_case(nlohmann::json base, const std::function<nlohmann::js
   } catch (const NumericalFault& e) {
     base["completed"] = false;
     base["error"] = {{"kind", "numerical"}, {"message", e.what()}};
+  } catch (const NotConverged& e) {
+    base["completed"] = false;
+    base["error"] = {{"kind", "not_converged"}, {"message", e.what()}};
   } catch (const std::exception& e) {
     base["completed"] = false;
     base["error"] = {{"kind", "internal"}, {"message", e.what()}};

@@ -7,7 +7,7 @@
 namespace corofem {
 
 /// Runs `f` and returns its record with "completed": true; if it throws, `base` with
-/// "completed": false and "error": the message (kind: input, numerical or internal).
+/// "completed": false and "error": the message (kind: input, numerical, not_converged or internal).
 nlohmann::json record_case(nlohmann::json base, const std::function<nlohmann::json()>& f);
 
 /// JSON number, or null for NaN/inf (JSON has no NaN).

@@ -179,7 +179,9 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
   s["analysis"] = {{"type", "dynamic"},   {"formulation", "corotational"},
                    {"rotation", "energy-newton"}, {"solver", "cholmod"},
                    {"dt", 0.01},          {"steps", ramp_steps + hold_steps},
-                   {"rayleigh", {{"alpha", 10.0}, {"beta", 0.002}}}};  // settles within the hold
+                   {"rayleigh", {{"alpha", 10.0}, {"beta", 0.002}}},  // settles within the hold
+                   // Newton steps: a step that converges at all does in under 10 iterations.
+                   {"max_iterations", 30}};
   const int fine = size == SceneSize::Small ? 1 : 2;
   auto ramp = [&](json load) {
     load["ramp_steps"] = ramp_steps;

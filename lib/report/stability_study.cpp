@@ -4,9 +4,12 @@
 #include <cmath>
 #include <map>
 #include <ostream>
+#include <sstream>
 
 #include "core/errors.hpp"
+#include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
+#include "fem/rotation_tangent.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 #include "report/vtu_writer.hpp"
@@ -48,12 +51,41 @@ double round4(double x) { return std::isfinite(x) ? std::round(x * 1e4) / 1e4 : 
 
 }  // namespace
 
-json run_stability_case(const json& scene, const std::string& scene_id, const std::string& method,
+json refined_scene(const json& scene, int k) {
+  json s = scene;
+  s["analysis"]["dt"] = s["analysis"]["dt"].get<double>() / k;
+  s["analysis"]["steps"] = s["analysis"]["steps"].get<int>() * k;
+  for (const char* loads : {"forces", "moves"})
+    if (s.contains(loads))
+      for (json& load : s[loads])
+        for (const char* key : {"ramp_steps", "release_step"})
+          if (load.contains(key)) load[key] = load[key].get<int>() * k;
+  return s;
+}
+
+json run_stability_case(const json& scene, const std::string& scene_id, const StabilityRun& spec,
                         int ramp_steps, int hold_steps, json* pose, const std::filesystem::path& vtu_dir) {
   const FlutterThresholds thresholds;
-  json s = scene;
+  const std::string& method = spec.method;
+  json s = refined_scene(scene, spec.refinement);
   s["analysis"]["rotation"] = method;
+  s["analysis"]["integrator"] = spec.integrator;
+  ramp_steps *= spec.refinement;
+  hold_steps *= spec.refinement;
+  const double dt = s["analysis"]["dt"].get<double>();
+  const double alpha = s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("alpha", 0.0) : 0.0;
+  const double beta = s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("beta", 0.0) : 0.0;
   const int settle_from = ramp_steps + hold_steps / 2;  // the settled half of the hold
+  // Energy balance over the hold (loads constant, supports still): E + D - W stays at its value at
+  // the hold's start unless energy is created (a non-conservative force, an unstable integrator)
+  // or removed (backward Euler's numerical dissipation).
+  double hold_energy = 0, dissipated = 0, energy_excess = 0, energy_peak = 0;
+  Eigen::VectorXd hold_displacement;
+  double asymmetry_median = -1;
+  // Rotations of the state itself (the linearly implicit step's are the step start's), for the
+  // energy and the asymmetry.
+  std::unique_ptr<RotationExtractor> state_rotation;
+  std::vector<Mat3> state_rotations;
   std::vector<double> rms_series, max_series, energy_series;
   std::vector<int> inverted_series;
   std::vector<Mat3> previous;
@@ -62,7 +94,8 @@ json run_stability_case(const json& scene, const std::string& scene_id, const st
   long long flutter_samples = 0;
   int last_step = 0;
   double diagonal = 0;
-  json record = {{"scene", scene_id}, {"method", method}, {"ramp_steps", ramp_steps}, {"hold_steps", hold_steps}};
+  json record = {{"scene", scene_id},       {"method", method},         {"integrator", spec.integrator},
+                 {"dt", dt},                {"ramp_steps", ramp_steps}, {"hold_steps", hold_steps}};
   TimedRun run;
   TimedRunOptions options;
   options.on_step = [&](const StepState& st, const FeProblem& problem) {
@@ -93,7 +126,37 @@ json run_stability_case(const json& scene, const std::string& scene_id, const st
       flutter_samples += tets;
       flutter_max = std::max(flutter_max, largest);
     }
-    energy_series.push_back(0.5 * st.velocity.cwiseProduct(st.velocity).dot(problem.mass));
+    const double kinetic = 0.5 * st.velocity.cwiseProduct(st.velocity).dot(problem.mass);
+    energy_series.push_back(kinetic);
+    if (st.step >= ramp_steps) {
+      if (!state_rotation) {
+        state_rotation = make_rotation_extractor(method, problem.mesh);
+        state_rotations = st.rotations;
+      }
+      state_rotation->extract(problem.positions(st.displacement), state_rotations);
+      const double energy = kinetic + elastic_energy(problem.elements, problem.mesh, state_rotations, st.displacement);
+      if (st.step == ramp_steps) {
+        hold_energy = energy;
+        hold_displacement = st.displacement;
+      } else {
+        Eigen::VectorXd kv;
+        problem.stiffness.multiply(st.velocity, kv);
+        dissipated += dt * (alpha * st.velocity.dot(problem.mass.cwiseProduct(st.velocity)) + beta * st.velocity.dot(kv));
+      }
+      const double work = problem.external_force.dot(st.displacement - hold_displacement);
+      energy_excess = std::max(energy_excess, energy + dissipated - work - hold_energy);
+      energy_peak = std::max({energy_peak, energy, std::abs(work)});
+    }
+    if (st.step == ramp_steps + hold_steps) {
+      // Conservativeness of the method on this state: |J - J^T| / |J| per element, its median.
+      const RotationTangent tangent(problem, method);
+      const auto positions = problem.positions(st.displacement);
+      std::vector<double> asymmetries(problem.mesh.tets.size());
+      for (int e = 0; e < problem.mesh.num_tets(); ++e)
+        asymmetries[e] = asymmetry(tangent.element_jacobian(e, positions, state_rotations[e]));
+      std::nth_element(asymmetries.begin(), asymmetries.begin() + asymmetries.size() / 2, asymmetries.end());
+      asymmetry_median = asymmetries[asymmetries.size() / 2];
+    }
     inverted_series.push_back(count_inverted(problem, problem.positions(st.displacement)));
     if (st.displacement.lpNorm<Eigen::Infinity>() > thresholds.blowup_factor * diagonal)
       throw BlowUp("displacement beyond " + std::to_string(thresholds.blowup_factor) +
@@ -111,7 +174,8 @@ json run_stability_case(const json& scene, const std::string& scene_id, const st
   });
   // A numerical fault (NaN, a lost factorization, a blow-up) is the measurement "diverged"; bad
   // input or an internal error means the case did not run.
-  const bool diverged = !result["completed"].get<bool>() && result["error"]["kind"] == "numerical";
+  const bool diverged = !result["completed"].get<bool>() &&
+                        (result["error"]["kind"] == "numerical" || result["error"]["kind"] == "not_converged");
   if (!result["completed"].get<bool>() && !diverged) {
     record["completed"] = false;
     record["error"] = result["error"];
@@ -133,6 +197,9 @@ json run_stability_case(const json& scene, const std::string& scene_id, const st
   record["kinetic_energy_final"] = energy_series.empty() ? json(nullptr) : finite_or_null(energy_series.back());
   record["residual_final"] = diverged ? json(nullptr) : finite_or_null(run.result.residual);
   record["steps_run"] = last_step;
+  record["asymmetry"] = asymmetry_median >= 0 ? json(asymmetry_median) : json(nullptr);
+  record["energy_error"] = !diverged && energy_peak > 0 ? finite_or_null(energy_excess / energy_peak) : json(nullptr);
+  record["cause"] = nullptr;
   record["tets"] = run.tets;
   record["series"] = {{"rotation_change_rms_rad", rms_series},
                       {"rotation_change_max_rad", max_series},
@@ -145,10 +212,74 @@ json run_stability_case(const json& scene, const std::string& scene_id, const st
       points.push_back({round4(x.x()), round4(x.y()), round4(x.z())});
       values.push_back(round4(vertex_change[v]));
     }
-    *pose = {{"scene", scene_id}, {"method", method}, {"points", points}, {"rotation_change_max_rad", values}};
+    *pose = {{"scene", scene_id},
+             {"method", method},
+             {"integrator", spec.integrator},
+             {"points", points},
+             {"rotation_change_max_rad", values}};
   }
   return record;
 }
+
+void attribute_causes(std::vector<json*>& group) {
+  const json* reference = nullptr;  // Newton at the smaller step
+  for (const json* r : group)
+    if ((*r)["integrator"] == "newton" && (!reference || (*r)["dt"].get<double>() < (*reference)["dt"].get<double>()))
+      reference = r;
+  for (json* r : group) {
+    if ((*r)["status"] == "stable" || (*r)["status"] == "failed") continue;
+    const auto describe = [](const json& run) {
+      std::ostringstream text;
+      text << run["integrator"].get<std::string>() << " at dt " << run["dt"].get<double>() << ": "
+           << run["status"].get<std::string>();
+      if (run["flutter_max_rad"].is_number()) text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad)";
+      if (run["diverged_step"].is_number()) text << " (at step " << run["diverged_step"].get<int>() << ")";
+      return text.str();
+    };
+    if (reference == r) {
+      (*r)["cause"] = "method";
+      (*r)["cause_detail"] = describe(*r) + ", the smallest step under Newton";
+    } else if (!reference || (*reference)["status"] == "failed") {
+      (*r)["cause"] = nullptr;
+      (*r)["cause_detail"] = "no completed Newton run at the smaller step to attribute it";
+    } else if ((*reference)["status"] == "stable") {
+      (*r)["cause"] = "integrator";
+      (*r)["cause_detail"] = describe(*r) + "; " + describe(*reference);
+    } else {
+      (*r)["cause"] = "method";
+      (*r)["cause_detail"] = describe(*r) + "; also " + describe(*reference);
+    }
+  }
+}
+
+namespace {
+
+json stability_verdicts(const json& runs) {
+  // Per method: the paper's claim (stable everywhere) held or not, and why not.
+  std::map<std::string, json> by_method;
+  for (const json& r : runs) {
+    json& v = by_method[r["method"].get<std::string>()];
+    if (v.is_null()) v = {{"runs", 0}, {"not_stable", json::array()}, {"method_caused", 0}, {"integrator_caused", 0}};
+    v["runs"] = v["runs"].get<int>() + 1;
+    if (r["status"] == "stable") continue;
+    v["not_stable"].push_back({{"scene", r["scene"]}, {"integrator", r["integrator"]}, {"dt", r["dt"]},
+                               {"status", r["status"]}, {"cause", r["cause"]}});
+    if (r["cause"] == "method") v["method_caused"] = v["method_caused"].get<int>() + 1;
+    if (r["cause"] == "integrator") v["integrator_caused"] = v["integrator_caused"].get<int>() + 1;
+  }
+  json out = json::object();
+  for (auto& [method, v] : by_method) {
+    const int by_method_count = v["method_caused"], by_integrator = v["integrator_caused"];
+    v["verdict"] = v["not_stable"].empty()  ? "stable in every run"
+                   : by_method_count > 0    ? "fails by itself (not stable under Newton at the smaller step either)"
+                   : by_integrator > 0      ? "stable once the integrator is: every failure goes with the linearly implicit step or the larger dt"
+                                            : "failures without an attributable cause";
+    out[method] = v;
+  }
+  return out;
+}
+
+}  // namespace
 
 json run_stability_study(const ReportConfig& config) {
   const FlutterThresholds thresholds;
@@ -171,15 +302,33 @@ json run_stability_study(const ReportConfig& config) {
     out["scenes"][id] = scene;
     for (const std::string& method : rotation_method_names()) {
       if (method == "none") continue;
-      if (config.progress) *config.progress << "report: stability: " << id << ": " << method << std::endl;
-      json pose;
-      const auto vtu_dir = config.vtu ? config.out_dir / "vtu" / id / method : std::filesystem::path();
-      json run = run_stability_case(scene, id, method, config.stability_ramp(), config.stability_hold(),
-                                    &pose, vtu_dir);
-      out["runs"].push_back(run);
-      if (!pose.is_null()) out["poses"].push_back(pose);
+      std::vector<json> group;
+      const auto run = [&](const StabilityRun& spec) {
+        if (config.progress)
+          *config.progress << "report: stability: " << id << ": " << method << ", " << spec.integrator << ", dt 0.01/"
+                           << spec.refinement << std::endl;
+        json pose;
+        const auto vtu_dir = config.vtu && spec.refinement == 1
+                                 ? config.out_dir / "vtu" / id / (method + "-" + spec.integrator)
+                                 : std::filesystem::path();
+        group.push_back(run_stability_case(scene, id, spec, config.stability_ramp(), config.stability_hold(),
+                                           spec.refinement == 1 ? &pose : nullptr, vtu_dir));
+        if (!pose.is_null()) out["poses"].push_back(pose);
+      };
+      for (const char* integrator : {"linear-implicit", "newton"}) run({method, integrator, 1});
+      // The smaller step decides the cause of a run that is not stable; where both integrators
+      // are stable at dt there is nothing to attribute, and only the full report runs it anyway.
+      // The smoke report (seconds, for the report's own tests) never does.
+      const bool all_stable = std::all_of(group.begin(), group.end(), [](const json& r) { return r["status"] == "stable"; });
+      if (config.mode == ReportConfig::Mode::Full || (!all_stable && config.mode == ReportConfig::Mode::Quick))
+        for (const char* integrator : {"linear-implicit", "newton"}) run({method, integrator, 2});
+      std::vector<json*> members;
+      for (json& r : group) members.push_back(&r);
+      attribute_causes(members);
+      for (json& r : group) out["runs"].push_back(std::move(r));
     }
   }
+  out["verdicts"] = stability_verdicts(out["runs"]);
   return out;
 }
 

@@ -1,9 +1,13 @@
 #pragma once
 // Stability where methods fail (stability.json): every rotation extractor on scenes built to
-// break them (report/scene_catalogue.hpp), loaded, then held. Per run: flutter (per-element
-// rotation change per step during the settled part of the hold), kinetic energy, inversions, the
-// end's equilibrium residual, and divergence (NaN, a lost factorization or a blow-up stops the run
-// and the study goes on with the next method).
+// break them (report/scene_catalogue.hpp), loaded, then held, under both integrators (the paper's
+// linearly implicit Euler and fully implicit Euler by Newton) at two step sizes. Per run: flutter
+// (per-element rotation change per step during the settled part of the hold), kinetic energy,
+// inversions, the end's equilibrium residual, divergence (NaN, a lost factorization, a Newton step
+// that misses its tolerance or a blow-up stops the run and the study goes on), the energy balance
+// over the hold, the asymmetry of the element force Jacobians at the end (0: conservative), and for
+// every run that is not stable its cause: "method" when the method fails under Newton at the
+// smaller step too, "integrator" when it is stable there.
 #include <nlohmann/json.hpp>
 
 #include "report/report_config.hpp"
@@ -19,12 +23,28 @@ struct FlutterThresholds {
   double blowup_factor = 100;  ///< diverged when some |u| exceeds this times the body's diagonal
 };
 
-/// One run of one scene with one extractor; `scene` is a stability_scene(). `poses`, if given,
-/// receives the final boundary positions colored by the largest rotation change per vertex.
-nlohmann::json run_stability_case(const nlohmann::json& scene, const std::string& scene_id,
-                                  const std::string& method, int ramp_steps, int hold_steps,
-                                  nlohmann::json* pose = nullptr,
+/// One run: a method under an integrator at a step size.
+struct StabilityRun {
+  std::string method;
+  std::string integrator = "linear-implicit";  ///< linear-implicit | newton
+  int refinement = 1;  ///< dt = 0.01 / refinement, ramp and hold refinement x as many steps
+};
+
+/// `scene` run for the same physical time at dt / k: steps, and the loads' ramp and release
+/// steps, k times as many.
+nlohmann::json refined_scene(const nlohmann::json& scene, int k);
+
+/// One run of one scene; `scene` is a stability_scene() built for ramp_steps and hold_steps (at
+/// its own dt; refined here by spec.refinement). `pose`, if given, receives the final boundary
+/// positions colored by the largest rotation change per vertex.
+nlohmann::json run_stability_case(const nlohmann::json& scene, const std::string& scene_id, const StabilityRun& spec,
+                                  int ramp_steps, int hold_steps, nlohmann::json* pose = nullptr,
                                   const std::filesystem::path& vtu_dir = {});
+
+/// Sets "cause" (and "cause_detail") of every run of one scene and method that is not stable,
+/// from the group's Newton run at the smaller step: "method" if it is not stable either,
+/// "integrator" if it is, null (with the reason) when that run is missing or did not complete.
+void attribute_causes(std::vector<nlohmann::json*>& group);
 
 /// {"thresholds", "runs": [...], "poses": [...]} for config.stability_scenes() x every extractor.
 nlohmann::json run_stability_study(const ReportConfig& config);
