@@ -163,12 +163,30 @@ TEST(Report, StabilityRunsHaveTheDocumentedSchema) {
   for (const std::string& method : methods) EXPECT_TRUE(st["verdicts"].contains(method)) << method;
 }
 
+TEST(Report, ModelAccuracyHasTheDocumentedSchema) {
+  const json ma = load(smoke_report() / "model_accuracy.json");
+  expect_context(ma, "model_accuracy.json");
+  if (ma.contains("skipped")) GTEST_SKIP() << ma["skipped"];
+  ASSERT_EQ(ma["cases"].size(), 1u);  // smoke: the small cantilever
+  const json& c = ma["cases"][0];
+  ASSERT_TRUE(c["completed"].get<bool>()) << c.dump();
+  // The linear solves agree to CalculiX's printed digits; every method ran against NLGEOM.
+  EXPECT_LT(c["linear"]["against_calculix_linear"]["max"].get<double>(), 1e-6);
+  EXPECT_EQ(c["methods"].size(), 7u);
+  for (const json& m : c["methods"]) {
+    ASSERT_TRUE(m["completed"].get<bool>()) << m.dump();
+    EXPECT_TRUE(m["converged"].get<bool>()) << m["method"];
+    // Same mesh and loads: corotated against St. Venant-Kirchhoff at strains of about 1%.
+    EXPECT_LT(m["against_calculix_nlgeom"]["l2"].get<double>(), 0.05) << m["method"];
+  }
+}
+
 TEST(Report, MarkdownIsRedrawnFromTheJsonAlone) {
   if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
   const fs::path& out = smoke_report();
   ASSERT_TRUE(fs::exists(out / "REPORT.md"));
   TempDir copy;
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json"})
     fs::copy_file(out / file, copy / file);
   const std::string script = (test::source_dir() / "reports" / "render").string();
   ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>/dev/null").c_str()), 0);
@@ -187,7 +205,7 @@ fs::path golden_dir() { return test::source_dir() / "verify" / "golden" / "repor
 /// Copies the golden JSON records into `dir` and runs the renderer on them with `options`,
 /// its stderr to `stderr_file`; returns its exit status.
 int render_golden_fixture(const TempDir& dir, const std::string& options, const std::string& stderr_file) {
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json"})
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json"})
     fs::copy_file(golden_dir() / file, dir / file);
   const std::string script = (test::source_dir() / "reports" / "render").string();
   return std::system(("'" + script + "' '" + dir.path().string() + "' " + options + " 2>'" + stderr_file +

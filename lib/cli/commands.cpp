@@ -47,7 +47,8 @@ levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver com
 )";
 
 const char* kReportHelp = R"(Usage: corofem report [--out DIR] [--quick | --smoke] [--models DIR] [--only NAME]
-                      [--tables-only | --speed-accuracy-only | --stability-only] [--vtu] [--no-render]
+                      [--tables-only | --speed-accuracy-only | --stability-only | --model-accuracy-only]
+                      [--vtu] [--no-render]
 
 Runs the report's sections and writes into DIR (default out/report):
   tables.json          Tables 1 and 2 of the paper, measured (dynamic runs: energy-newton rotations,
@@ -55,12 +56,16 @@ Runs the report's sections and writes into DIR (default out/report):
                        small strain, Jacobi-PCG), the paper's rows, and the oracle checks
   speed_accuracy.json  time per step against error for solver settings, rotation methods and
                        resolutions, with the Pareto front and the cheapest setting meeting targets
-  stability.json       every rotation extractor on scenes built to break them: stable, flutter or
-                       diverged, with flutter, inversion and energy measurements
+  stability.json       every rotation extractor on scenes built to break them, under linearly
+                       implicit and Newton Euler at two steps: stable, flutter or diverged, with
+                       flutter, inversion, energy and asymmetry measurements and the cause of each
+                       failure (method or integrator)
+  model_accuracy.json  every rotation extractor's static solve against CalculiX NLGEOM on the same
+                       meshes and loads, and the linear solve against CalculiX's (needs ccx)
 then draws REPORT.md and charts/*.png from the JSON alone (reports/render; needs matplotlib).
 A cache_profile.json in DIR (bench/cache_profile.sh, run by ci/report) is included.
 
-  --quick        small versions of every scene (under 3 minutes)
+  --quick        small versions of every scene (about 6 minutes)
   --smoke        a seconds-long run for the report's own tests
   --models DIR   the bunny, horse and dragon surfaces instead of the procedural scenes
   --only NAME    just one model (cantilever, twisting-bar, quadruped, bunny, horse, dragon) or
@@ -139,7 +144,7 @@ int report_command(const std::vector<std::string>& args) {
   ParsedArgs parsed =
       parse_args(args, {"--out", "--models", "--only"},
                  {"--quick", "--smoke", "--tables-only", "--speed-accuracy-only", "--stability-only",
-                  "--vtu", "--no-render"});
+                  "--model-accuracy-only", "--vtu", "--no-render"});
   if (parsed.help) {
     std::cout << kReportHelp;
     return 0;
@@ -161,12 +166,15 @@ int report_command(const std::vector<std::string>& args) {
         throw InputError("--models " + config.models_dir.string() + ": no " + file + " there");
   }
   const int only = parsed.options.count("--tables-only") + parsed.options.count("--speed-accuracy-only") +
-                   parsed.options.count("--stability-only");
-  if (only > 1) throw InputError("report: give at most one of --tables-only, --speed-accuracy-only, --stability-only");
+                   parsed.options.count("--stability-only") + parsed.options.count("--model-accuracy-only");
+  if (only > 1)
+    throw InputError(
+        "report: give at most one of --tables-only, --speed-accuracy-only, --stability-only, --model-accuracy-only");
   if (only == 1) {
     config.tables = parsed.options.count("--tables-only") > 0;
     config.speed_accuracy = parsed.options.count("--speed-accuracy-only") > 0;
     config.stability = parsed.options.count("--stability-only") > 0;
+    config.model_accuracy = parsed.options.count("--model-accuracy-only") > 0;
   }
   config.vtu = parsed.options.count("--vtu") > 0;
   if (parsed.options.count("--only")) config.only = parsed.options["--only"];

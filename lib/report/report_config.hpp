@@ -15,7 +15,7 @@ struct ReportConfig {
   enum class Mode { Full, Quick, Smoke } mode = Mode::Full;
   std::filesystem::path out_dir = "out/report";
   std::filesystem::path models_dir;  ///< empty: procedural scenes only
-  bool tables = true, speed_accuracy = true, stability = true;
+  bool tables = true, speed_accuracy = true, stability = true, model_accuracy = true;
   bool vtu = false;                  ///< stability: VTU frames for ParaView
   std::string only;                  ///< if set: just the models / stability scenes of this name
   std::ostream* progress = nullptr;

@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/context.hpp"
+#include "report/model_accuracy.hpp"
 #include "report/paper_tables.hpp"
 #include "report/speed_accuracy.hpp"
 #include "report/stability_study.hpp"
@@ -56,6 +57,9 @@ std::vector<fs::path> run_report(const ReportConfig& config) {
   if (config.stability)
     written.push_back(write_section(config, "stability", "stability.json",
                                     [&] { return run_stability_study(config); }));
+  if (config.model_accuracy)
+    written.push_back(write_section(config, "model accuracy", "model_accuracy.json",
+                                    [&] { return run_model_accuracy(config); }));
   return written;
 }
 

@@ -240,4 +240,26 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
   return s;
 }
 
+std::vector<std::string> model_accuracy_ids() { return {"cantilever", "twisting-bar", "quadruped"}; }
+
+json model_accuracy_scene(const std::string& id, SceneSize size) {
+  json s = table_scene(id == "quadruped" ? "quadruped" : "cantilever", size, 1, 1e-8);
+  s["analysis"] = {{"type", "static"},   {"formulation", "corotational"}, {"rotation", "polar"},
+                   {"solver", "cholmod"}, {"integrator", "newton"},       {"load_steps", 20},
+                   {"tolerance", 1e-10},  {"max_iterations", 30}};
+  s.erase("moves");
+  if (s.contains("forces"))
+    for (json& force : s["forces"]) force.erase("ramp_steps");
+  if (id == "cantilever") s["material"]["young"] = 2e6;  // droops about a quarter of its length
+  if (id == "quadruped")  // a tenth of the table's pull: NLGEOM and Newton from rest in 20 increments
+    for (json& force : s["forces"]) force["total"] = {0, 0, 2e3};
+  if (id == "twisting-bar") {
+    // About 0.8 rad of twist by bar theory (GJ = 0.141 a^4 E / 2.6 = 1690 N m^2, L = 2 m).
+    s.erase("gravity");
+    s["forces"] = json::array({{{"box", box(2 - 1e-6, 0, 0.5 - 1e-6, 2, 0.5, 0.5)}, {"total", {0, 1350, 0}}},
+                               {{"box", box(2 - 1e-6, 0, 0, 2, 0.5, 1e-6)}, {"total", {0, -1350, 0}}}});
+  }
+  return s;
+}
+
 }  // namespace corofem

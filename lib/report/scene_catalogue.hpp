@@ -48,4 +48,11 @@ std::vector<std::string> stability_scene_ids(bool with_models);
 nlohmann::json stability_scene(const std::string& id, SceneSize size, int ramp_steps,
                                int hold_steps, const std::filesystem::path& models_dir = {});
 
+/// Static scenes for the model's accuracy against CalculiX NLGEOM (report/model_accuracy.hpp):
+/// "cantilever" (the table's bar under gravity, drooping far), "twisting-bar" (the bar twisted by
+/// a torque on its free end: two opposite forces on its top and bottom edges) and "quadruped" (the
+/// table's pull on the shoulders), all with integrator newton, 20 increments, tolerance 1e-10.
+std::vector<std::string> model_accuracy_ids();
+nlohmann::json model_accuracy_scene(const std::string& id, SceneSize size);
+
 }  // namespace corofem
