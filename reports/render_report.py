@@ -410,8 +410,9 @@ def render_verdicts(st, md):
     if not verdicts:
         return
     md.append("\n**Verdict on the paper's claim (stable corotation), method by method.** A run that is not "
-              "stable is caused by the *method* when the method fails under fully implicit Euler (Newton, "
-              "consistent tangent) at the smaller step too, by the *integrator* when it is stable there. "
+              "stable is caused by the *integrator* when the same method is stable under the other integrator "
+              "(linearly implicit Euler, or fully implicit Euler by Newton with the consistent tangent) at "
+              "that step or at the smaller step, by the *method* when it fails in all of them. "
               "Asymmetry: median over elements of |J - J^T| / |J| of the element force Jacobian at the end "
               "(0: a conservative force). Energy error: the largest energy created over the hold, relative to "
               "the hold's energy (E + damping - work of the loads; backward Euler with a conservative force "

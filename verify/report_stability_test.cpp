@@ -72,26 +72,34 @@ json fake_run(const std::string& integrator, double dt, const std::string& statu
           {"flutter_max_rad", status == "flutter" ? json(0.8) : json(0.001)}, {"diverged_step", nullptr}};
 }
 
-TEST(Stability, CausesComeFromNewtonAtTheSmallerStep) {
-  // Not stable under linear-implicit, stable under Newton at dt/2: the integrator.
+TEST(Stability, CausesComeFromTheOtherIntegratorAndTheSmallerStep) {
+  // Not stable under linear-implicit, stable under Newton: the integrator.
   std::vector<json> runs = {fake_run("linear-implicit", 0.01, "flutter"), fake_run("newton", 0.01, "stable"),
                             fake_run("linear-implicit", 0.005, "stable"), fake_run("newton", 0.005, "stable")};
   std::vector<json*> group;
   for (json& r : runs) group.push_back(&r);
   attribute_causes(group);
   EXPECT_EQ(runs[0]["cause"], "integrator");
-  EXPECT_NE(runs[0]["cause_detail"].get<std::string>().find("newton at dt 0.005: stable"), std::string::npos);
-  // Flutter under Newton at dt/2 as well: the method, for every run that is not stable.
+  EXPECT_NE(runs[0]["cause_detail"].get<std::string>().find("but newton at dt 0.01: stable"), std::string::npos)
+      << runs[0]["cause_detail"];
+  // Failing under both integrators at dt, stable under linear-implicit at dt/2: the step size, an
+  // integrator matter too.
   runs = {fake_run("linear-implicit", 0.01, "flutter"), fake_run("newton", 0.01, "diverged"),
           fake_run("linear-implicit", 0.005, "stable"), fake_run("newton", 0.005, "flutter")};
   attribute_causes(group);
-  EXPECT_EQ(runs[0]["cause"], "method");
-  EXPECT_EQ(runs[1]["cause"], "method");
-  EXPECT_EQ(runs[3]["cause"], "method");
+  EXPECT_EQ(runs[0]["cause"], "integrator");
+  EXPECT_EQ(runs[1]["cause"], "integrator");
+  EXPECT_EQ(runs[3]["cause"], "integrator");
   EXPECT_FALSE(runs[2].contains("cause"));
-  // Without a Newton run at the smaller step, no cause is claimed.
-  runs = {fake_run("linear-implicit", 0.01, "flutter"), fake_run("linear-implicit", 0.005, "stable"),
-          fake_run("linear-implicit", 0.005, "stable"), fake_run("linear-implicit", 0.005, "stable")};
+  // Failing everywhere: the method, for every run.
+  runs = {fake_run("linear-implicit", 0.01, "flutter"), fake_run("newton", 0.01, "diverged"),
+          fake_run("linear-implicit", 0.005, "flutter"), fake_run("newton", 0.005, "flutter")};
+  attribute_causes(group);
+  for (const json& r : runs) EXPECT_EQ(r["cause"], "method") << r.dump();
+  // Only Newton runs that did not converge to compare with: no cause is claimed.
+  runs = {fake_run("linear-implicit", 0.01, "flutter"), fake_run("newton", 0.01, "diverged"),
+          fake_run("newton", 0.005, "diverged"), fake_run("newton", 0.005, "diverged")};
+  for (int k = 1; k < 4; ++k) runs[k]["divergence"] = {{"kind", "not_converged"}};
   attribute_causes(group);
   EXPECT_TRUE(runs[0]["cause"].is_null());
 }

@@ -65,7 +65,7 @@ Runs the report's sections and writes into DIR (default out/report):
 then draws REPORT.md and charts/*.png from the JSON alone (reports/render; needs matplotlib).
 A cache_profile.json in DIR (bench/cache_profile.sh, run by ci/report) is included.
 
-  --quick        small versions of every scene (about 6 minutes)
+  --quick        small versions of every scene (about 16 minutes)
   --smoke        a seconds-long run for the report's own tests
   --models DIR   the bunny, horse and dragon surfaces instead of the procedural scenes
   --only NAME    just one model (cantilever, twisting-bar, quadruped, bunny, horse, dragon) or

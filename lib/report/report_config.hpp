@@ -10,8 +10,9 @@
 namespace corofem {
 
 struct ReportConfig {
-  /// full: the paper's sizes (under 20 minutes on 2 cores); quick: small versions (under 3
-  /// minutes); smoke: seconds-long, for the tests of the report itself.
+  /// full: the paper's sizes (about an hour on 2 cores, most of it the stability study's Newton
+  /// runs); quick: small versions (about 16 minutes); smoke: seconds-long, for the tests of the
+  /// report itself.
   enum class Mode { Full, Quick, Smoke } mode = Mode::Full;
   std::filesystem::path out_dir = "out/report";
   std::filesystem::path models_dir;  ///< empty: procedural scenes only

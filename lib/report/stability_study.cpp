@@ -222,32 +222,40 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
 }
 
 void attribute_causes(std::vector<json*>& group) {
-  const json* reference = nullptr;  // Newton at the smaller step
-  for (const json* r : group)
-    if ((*r)["integrator"] == "newton" && (!reference || (*r)["dt"].get<double>() < (*reference)["dt"].get<double>()))
-      reference = r;
+  const auto describe = [](const json& run) {
+    std::ostringstream text;
+    text << run["integrator"].get<std::string>() << " at dt " << run["dt"].get<double>() << ": "
+         << run["status"].get<std::string>();
+    if (run["flutter_max_rad"].is_number()) text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad)";
+    if (run["diverged_step"].is_number()) text << " (at step " << run["diverged_step"].get<int>() << ")";
+    return text.str();
+  };
   for (json* r : group) {
     if ((*r)["status"] == "stable" || (*r)["status"] == "failed") continue;
-    const auto describe = [](const json& run) {
-      std::ostringstream text;
-      text << run["integrator"].get<std::string>() << " at dt " << run["dt"].get<double>() << ": "
-           << run["status"].get<std::string>();
-      if (run["flutter_max_rad"].is_number()) text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad)";
-      if (run["diverged_step"].is_number()) text << " (at step " << run["diverged_step"].get<int>() << ")";
-      return text.str();
-    };
-    if (reference == r) {
-      (*r)["cause"] = "method";
-      (*r)["cause_detail"] = describe(*r) + ", the smallest step under Newton";
-    } else if (!reference || (*reference)["status"] == "failed") {
-      (*r)["cause"] = nullptr;
-      (*r)["cause_detail"] = "no completed Newton run at the smaller step to attribute it";
-    } else if ((*reference)["status"] == "stable") {
+    // The comparisons: the other runs at the same step (the other integrator) or a smaller one.
+    const json* witness = nullptr;  // one of them stable: the failure is not the method's
+    std::vector<const json*> others;
+    for (const json* o : group)
+      if (o != r && (*o)["status"] != "failed" && (*o)["dt"].get<double>() <= (*r)["dt"].get<double>()) {
+        others.push_back(o);
+        if ((*o)["status"] == "stable" && !witness) witness = o;
+      }
+    const bool newton_only_unconverged =
+        !others.empty() && std::all_of(others.begin(), others.end(), [](const json* o) {
+          return o->contains("divergence") && (*o)["divergence"]["kind"] == "not_converged";
+        });
+    if (witness) {
       (*r)["cause"] = "integrator";
-      (*r)["cause_detail"] = describe(*r) + "; " + describe(*reference);
+      (*r)["cause_detail"] = describe(*r) + "; but " + describe(*witness);
+    } else if (others.empty() || newton_only_unconverged) {
+      (*r)["cause"] = nullptr;
+      (*r)["cause_detail"] = describe(*r) + (others.empty() ? "; no run under the other integrator or at a smaller step"
+                                                            : "; Newton did not converge in the runs to compare");
     } else {
+      std::string also;
+      for (const json* o : others) also += "; also " + describe(*o);
       (*r)["cause"] = "method";
-      (*r)["cause_detail"] = describe(*r) + "; also " + describe(*reference);
+      (*r)["cause_detail"] = describe(*r) + also;
     }
   }
 }
@@ -271,7 +279,7 @@ json stability_verdicts(const json& runs) {
   for (auto& [method, v] : by_method) {
     const int by_method_count = v["method_caused"], by_integrator = v["integrator_caused"];
     v["verdict"] = v["not_stable"].empty()  ? "stable in every run"
-                   : by_method_count > 0    ? "fails by itself (not stable under Newton at the smaller step either)"
+                   : by_method_count > 0    ? "fails by itself in some scene (under both integrators, at both steps)"
                    : by_integrator > 0      ? "stable once the integrator is: every failure goes with the linearly implicit step or the larger dt"
                                             : "failures without an attributable cause";
     out[method] = v;

@@ -6,8 +6,8 @@
 // inversions, the end's equilibrium residual, divergence (NaN, a lost factorization, a Newton step
 // that misses its tolerance or a blow-up stops the run and the study goes on), the energy balance
 // over the hold, the asymmetry of the element force Jacobians at the end (0: conservative), and for
-// every run that is not stable its cause: "method" when the method fails under Newton at the
-// smaller step too, "integrator" when it is stable there.
+// every run that is not stable its cause: "integrator" when the method is stable under the other
+// integrator or at the smaller step, "method" when it fails there too.
 #include <nlohmann/json.hpp>
 
 #include "report/report_config.hpp"
@@ -41,9 +41,10 @@ nlohmann::json run_stability_case(const nlohmann::json& scene, const std::string
                                   int ramp_steps, int hold_steps, nlohmann::json* pose = nullptr,
                                   const std::filesystem::path& vtu_dir = {});
 
-/// Sets "cause" (and "cause_detail") of every run of one scene and method that is not stable,
-/// from the group's Newton run at the smaller step: "method" if it is not stable either,
-/// "integrator" if it is, null (with the reason) when that run is missing or did not complete.
+/// Sets "cause" (and "cause_detail") of every run of one scene and method that is not stable, from
+/// the group's runs under the other integrator at the same step or at a smaller step: "integrator"
+/// if one of them is stable, "method" if none is, null (with the reason) when there are none or
+/// they failed only because Newton did not converge.
 void attribute_causes(std::vector<nlohmann::json*>& group);
 
 /// {"thresholds", "runs": [...], "poses": [...]} for config.stability_scenes() x every extractor.
