@@ -4,6 +4,9 @@
 // diverged, with its step, and does not stop the study.
 #include <gtest/gtest.h>
 
+#include <map>
+
+#include "mesh/tet_mesh.hpp"
 #include "report/report_config.hpp"
 #include "report/stability_study.hpp"
 
@@ -102,6 +105,40 @@ TEST(Stability, CausesComeFromTheOtherIntegratorAndTheSmallerStep) {
   for (int k = 1; k < 4; ++k) runs[k]["divergence"] = {{"kind", "not_converged"}};
   attribute_causes(group);
   EXPECT_TRUE(runs[0]["cause"].is_null());
+}
+
+TEST(Stability, PoseIsTheClosedOutwardBoundarySurface) {
+  // The bar, 1 x 0.2 x 0.2 m in 20 x 4 x 4 cells: its boundary has 21 x 5 x 5 - 19 x 3 x 3 = 354
+  // vertices; a closed surface has every edge in two triangles, once in each direction, and by
+  // the divergence theorem encloses sum over triangles of x . n / 3 = the box's 0.04 m^3
+  // (positive only if every normal points out). Coordinates are stored to 1e-4 m, exact here.
+  const json scene = stability_scene("bar-twist", SceneSize::Small, 2, 2);
+  json pose;
+  const json run = run_stability_case(scene, "bar-twist", {"polar"}, 2, 2, &pose);
+  ASSERT_TRUE(run["completed"].get<bool>()) << run.dump();
+  ASSERT_FALSE(pose.is_null());
+  EXPECT_EQ(pose["status"], run["status"]);
+  const json& rest = pose["rest_points"];
+  ASSERT_EQ(rest.size(), 354u);
+  ASSERT_EQ(pose["points"].size(), rest.size());
+  ASSERT_EQ(pose["rotation_change_max_rad"].size(), rest.size());
+  std::map<std::pair<int, int>, int> directed;
+  double volume = 0;
+  for (const json& t : pose["triangles"]) {
+    const int v[3] = {t[0].get<int>(), t[1].get<int>(), t[2].get<int>()};
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_GE(v[k], 0);
+      ASSERT_LT(v[k], static_cast<int>(rest.size()));
+      ++directed[{v[k], v[(k + 1) % 3]}];
+    }
+    const auto p = [&](int k) { return Vec3(rest[v[k]][0], rest[v[k]][1], rest[v[k]][2]); };
+    volume += p(0).dot(p(1).cross(p(2))) / 6;
+  }
+  for (const auto& [edge, count] : directed) {
+    EXPECT_EQ(count, 1) << edge.first << "->" << edge.second;
+    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u) << edge.first << "-" << edge.second << " is open";
+  }
+  EXPECT_NEAR(volume, 0.04, 1e-12);
 }
 
 }  // namespace

@@ -26,25 +26,42 @@ struct BlowUp : NumericalFault {
   using NumericalFault::NumericalFault;
 };
 
-/// Vertices on the boundary (on a face that belongs to one tet only).
-std::vector<int> boundary_vertices(const TetMesh& mesh) {
-  std::map<std::array<int, 3>, int> faces;
+/// The boundary surface: faces that belong to one tet only, each oriented with its normal
+/// pointing away from that tet's fourth vertex (outward), as indices into `vertices`.
+struct BoundarySurface {
+  std::vector<int> vertices;                ///< mesh vertices on the boundary, ascending
+  std::vector<std::array<int, 3>> triangles;  ///< positions in `vertices`
+};
+
+BoundarySurface boundary_surface(const TetMesh& mesh) {
+  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;  // sorted -> count, oriented
   for (const Tet& t : mesh.tets)
     for (int skip = 0; skip < 4; ++skip) {
       std::array<int, 3> f;
       for (int a = 0, k = 0; a < 4; ++a)
         if (a != skip) f[k++] = t[a];
-      std::sort(f.begin(), f.end());
-      ++faces[f];
+      const Vec3 normal = (mesh.rest[f[1]] - mesh.rest[f[0]]).cross(mesh.rest[f[2]] - mesh.rest[f[0]]);
+      if (normal.dot(mesh.rest[t[skip]] - mesh.rest[f[0]]) > 0) std::swap(f[1], f[2]);
+      std::array<int, 3> key = f;
+      std::sort(key.begin(), key.end());
+      auto& [count, oriented] = faces[key];
+      ++count;
+      oriented = f;
     }
-  std::vector<char> on(mesh.rest.size(), 0);
-  for (const auto& [f, count] : faces)
-    if (count == 1)
-      for (int v : f) on[v] = 1;
-  std::vector<int> out;
-  for (std::size_t v = 0; v < on.size(); ++v)
-    if (on[v]) out.push_back(static_cast<int>(v));
-  return out;
+  BoundarySurface surface;
+  std::vector<int> position(mesh.rest.size(), -1);
+  for (const auto& [key, face] : faces)
+    if (face.first == 1)
+      for (int v : key) position[v] = 0;
+  for (std::size_t v = 0; v < position.size(); ++v)
+    if (position[v] == 0) {
+      position[v] = static_cast<int>(surface.vertices.size());
+      surface.vertices.push_back(static_cast<int>(v));
+    }
+  for (const auto& [key, face] : faces)
+    if (face.first == 1)
+      surface.triangles.push_back({position[face.second[0]], position[face.second[1]], position[face.second[2]]});
+  return surface;
 }
 
 double round4(double x) { return std::isfinite(x) ? std::round(x * 1e4) / 1e4 : 0.0; }
@@ -206,15 +223,22 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
                       {"kinetic_energy", energy_series},
                       {"inverted", inverted_series}};
   if (pose && !diverged) {
-    json points = json::array(), values = json::array();
-    for (int v : boundary_vertices(run.mesh)) {
-      const Vec3 x = run.mesh.rest[v] + run.result.displacement.segment<3>(3 * v);
+    const BoundarySurface surface = boundary_surface(run.mesh);
+    json rest = json::array(), points = json::array(), values = json::array(), triangles = json::array();
+    for (int v : surface.vertices) {
+      const Vec3& x0 = run.mesh.rest[v];
+      const Vec3 x = x0 + run.result.displacement.segment<3>(3 * v);
+      rest.push_back({round4(x0.x()), round4(x0.y()), round4(x0.z())});
       points.push_back({round4(x.x()), round4(x.y()), round4(x.z())});
       values.push_back(round4(vertex_change[v]));
     }
+    for (const auto& t : surface.triangles) triangles.push_back(t);
     *pose = {{"scene", scene_id},
              {"method", method},
              {"integrator", spec.integrator},
+             {"status", record["status"]},
+             {"rest_points", rest},
+             {"triangles", triangles},
              {"points", points},
              {"rotation_change_max_rad", values}};
   }
@@ -304,6 +328,7 @@ json run_stability_study(const ReportConfig& config) {
               {"runs", json::array()},
               {"poses", json::array()}};
   out["scenes"] = json::object();
+  out["surfaces"] = json::object();
   for (const std::string& id : config.stability_scenes()) {
     const json scene = stability_scene(id, config.stability_size(), config.stability_ramp(),
                                        config.stability_hold(), config.models_dir);
@@ -321,7 +346,14 @@ json run_stability_study(const ReportConfig& config) {
                                  : std::filesystem::path();
         group.push_back(run_stability_case(scene, id, spec, config.stability_ramp(), config.stability_hold(),
                                            spec.refinement == 1 ? &pose : nullptr, vtu_dir));
-        if (!pose.is_null()) out["poses"].push_back(pose);
+        if (!pose.is_null()) {
+          // The rest surface is the scene's, the same for every run: stored once.
+          if (!out["surfaces"].contains(id))
+            out["surfaces"][id] = {{"rest_points", pose["rest_points"]}, {"triangles", pose["triangles"]}};
+          pose.erase("rest_points");
+          pose.erase("triangles");
+          out["poses"].push_back(std::move(pose));
+        }
       };
       for (const char* integrator : {"linear-implicit", "newton"}) run({method, integrator, 1});
       // The smaller step decides the cause of a run that is not stable; where both integrators

@@ -47,7 +47,8 @@ nlohmann::json run_stability_case(const nlohmann::json& scene, const std::string
 /// they failed only because Newton did not converge.
 void attribute_causes(std::vector<nlohmann::json*>& group);
 
-/// {"thresholds", "runs": [...], "poses": [...]} for config.stability_scenes() x every extractor.
+/// {"thresholds", "runs": [...], "surfaces": {scene: rest boundary}, "poses": [...]} for
+/// config.stability_scenes() x every extractor; a pose is a run's boundary at the end (dt runs).
 nlohmann::json run_stability_study(const ReportConfig& config);
 
 }  // namespace corofem
