@@ -11,6 +11,7 @@ struct CholmodSolver::Impl {
   Impl() { llt.cholmod().print = 0; }
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
   bool analyzed = false;
+  double lnz = 0, flops = 0;
 };
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
@@ -21,6 +22,8 @@ CholmodSolver& CholmodSolver::operator=(CholmodSolver&&) noexcept = default;
 void CholmodSolver::analyze(const Eigen::SparseMatrix<double>& a) {
   impl_->llt.analyzePattern(a);
   impl_->analyzed = true;
+  impl_->lnz = impl_->llt.cholmod().lnz;
+  impl_->flops = impl_->llt.cholmod().fl;
 }
 
 void CholmodSolver::factorize(const Eigen::SparseMatrix<double>& a) {
@@ -35,6 +38,9 @@ Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const {
   if (impl_->llt.info() != Eigen::Success) throw std::runtime_error("CHOLMOD: solve failed");
   return x;
 }
+
+double CholmodSolver::factor_nonzeros() const { return impl_->lnz; }
+double CholmodSolver::factorization_flops() const { return impl_->flops; }
 
 Eigen::VectorXd cholmod_solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b) {
   CholmodSolver solver;

@@ -19,6 +19,10 @@ class CholmodSolver {
   /// lower triangle is read. Throws std::runtime_error if A is not positive definite.
   void factorize(const Eigen::SparseMatrix<double>& a);
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// Entries of the factor L and flops of one numeric factorization, as CHOLMOD's analysis
+  /// counted them (0 before analyze()).
+  double factor_nonzeros() const;
+  double factorization_flops() const;
 
  private:
   struct Impl;

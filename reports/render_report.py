@@ -188,6 +188,7 @@ def render_tables(tables, folder, md):
     md.append(table(["model", "Jacobi-PCG step ms", "CG iterations", "MG-PCG step ms", "MG-PCG iterations"], rows))
     md.append("\n")
     render_multigrid_quality(tables, md)
+    render_roofline(tables, folder, md)
     # Phase chart.
     ok = [r for r in tables.get("table1", []) if not failed(r)]
     if HAVE_MPL and ok:
@@ -218,6 +219,65 @@ def render_tables(tables, folder, md):
             rows.append([v["model"], c["oracle"], c["quantity"], c["count"], num(c["largest"], 2)])
     md.append(table(["model", "oracle", "quantity", "compared", "largest"], rows))
     md.append("\nThe full gate suite (`ci/test`) checks more: see verify/.\n\n")
+
+
+ROOFLINE_PHASES = ["checks", "rotate", "assemble", "forces", "system", "update", "solve"]
+
+
+def render_roofline(tables, folder, md):
+    """Each phase's measured time against its floor: compulsory bytes / STREAM bandwidth."""
+    rows = [r for r in tables.get("table1", []) if not failed(r) and r.get("roofline")]
+    if not rows:
+        return
+    md.append("### Roofline: each phase of the step against its floor\n\n")
+    md.append(f"- Floor = the larger of the bytes a phase must move per step (every array it touches, once; "
+              f"counted from the data structures, see lib/report/step_roofline.hpp) over the STREAM triad "
+              f"bandwidth and its flops over the dense-product rate, both measured in this run "
+              f"({t(tables.get('stream_triad_GBps'))} GB/s, {t(tables.get('dense_gflops'))} Gflop/s). "
+              f"Over floor = measured / floor (1 = at the machine's limit). Where the working set fits in the "
+              f"caches a phase can run below its floor.\n\n")
+    out = []
+    for r in rows:
+        rl = r["roofline"]
+        for phase in ROOFLINE_PHASES:
+            p = rl["phases"].get(phase)
+            if not p:
+                continue
+            out.append([r["model"], phase, num(p["bytes"] / 1e6, 3), num(p["flops"] / 1e6, 3),
+                        num(p["flops_per_byte"], 2), p.get("bound", "memory"), t(p["floor_ms"]),
+                        t(p.get("measured_ms")), t(p.get("over_floor"), 2)])
+        out.append([r["model"], "**step**", num(sum(p["bytes"] for p in rl["phases"].values()) / 1e6, 3),
+                    num(sum(p["flops"] for p in rl["phases"].values()) / 1e6, 3), "", "", t(rl["floor_ms"]),
+                    t(rl.get("step_ms")), t(rl.get("over_floor"), 2)])
+        out.append([r["model"], "outside every phase", "", "", "", "", "", t(rl.get("untimed_ms")), ""])
+    md.append(table(["model", "phase", "MB per step", "Mflop per step", "flop/byte", "bound", "floor ms",
+                     "measured ms", "over floor"], out))
+    md.append("\n")
+    if not HAVE_MPL:
+        return
+    fig, axes = plt.subplots(1, len(rows), figsize=(max(6.5, 3.4 * len(rows) + 0.6), 3.6), squeeze=False)
+    for ax, r in zip(axes[0], rows):
+        phases = [p for p in ROOFLINE_PHASES if p in r["roofline"]["phases"]]
+        data = r["roofline"]["phases"]
+        y = list(range(len(phases)))
+        ax.barh([v + 0.2 for v in y], [max(data[p].get("measured_ms") or 0, 1e-6) for p in phases], height=0.4,
+                color="#4c72b0", label="measured")
+        ax.barh([v - 0.2 for v in y], [max(data[p]["floor_ms"], 1e-6) for p in phases], height=0.4,
+                color="#bbbbbb", label="floor: max(bytes / STREAM, flops / dense rate)")
+        ax.set_yticks(y)
+        ax.set_yticklabels(phases, fontsize=8)
+        ax.invert_yaxis()
+        ax.set_xscale("log")
+        ax.set_xlabel("ms per step", fontsize=8)
+        ax.tick_params(axis="x", labelsize=8)
+        ax.set_title(f"{r['model']}: {t(r['roofline'].get('over_floor'), 2)}x over floor", fontsize=9)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, fontsize=8, loc="lower center", ncol=2, frameon=False)
+    fig.suptitle(f"Step phases against their floor (STREAM {t(tables.get('stream_triad_GBps'))} GB/s, dense "
+                 f"{t(tables.get('dense_gflops'))} Gflop/s, {tables.get('context', {}).get('threads_used', 1)} thread)",
+                 fontsize=10)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    md.append(f"![roofline]({save(fig, folder, 'table1_roofline.png')})\n\n")
 
 
 def render_multigrid_quality(tables, md):

@@ -64,6 +64,28 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     // most cond-bounded, and for these well-shaped meshes stays below 1e-2.
     EXPECT_LE(row["solve_accuracy"]["relative_residual_max"].get<double>(), 1e-4);
     EXPECT_LT(row["solve_accuracy"]["error_vs_cholmod_max"].get<double>(), 1e-2);
+    // The roofline: every phase of the step with bytes, flops and its floor at the measured
+    // STREAM bandwidth; the ratios are the record's own times over those floors.
+    const json& roofline = row["roofline"];
+    const double gbps = roofline["stream_triad_GBps"].get<double>();
+    EXPECT_DOUBLE_EQ(gbps, t["stream_triad_GBps"].get<double>());
+    EXPECT_GT(gbps, 0.1);  // any machine of this century
+    double floor_sum = 0;
+    for (const char* phase : {"checks", "rotate", "assemble", "forces", "system", "update", "solve"}) {
+      SCOPED_TRACE(phase);
+      const json& p = roofline["phases"][phase];
+      ASSERT_TRUE(p.is_object()) << roofline.dump();
+      EXPECT_GT(p["bytes"].get<double>(), 0);
+      EXPECT_GT(p["flops"].get<double>(), 0);
+      const double floor_ms = std::max(p["bytes"].get<double>() / (gbps * 1e6),
+                                       p["flops"].get<double>() / (roofline["dense_gflops"].get<double>() * 1e6));
+      EXPECT_NEAR(p["floor_ms"].get<double>(), floor_ms, 1e-12 * floor_ms);
+      EXPECT_NEAR(p["over_floor"].get<double>(), p["measured_ms"].get<double>() / p["floor_ms"].get<double>(),
+                  1e-9 * p["over_floor"].get<double>());
+      floor_sum += p["floor_ms"].get<double>();
+    }
+    EXPECT_NEAR(roofline["floor_ms"].get<double>(), floor_sum, 1e-12 * floor_sum);
+    EXPECT_DOUBLE_EQ(roofline["step_ms"].get<double>(), row["step_ms"].get<double>());
   }
   for (const char* section : {"table2", "small_strain", "jacobi_pcg"}) {
     ASSERT_FALSE(t[section].empty()) << section;

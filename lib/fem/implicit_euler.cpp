@@ -122,9 +122,12 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     const std::map<std::string, double> before = result.timings_ms;
     if (options.before_step) options.before_step(step, problem);
     DirichletConditions bc = problem.dirichlet;  // on the velocity: reach the prescribed u
-    for (int i = 0; i < n; ++i)
-      bc.value[i] = bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
-    const auto p = problem.positions(result.displacement);
+    clock.time("system", [&] {
+      for (int i = 0; i < n; ++i)
+        bc.value[i] = bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
+    });
+    std::vector<Vec3> p;  // the rotations' input
+    clock.time("rotate", [&] { p = problem.positions(result.displacement); });
     clock.time("checks", [&] { result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p)); });
     linearize(problem, rotate, p, result.rotations, f0, clock);
     SolveStats stats;

@@ -78,6 +78,9 @@ nlohmann::json MultigridSolver::describe() const {
 
 MultigridSolver::~MultigridSolver() = default;
 
+double MultigridSolver::coarsest_factor_nonzeros() const { return coarsest_->cholmod.factor_nonzeros(); }
+double MultigridSolver::coarsest_factorization_flops() const { return coarsest_->cholmod.factorization_flops(); }
+
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
   hierarchy_.update(a, params_.galerkin);
   const int last = hierarchy_.num_levels() - 1;

@@ -40,6 +40,11 @@ class MultigridSolver : public LinearSolver {
   /// One V-cycle from level h for A_h x = b (x is the initial guess on entry).
   void vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
+  const MultigridParams& params() const { return params_; }
+  /// The coarsest level's Cholesky factor: entries of L and flops per factorization (CHOLMOD's
+  /// analysis; 0 before the first set_matrix).
+  double coarsest_factor_nonzeros() const;
+  double coarsest_factorization_flops() const;
   /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
   /// complexity, setup times, and the median rho and iterations over the solves so far.
   nlohmann::json describe() const;

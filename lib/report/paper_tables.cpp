@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "core/errors.hpp"
+#include "core/machine_roofs.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 
@@ -78,6 +79,10 @@ json run_paper_tables(const ReportConfig& config) {
                         {"tolerance", config.default_tolerance()},
                         {"dt", 0.01},
                         {"oracle_check_steps", nlohmann::json::array()}};
+  // The rooflines' roofs, this machine's, measured before the runs.
+  const MachineRoofs roofs{measure_stream_triad_gbps(), measure_dense_gflops()};
+  tables["stream_triad_GBps"] = roofs.stream_gbps;
+  tables["dense_gflops"] = roofs.dense_gflops;
   std::vector<int> check_steps{warmup + 1, warmup + measured / 2, steps};
   check_steps.erase(std::unique(check_steps.begin(), check_steps.end()), check_steps.end());
   tables["settings"]["oracle_check_steps"] = check_steps;
@@ -124,6 +129,7 @@ json run_paper_tables(const ReportConfig& config) {
                     {"cholmod_factorize_ms", cholmod.median_ms("update", warmup)},
                     {"speedup_vs_cholmod", cholmod.median_ms("step", warmup) / main.median_ms("step", warmup)},
                     {"inverted_max", main.result.inverted_max},
+                    {"roofline", main.roofline(warmup, roofs)},
                     {"paper", paper_table1_row(paper_model)}};
       });
       tables["table1"].push_back(row);

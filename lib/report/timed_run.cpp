@@ -79,6 +79,14 @@ double TimedRun::median_iterations(int warmup) const {
   return median(values);
 }
 
+nlohmann::json TimedRun::roofline(int warmup, const MachineRoofs& roofs) const {
+  if (traffic.empty()) return nullptr;
+  std::map<std::string, double> measured;
+  for (const auto& [phase, t] : traffic) measured[phase] = median_ms(phase, warmup);
+  measured["step"] = median_ms("step", warmup);
+  return roofline_record(traffic, measured, roofs, working_set_bytes);
+}
+
 Vec3 TimedRun::probe(const nlohmann::json& box) const {
   const Vec3 lo(box[0][0].get<double>(), box[0][1].get<double>(), box[0][2].get<double>());
   const Vec3 hi(box[1][0].get<double>(), box[1][1].get<double>(), box[1][2].get<double>());
@@ -112,9 +120,23 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
       phases["checked"] = 1;  // the oracle solve ran inside this step's solve phase
     out.step_ms.push_back(std::move(phases));
     out.solves.push_back(s.solve);
+    const auto& iterations = simulation.extractor().stats().iterations;
+    double sum = 0;
+    for (std::uint8_t i : iterations) sum += i;
+    out.rotation_iterations.push_back(iterations.empty() ? 0.0 : sum / static_cast<double>(iterations.size()));
     if (options.on_step) options.on_step(s, problem);
   });
   out.multigrid = simulation.describe_multigrid(under_test);
+  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
+    const int warmup = std::min<int>(options.warmup_steps, static_cast<int>(out.solves.size()) - 1);
+    const std::vector<double> after(out.rotation_iterations.begin() + std::max(warmup, 0), out.rotation_iterations.end());
+    out.traffic = step_traffic(problem, *mg, median(after), out.median_iterations(std::max(warmup, 0)));
+    const MultigridHierarchy& h = mg->hierarchy();
+    out.working_set_bytes = static_cast<double>(sizeof(ElementRest) * problem.elements.size()) +
+                            static_cast<double>(h.stream_bytes());
+    for (int level = 0; level < h.num_levels(); ++level)
+      out.working_set_bytes += 76.0 * static_cast<double>(h.matrix(level).col_index.size());
+  }
   out.rest_volume = total_volume(problem.mesh, problem.mesh.rest);
   const auto final_positions = problem.positions(out.result.displacement);
   out.final_volume = total_volume(problem.mesh, final_positions);

@@ -10,6 +10,7 @@
 
 #include "core/statistics.hpp"
 #include "fem/implicit_euler.hpp"
+#include "report/step_roofline.hpp"
 
 namespace corofem {
 
@@ -37,11 +38,19 @@ struct TimedRun {
   /// A multigrid solve's description (MultigridSolver::describe() with setup_ms.coarse_meshes);
   /// null for other solvers.
   nlohmann::json multigrid;
+  /// Per step: mean rotation iterations per element (0 for closed-form methods).
+  std::vector<double> rotation_iterations;
+  /// Bytes and flops per step of each phase (step_roofline.hpp) at the median iteration counts
+  /// after warm-up, and the bytes of the step's main structures; empty unless a multigrid solve.
+  std::map<std::string, Traffic> traffic;
+  double working_set_bytes = 0;
 
   /// Median of a phase over the steps after warm-up.
   double median_ms(const std::string& phase, int warmup) const;
   /// Median linear iterations per step after warm-up.
   double median_iterations(int warmup) const;
+  /// The roofline record of the step (step_roofline.hpp) under `roofs`; null without traffic.
+  nlohmann::json roofline(int warmup, const MachineRoofs& roofs) const;
   /// Mean final displacement of the rest vertices inside box [[lo],[hi]] (zero if none).
   Vec3 probe(const nlohmann::json& box) const;
 };

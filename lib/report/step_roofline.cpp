@@ -1,0 +1,164 @@
+#include "report/step_roofline.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "multigrid/multigrid_solver.hpp"
+#include "rotation/element_quadrature.hpp"
+
+namespace corofem {
+namespace {
+
+constexpr double kLine = 64;        // bytes per cache line
+constexpr double kBlock = 72;       // a 3x3 block of doubles
+constexpr double kIndex = 4;        // int
+constexpr double kVec3 = 24;
+
+/// Cache lines spanned by a member of `bytes` read out of a larger struct.
+double lines(double bytes) { return std::ceil(bytes / kLine) * kLine; }
+
+/// BRC storage of a matrix: values, column indices, row starts.
+double matrix_bytes(const BrcMatrix& a) {
+  const double blocks = static_cast<double>(a.col_index.size());
+  return (kBlock + kIndex) * blocks + kIndex * (a.block_rows + 1);
+}
+
+/// y = A x.
+Traffic matvec(const BrcMatrix& a) {
+  const double n = 3.0 * a.block_rows;
+  return {matrix_bytes(a) + 16 * n, 18.0 * static_cast<double>(a.col_index.size())};
+}
+
+/// One block Gauss-Seidel sweep: per row r = b - sum A x, x += D^-1 r (the inverse diagonal
+/// blocks and their positions are the smoother's).
+Traffic gauss_seidel_sweep(const BrcMatrix& a) {
+  const double n = 3.0 * a.block_rows;
+  return {matrix_bytes(a) + (kBlock + kIndex) * a.block_rows + 8 * n + 16 * n,
+          18.0 * static_cast<double>(a.col_index.size()) + 21.0 * a.block_rows};
+}
+
+/// One V-cycle from level h (multigrid_solver.cpp vcycle).
+Traffic vcycle(const MultigridSolver& solver, int h) {
+  const MultigridHierarchy& hierarchy = solver.hierarchy();
+  if (h == hierarchy.num_levels() - 1) {
+    // CHOLMOD's forward and backward substitution: L read twice, 2 flops per entry each way.
+    const double lnz = solver.coarsest_factor_nonzeros(), n = 3.0 * hierarchy.matrix(h).block_rows;
+    return {16 * lnz + 32 * n, 4 * lnz};
+  }
+  const BrcMatrix& a = hierarchy.matrix(h);
+  const Transfer& t = hierarchy.transfer(h);
+  const double n = 3.0 * a.block_rows, coarse = 3.0 * t.coarse;
+  const double sweeps = solver.params().pre_smoothing + solver.params().post_smoothing;
+  Traffic out = sweeps * gauss_seidel_sweep(a);
+  out += matvec(a);
+  out += {24 * n, n};                                          // r = b - A x
+  const double r_entries = static_cast<double>(t.r_weight.size());
+  const double p_entries = static_cast<double>(t.p_weight.size());
+  out += {12 * r_entries + 8 * n + 8 * coarse, 6 * r_entries};  // restrict
+  out += {8 * coarse, 0};                                       // coarse x = 0
+  out += vcycle(solver, h + 1);
+  out += {12 * p_entries + 8 * coarse + 16 * n, 6 * p_entries};  // prolongate and add
+  return out;
+}
+
+}  // namespace
+
+std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const MultigridSolver& solver,
+                                            double newton_iterations, double solve_iterations) {
+  const double e = problem.mesh.num_tets(), v = problem.mesh.num_vertices(), n = 3 * v;
+  const BrcMatrix& k = problem.stiffness;
+  const double blocks = static_cast<double>(k.col_index.size());
+  const double tets = sizeof(Tet) * e, rotations = kBlock * e;
+  std::map<std::string, Traffic> t;
+  // count_inverted: det(Ds Dm^-1) per tet (Dm^-1 read out of ElementRest); NaN checks of b and u.
+  t["checks"] = {tets + kVec3 * v + lines(kBlock) * e + 16 * n, 68 * e + 2 * n};
+  // positions p = x + u; energy-newton per tet: its quadrature offsets, the deformed moment
+  // (217 flops), Horn's matrix and the warm start (about 80), 250 per Newton iteration (eqs. 5-8:
+  // N q, gradient, Hessian, a 4x4 Cholesky and two solves) and 60 for the final gradient check,
+  // the rotation matrix (35); the previous rotation read, the new one written.
+  t["rotate"] = {3 * kVec3 * v + tets + kVec3 * v + sizeof(QuadraturePoints) * e + 2 * rotations,
+                 3 * v + (394 + 250 * newton_iterations) * e};
+  // Ktilde_e = Q K_e Q^T for the 10 blocks b >= a (2 x 45 flops each), 16 block += (9), f0
+  // (4 x 18); K_e and K_e x_e read out of ElementRest, the 16 target blocks of the assembly map,
+  // K written once (zeroing fused), f0 written.
+  t["assemble"] = {rotations + lines(sizeof(Mat12) + sizeof(Vec12)) * e + sizeof(std::array<int, 16>) * e + tets +
+                       kBlock * blocks + 8 * n,
+                   1116 * e};
+  // f_int = sum Q K_e (Q^T p - x) (strain 117, K_e s 288, rotate back 72 per tet) and
+  // b = M v + dt (f - f_int): mass, velocity, external force and f_int read, b written.
+  t["forces"] = {tets + rotations + lines(sizeof(Mat12)) * e + kVec3 * v + 8 * n + 8 * n + 4 * 8 * n + 8 * n,
+                 477 * e + 5 * n};
+  // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde and its supports: K read, A written, the
+  // column indices (for the supported columns), the mass, the fixed flags, b read and written.
+  t["system"] = {2 * kBlock * blocks + kIndex * blocks + 8 * n + n + 16 * n, 9 * blocks + 3 * n};
+  // Galerkin update: the fine values copied in, then per coarse level the stream (control and
+  // data) and A_{h-1} read sequentially, E_h written (18 flops per pair: a 3x3 block scaled and
+  // added), its mirror pairs; the smoothers' inverse diagonal blocks (about 50 flops each).
+  const MultigridHierarchy& h = solver.hierarchy();
+  Traffic update = {2 * kBlock * blocks, 0};
+  for (int level = 1; level < h.num_levels(); ++level) {
+    const BrcMatrix& coarse = h.matrix(level);
+    const double coarse_blocks = static_cast<double>(coarse.col_index.size());
+    update += {static_cast<double>(h.stream(level - 1).bytes()) +
+                   kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) + kBlock * coarse_blocks +
+                   8 * (coarse_blocks - coarse.block_rows) / 2,
+               18.0 * static_cast<double>(h.stream(level - 1).num_pairs())};
+  }
+  for (int level = 0; level + 1 < h.num_levels(); ++level) {
+    const double rows = h.matrix(level).block_rows;
+    update += {(lines(kBlock) + kIndex + kBlock) * rows, 50 * rows};
+  }
+  // The coarsest level: its values converted to CHOLMOD's lower-triangular CSC (about half the
+  // blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's analysis counted.
+  const BrcMatrix& coarsest = h.matrix(h.num_levels() - 1);
+  update += {kBlock * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
+                 8 * solver.coarsest_factor_nonzeros(),
+             solver.coarsest_factorization_flops()};
+  t["update"] = update;
+  // MG-PCG (solver/preconditioned_cg.cpp): per iteration A p, one V-cycle and 15 vector passes
+  // (two dots, two axpys, a norm, z = 0, p = z + beta p); the start: r = b - A x, norms, r.z.
+  const Traffic cycle = vcycle(solver, 0);
+  Traffic solve = (solve_iterations + 1) * matvec(h.matrix(0));
+  solve += solve_iterations * cycle;
+  solve += {(15 * solve_iterations + 9) * 8 * n, (12 * solve_iterations + 6) * n};
+  t["solve"] = solve;
+  return t;
+}
+
+nlohmann::json roofline_record(const std::map<std::string, Traffic>& traffic,
+                               const std::map<std::string, double>& measured_ms, const MachineRoofs& roofs,
+                               double working_set_bytes) {
+  nlohmann::json phases = nlohmann::json::object();
+  double timed = 0, floor_total = 0;
+  for (const auto& [phase, t] : traffic) {
+    const auto it = measured_ms.find(phase);
+    const double memory_ms = t.bytes / (roofs.stream_gbps * 1e9) * 1e3;
+    const double compute_ms = t.flops / (roofs.dense_gflops * 1e9) * 1e3;
+    const double floor_ms = std::max(memory_ms, compute_ms);
+    floor_total += floor_ms;
+    nlohmann::json record = {{"bytes", t.bytes},
+                             {"flops", t.flops},
+                             {"flops_per_byte", t.bytes > 0 ? t.flops / t.bytes : 0.0},
+                             {"floor_ms", floor_ms},
+                             {"bound", memory_ms >= compute_ms ? "memory" : "compute"}};
+    if (it != measured_ms.end()) {
+      timed += it->second;
+      record["measured_ms"] = it->second;
+      record["over_floor"] = floor_ms > 0 ? it->second / floor_ms : 0.0;
+    }
+    phases[phase] = record;
+  }
+  nlohmann::json out = {{"stream_triad_GBps", roofs.stream_gbps},
+                        {"dense_gflops", roofs.dense_gflops},
+                        {"working_set_bytes", working_set_bytes},
+                        {"phases", phases},
+                        {"floor_ms", floor_total}};
+  if (const auto step = measured_ms.find("step"); step != measured_ms.end()) {
+    out["step_ms"] = step->second;
+    out["over_floor"] = step->second / floor_total;
+    out["untimed_ms"] = step->second - timed;  // work of the step outside every named phase
+  }
+  return out;
+}
+
+}  // namespace corofem

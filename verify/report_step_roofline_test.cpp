@@ -1,0 +1,88 @@
+// The roofline's byte counts (report/step_roofline.hpp) against counts made here from the mesh
+// alone: on a box the pattern has one block per pair of vertices sharing a tet, the hierarchy's
+// stream and matrices have the sizes the multigrid reports, and the solve's traffic grows by
+// exactly one iteration's worth per iteration.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "multigrid/multigrid_solver.hpp"
+#include "report/step_roofline.hpp"
+#include "rotation/element_quadrature.hpp"
+#include "scene/scene_simulation.hpp"
+
+namespace corofem {
+namespace {
+
+nlohmann::json box_scene() {
+  return {{"mesh", {{"box", {1, 1, 1}}, {"cells", {4, 4, 4}}}},
+          {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+          {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 1, 1}}}}}},
+          {"analysis", {{"type", "dynamic"}, {"solver", "mgpcg"}, {"levels", 2}, {"hierarchy", "lattice"},
+                        {"rotation", "energy-newton"}, {"steps", 1}, {"dt", 0.01}}}};
+}
+
+TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
+  SceneSimulation sim(parse_scene(box_scene(), ".", "box"));
+  sim.run();  // one step: the hierarchy holds a system matrix
+  const auto& solver = dynamic_cast<const MultigridSolver&>(sim.solver());
+  const FeProblem& problem = sim.problem();
+  const double e = problem.mesh.num_tets(), v = problem.mesh.num_vertices(), n = 3 * v;
+  ASSERT_EQ(v, 125);  // 5 x 5 x 5 vertices
+  // One block per ordered pair of vertices sharing a tet (the diagonal included).
+  std::set<std::pair<int, int>> pairs;
+  for (const Tet& t : problem.mesh.tets)
+    for (int a : t)
+      for (int b : t) pairs.insert({a, b});
+  const double blocks = static_cast<double>(pairs.size());
+  const auto t = step_traffic(problem, solver, 2.0, 5.0);
+  // system: K read and A written (72 B a block), the column indices, mass, fixed flags, b in and out.
+  EXPECT_DOUBLE_EQ(t.at("system").bytes, 144 * blocks + 4 * blocks + 25 * n);
+  // rotate: positions built (rest, u in; p out) and gathered, tets, quadrature offsets, rotations in and out.
+  EXPECT_DOUBLE_EQ(t.at("rotate").bytes, 72 * v + 16 * e + 24 * v + sizeof(QuadraturePoints) * e + 144 * e);
+  // assemble: K written once, 16 targets and 4 vertex ids per tet, Q, and K_e with K_e x_e (1248 B in 20 lines).
+  EXPECT_DOUBLE_EQ(t.at("assemble").bytes, 72 * blocks + 8 * n + e * (72 + 1280 + 64 + 16));
+  // update: the fine values copied (read and written), the stream, A read, E written.
+  const MultigridHierarchy& h = solver.hierarchy();
+  ASSERT_EQ(h.num_levels(), 2);
+  const double coarse_blocks = static_cast<double>(h.matrix(1).col_index.size());
+  EXPECT_GE(t.at("update").bytes,
+            2 * 72 * blocks + static_cast<double>(h.stream(0).bytes()) + 72 * blocks + 72 * coarse_blocks);
+  EXPECT_GT(solver.coarsest_factorization_flops(), 0);
+  EXPECT_DOUBLE_EQ(t.at("update").flops, 18.0 * static_cast<double>(h.stream(0).num_pairs()) + 50 * v +
+                                             solver.coarsest_factorization_flops());
+  // solve: one more iteration adds one fine product, one V-cycle and 15 vector passes; a V-cycle
+  // reads the fine matrix three times (two sweeps and the residual) at least.
+  const auto t6 = step_traffic(problem, solver, 2.0, 6.0);
+  const double fine_matrix = 76 * blocks + 4 * (v + 1);
+  const double per_iteration = t6.at("solve").bytes - t.at("solve").bytes;
+  // At most: the smoother's inverse diagonal and row data, the transfers and vectors (under 200 B
+  // a DOF on a lattice of 8 weights a vertex) and the coarsest substitutions (L read twice).
+  const double coarsest = 16 * solver.coarsest_factor_nonzeros() + 32 * 3.0 * h.matrix(1).block_rows;
+  EXPECT_LE(per_iteration, 4 * fine_matrix + 15 * 8 * n + 3 * (72 + 4) * v + 200 * n + coarsest);
+  EXPECT_GE(per_iteration, 4 * fine_matrix + 15 * 8 * n + 16 * solver.coarsest_factor_nonzeros());
+  // rotate's flops grow by 250 per tet per Newton iteration.
+  const auto t3 = step_traffic(problem, solver, 3.0, 5.0);
+  EXPECT_DOUBLE_EQ(t3.at("rotate").flops - t.at("rotate").flops, 250 * e);
+}
+
+TEST(StepRoofline, RecordComparesEachPhaseWithItsFloor) {
+  const std::map<std::string, Traffic> traffic = {{"rotate", {2e9, 1e9}}, {"solve", {1e9, 4e10}}};
+  const auto record =
+      roofline_record(traffic, {{"rotate", 400.0}, {"solve", 50.0}, {"step", 500.0}}, {10.0, 200.0}, 3e8);
+  // rotate: 2e9 B at 10 GB/s is 200 ms, 1e9 flop at 200 Gflop/s 5 ms: memory bound, 200 ms.
+  EXPECT_DOUBLE_EQ(record["phases"]["rotate"]["floor_ms"].get<double>(), 200.0);
+  EXPECT_EQ(record["phases"]["rotate"]["bound"], "memory");
+  EXPECT_DOUBLE_EQ(record["phases"]["rotate"]["over_floor"].get<double>(), 2.0);
+  // solve: 100 ms of bytes, 200 ms of flops: compute bound.
+  EXPECT_DOUBLE_EQ(record["phases"]["solve"]["floor_ms"].get<double>(), 200.0);
+  EXPECT_EQ(record["phases"]["solve"]["bound"], "compute");
+  EXPECT_DOUBLE_EQ(record["phases"]["solve"]["over_floor"].get<double>(), 0.25);
+  EXPECT_DOUBLE_EQ(record["phases"]["solve"]["flops_per_byte"].get<double>(), 40.0);
+  EXPECT_DOUBLE_EQ(record["floor_ms"].get<double>(), 400.0);
+  EXPECT_DOUBLE_EQ(record["untimed_ms"].get<double>(), 50.0);
+  EXPECT_DOUBLE_EQ(record["over_floor"].get<double>(), 500.0 / 400.0);
+}
+
+}  // namespace
+}  // namespace corofem
