@@ -246,6 +246,11 @@ def render_roofline(tables, folder, md):
             out.append([r["model"], phase, num(p["bytes"] / 1e6, 3), num(p["flops"] / 1e6, 3),
                         num(p["flops_per_byte"], 2), p.get("bound", "memory"), t(p["floor_ms"]),
                         t(p.get("measured_ms")), t(p.get("over_floor"), 2)])
+            if phase == "update":  # its parts, timed inside the multigrid solver (means per update)
+                for part, q in (rl.get("update_parts") or {}).items():
+                    out.append([r["model"], f"&nbsp;&nbsp;update: {part}", num(q["bytes"] / 1e6, 3),
+                                num(q["flops"] / 1e6, 3), num(q["flops_per_byte"], 2), q.get("bound", "memory"),
+                                t(q["floor_ms"]), t(q.get("measured_ms")), t(q.get("over_floor"), 2)])
         out.append([r["model"], "**step**", num(sum(p["bytes"] for p in rl["phases"].values()) / 1e6, 3),
                     num(sum(p["flops"] for p in rl["phases"].values()) / 1e6, 3), "", "", t(rl["floor_ms"]),
                     t(rl.get("step_ms")), t(rl.get("over_floor"), 2)])

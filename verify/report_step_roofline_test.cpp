@@ -39,7 +39,7 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   // system: K read and A written (72 B a block), the column indices, mass, fixed flags, b in and out.
   EXPECT_DOUBLE_EQ(t.at("system").bytes, 144 * blocks + 4 * blocks + 25 * n);
   // rotate: positions built (rest, u in; p out) and gathered, tets, quadrature offsets, rotations in and out.
-  EXPECT_DOUBLE_EQ(t.at("rotate").bytes, 72 * v + 16 * e + 24 * v + sizeof(QuadraturePoints) * e + 144 * e);
+  EXPECT_DOUBLE_EQ(t.at("rotate").bytes, 72 * v + 16 * e + 24 * v + sizeof(MomentArms) * e + 144 * e);
   // assemble: K written once, 16 targets and 4 vertex ids per tet, Q, and K_e with K_e x_e (1248 B in 20 lines).
   EXPECT_DOUBLE_EQ(t.at("assemble").bytes, 72 * blocks + 8 * n + e * (72 + 1280 + 64 + 16));
   // update: the fine values copied (read and written), the stream, A read, E written.

@@ -85,6 +85,14 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
       floor_sum += p["floor_ms"].get<double>();
     }
     EXPECT_NEAR(roofline["floor_ms"].get<double>(), floor_sum, 1e-12 * floor_sum);
+    // The update's parts add up to the update's traffic.
+    double part_bytes = 0;
+    for (const char* part : {"galerkin", "smoothers", "coarsest"}) {
+      ASSERT_TRUE(roofline["update_parts"][part].is_object()) << part;
+      EXPECT_GT(roofline["update_parts"][part]["measured_ms"].get<double>(), 0) << part;
+      part_bytes += roofline["update_parts"][part]["bytes"].get<double>();
+    }
+    EXPECT_NEAR(part_bytes, roofline["phases"]["update"]["bytes"].get<double>(), 1e-12 * part_bytes);
     EXPECT_DOUBLE_EQ(roofline["step_ms"].get<double>(), row["step_ms"].get<double>());
   }
   for (const char* section : {"table2", "small_strain", "jacobi_pcg"}) {

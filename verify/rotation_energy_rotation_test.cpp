@@ -123,7 +123,7 @@ TEST(RotationEnergy, NewtonExactSvdHornAndBruteForceAgree) {
     const auto deformed = quadrature_points(moved, volume);
     const std::vector<Vec3> positions(moved.begin(), moved.end());
     double a = 0;
-    const Mat3 s = deformed_moment(rest, Tet{0, 1, 2, 3}, positions, a);
+    const Mat3 s = deformed_moment(moment_arms(rest), Tet{0, 1, 2, 3}, positions, a);
     const Mat3 exact = energy_exact_rotation(s);
     // Warm start within 0.3 rad of the answer, as from a previous time step.
     const Mat3 warm = Eigen::AngleAxisd(0.3, Vec3::Random().normalized()).toRotationMatrix() * exact;

@@ -68,16 +68,10 @@ RotationTangent::RotationTangent(const FeProblem& problem, const std::string& me
   } else if (method == "energy-newton" || method == "energy-exact") {
     family_ = Family::MomentFactor;
     model_ = "rotation factor of S = F C (eq. 3)";
-    const std::vector<QuadraturePoints> rest = rest_quadrature(mesh);
+    // S = sum_v p_v h_v^T: dS/dp_v = h_v, the moment arms (element_quadrature.hpp).
+    const std::vector<MomentArms> rest = rest_moment_arms(mesh);
     h_.resize(mesh.tets.size());
-    for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
-      // S = sum_g w z_g y_g^T with z_g = sum_v c_gv p_v - centroid: dS/dp_v = w sum_g (c_gv - 1/4) y_g.
-      for (int v = 0; v < 4; ++v) {
-        Vec3 h = Vec3::Zero();
-        for (int g = 0; g < 4; ++g) h += ((g == v ? kQuadratureA : kQuadratureB) - 0.25) * rest[e].offset[g];
-        h_[e][v] = rest[e].weight * h;
-      }
-    }
+    for (std::size_t e = 0; e < mesh.tets.size(); ++e) h_[e] = rest[e].h;
   } else if (method == "qr") {
     family_ = Family::GramSchmidt;
     model_ = "Gram-Schmidt frame of edges 0-1, 0-2";

@@ -70,6 +70,7 @@ nlohmann::json MultigridSolver::describe() const {
           {"levels", levels},
           {"operator_complexity", blocks / static_cast<double>(hierarchy_.matrix(0).col_index.size())},
           {"setup_ms", setup_ms_},
+          {"update_parts_ms", update_parts_ms()},
           {"solves", rho.size()},
           {"rho", median_or_null(rho)},
           {"iterations", median_or_null(iterations)},
@@ -78,13 +79,32 @@ nlohmann::json MultigridSolver::describe() const {
 
 MultigridSolver::~MultigridSolver() = default;
 
+std::map<std::string, double> MultigridSolver::update_parts_ms() const {
+  std::map<std::string, double> mean;
+  for (const auto& [part, total] : update_ms_) mean[part] = updates_ > 0 ? total / updates_ : 0.0;
+  return mean;
+}
+
 double MultigridSolver::coarsest_factor_nonzeros() const { return coarsest_->cholmod.factor_nonzeros(); }
 double MultigridSolver::coarsest_factorization_flops() const { return coarsest_->cholmod.factorization_flops(); }
 
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
-  hierarchy_.update(a, params_.galerkin);
+  const auto timed = [this](const char* part, const auto& f) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    update_ms_[part] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  };
+  ++updates_;
+  timed("galerkin", [&] { hierarchy_.update(a, params_.galerkin); });
   const int last = hierarchy_.num_levels() - 1;
-  for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));
+  timed("smoothers", [&] {
+    for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));
+  });
+  timed("coarsest", [&] { update_coarsest(); });
+}
+
+void MultigridSolver::update_coarsest() {
+  const int last = hierarchy_.num_levels() - 1;
   if (!coarsest_->converter) {
     coarsest_->converter.emplace(hierarchy_.matrix(last));
     coarsest_->cholmod.analyze(coarsest_->converter->matrix());

@@ -45,6 +45,9 @@ class MultigridSolver : public LinearSolver {
   /// analysis; 0 before the first set_matrix).
   double coarsest_factor_nonzeros() const;
   double coarsest_factorization_flops() const;
+  /// Mean ms per set_matrix of its parts: "galerkin" (every coarse E = R A R^T), "smoothers"
+  /// (inverse diagonal blocks), "coarsest" (CHOLMOD's numeric factorization and its input).
+  std::map<std::string, double> update_parts_ms() const;
   /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
   /// complexity, setup times, and the median rho and iterations over the solves so far.
   nlohmann::json describe() const;
@@ -53,6 +56,7 @@ class MultigridSolver : public LinearSolver {
 
  private:
   SolveStats run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  void update_coarsest();
   MultigridParams params_;
   bool preconditioner_;
   MultigridHierarchy hierarchy_;
@@ -63,6 +67,8 @@ class MultigridSolver : public LinearSolver {
   int coarsest_shifts_ = 0;
   nlohmann::json level_info_;
   std::map<std::string, double> setup_ms_;
+  std::map<std::string, double> update_ms_;  ///< totals over the updates
+  int updates_ = 0;
   std::vector<SolveStats> solve_log_;
 };
 

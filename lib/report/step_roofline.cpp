@@ -63,6 +63,39 @@ Traffic vcycle(const MultigridSolver& solver, int h) {
 
 }  // namespace
 
+std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
+  // Galerkin: the fine values copied in, then per coarse level the stream (control and data) and
+  // A_{h-1} read sequentially, E_h written (18 flops per pair: a 3x3 block scaled and added), its
+  // mirror pairs.
+  const MultigridHierarchy& h = solver.hierarchy();
+  const double blocks = static_cast<double>(h.matrix(0).col_index.size());
+  std::map<std::string, Traffic> parts;
+  Traffic galerkin = {2 * kBlock * blocks, 0};
+  for (int level = 1; level < h.num_levels(); ++level) {
+    const BrcMatrix& coarse = h.matrix(level);
+    const double coarse_blocks = static_cast<double>(coarse.col_index.size());
+    galerkin += {static_cast<double>(h.stream(level - 1).bytes()) +
+                   kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) + kBlock * coarse_blocks +
+                   8 * (coarse_blocks - coarse.block_rows) / 2,
+               18.0 * static_cast<double>(h.stream(level - 1).num_pairs())};
+  }
+  parts["galerkin"] = galerkin;
+  // The smoothers' inverse diagonal blocks (about 50 flops each).
+  Traffic smoothers;
+  for (int level = 0; level + 1 < h.num_levels(); ++level) {
+    const double rows = h.matrix(level).block_rows;
+    smoothers += {(lines(kBlock) + kIndex + kBlock) * rows, 50 * rows};
+  }
+  parts["smoothers"] = smoothers;
+  // The coarsest level: its values converted to CHOLMOD's lower-triangular CSC (about half the
+  // blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's analysis counted.
+  const BrcMatrix& coarsest = h.matrix(h.num_levels() - 1);
+  parts["coarsest"] = {kBlock * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
+                           8 * solver.coarsest_factor_nonzeros(),
+                       solver.coarsest_factorization_flops()};
+  return parts;
+}
+
 std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const MultigridSolver& solver,
                                             double newton_iterations, double solve_iterations) {
   const double e = problem.mesh.num_tets(), v = problem.mesh.num_vertices(), n = 3 * v;
@@ -72,12 +105,12 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   std::map<std::string, Traffic> t;
   // count_inverted: det(Ds Dm^-1) per tet (Dm^-1 read out of ElementRest); NaN checks of b and u.
   t["checks"] = {tets + kVec3 * v + lines(kBlock) * e + 16 * n, 68 * e + 2 * n};
-  // positions p = x + u; energy-newton per tet: its quadrature offsets, the deformed moment
-  // (217 flops), Horn's matrix and the warm start (about 80), 250 per Newton iteration (eqs. 5-8:
+  // positions p = x + u; energy-newton per tet: its moment arms, the deformed moment (S and a:
+  // 120 flops), Horn's matrix and the warm start (about 80), 250 per Newton iteration (eqs. 5-8:
   // N q, gradient, Hessian, a 4x4 Cholesky and two solves) and 60 for the final gradient check,
   // the rotation matrix (35); the previous rotation read, the new one written.
-  t["rotate"] = {3 * kVec3 * v + tets + kVec3 * v + sizeof(QuadraturePoints) * e + 2 * rotations,
-                 3 * v + (394 + 250 * newton_iterations) * e};
+  t["rotate"] = {3 * kVec3 * v + tets + kVec3 * v + sizeof(MomentArms) * e + 2 * rotations,
+                 3 * v + (297 + 250 * newton_iterations) * e};
   // Ktilde_e = Q K_e Q^T for the 10 blocks b >= a (2 x 45 flops each), 16 block += (9), f0
   // (4 x 18); K_e and K_e x_e read out of ElementRest, the 16 target blocks of the assembly map,
   // K written once (zeroing fused), f0 written.
@@ -91,34 +124,13 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde and its supports: K read, A written, the
   // column indices (for the supported columns), the mass, the fixed flags, b read and written.
   t["system"] = {2 * kBlock * blocks + kIndex * blocks + 8 * n + n + 16 * n, 9 * blocks + 3 * n};
-  // Galerkin update: the fine values copied in, then per coarse level the stream (control and
-  // data) and A_{h-1} read sequentially, E_h written (18 flops per pair: a 3x3 block scaled and
-  // added), its mirror pairs; the smoothers' inverse diagonal blocks (about 50 flops each).
-  const MultigridHierarchy& h = solver.hierarchy();
-  Traffic update = {2 * kBlock * blocks, 0};
-  for (int level = 1; level < h.num_levels(); ++level) {
-    const BrcMatrix& coarse = h.matrix(level);
-    const double coarse_blocks = static_cast<double>(coarse.col_index.size());
-    update += {static_cast<double>(h.stream(level - 1).bytes()) +
-                   kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) + kBlock * coarse_blocks +
-                   8 * (coarse_blocks - coarse.block_rows) / 2,
-               18.0 * static_cast<double>(h.stream(level - 1).num_pairs())};
-  }
-  for (int level = 0; level + 1 < h.num_levels(); ++level) {
-    const double rows = h.matrix(level).block_rows;
-    update += {(lines(kBlock) + kIndex + kBlock) * rows, 50 * rows};
-  }
-  // The coarsest level: its values converted to CHOLMOD's lower-triangular CSC (about half the
-  // blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's analysis counted.
-  const BrcMatrix& coarsest = h.matrix(h.num_levels() - 1);
-  update += {kBlock * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
-                 8 * solver.coarsest_factor_nonzeros(),
-             solver.coarsest_factorization_flops()};
+  Traffic update;
+  for (const auto& [part, traffic] : update_traffic(solver)) update += traffic;
   t["update"] = update;
   // MG-PCG (solver/preconditioned_cg.cpp): per iteration A p, one V-cycle and 15 vector passes
   // (two dots, two axpys, a norm, z = 0, p = z + beta p); the start: r = b - A x, norms, r.z.
   const Traffic cycle = vcycle(solver, 0);
-  Traffic solve = (solve_iterations + 1) * matvec(h.matrix(0));
+  Traffic solve = (solve_iterations + 1) * matvec(solver.hierarchy().matrix(0));
   solve += solve_iterations * cycle;
   solve += {(15 * solve_iterations + 9) * 8 * n, (12 * solve_iterations + 6) * n};
   t["solve"] = solve;

@@ -31,6 +31,9 @@ struct Traffic {
 };
 inline Traffic operator*(double k, Traffic t) { return {k * t.bytes, k * t.flops}; }
 
+/// The update phase's parts (MultigridSolver::update_parts_ms): galerkin, smoothers, coarsest.
+std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver);
+
 /// Per step, the phases checks, rotate, assemble, forces, system, update and solve.
 /// `newton_iterations`: mean energy-newton iterations per element; `solve_iterations`: MG-PCG
 /// iterations of the step. The coarsest level's factorization and substitutions are counted
@@ -47,7 +50,7 @@ struct MachineRoofs {
 /// {"stream_triad_GBps", "dense_gflops", "working_set_bytes", "floor_ms", "step_ms",
 ///  "over_floor", "untimed_ms", "phases": {phase: {"bytes", "flops", "flops_per_byte",
 ///  "floor_ms", "bound" (memory or compute), "measured_ms", "over_floor"}}}; `measured_ms` per
-/// phase and "step".
+/// phase and "step". TimedRun::roofline adds "update_parts" in the same form.
 nlohmann::json roofline_record(const std::map<std::string, Traffic>& traffic,
                                const std::map<std::string, double>& measured_ms, const MachineRoofs& roofs,
                                double working_set_bytes);

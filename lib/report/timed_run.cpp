@@ -84,7 +84,13 @@ nlohmann::json TimedRun::roofline(int warmup, const MachineRoofs& roofs) const {
   std::map<std::string, double> measured;
   for (const auto& [phase, t] : traffic) measured[phase] = median_ms(phase, warmup);
   measured["step"] = median_ms("step", warmup);
-  return roofline_record(traffic, measured, roofs, working_set_bytes);
+  nlohmann::json record = roofline_record(traffic, measured, roofs, working_set_bytes);
+  // The update's parts, timed by the multigrid solver (means over every update of the run).
+  std::map<std::string, double> parts;
+  if (multigrid.contains("update_parts_ms"))
+    for (const auto& [part, ms] : multigrid["update_parts_ms"].items()) parts[part] = ms.get<double>();
+  record["update_parts"] = roofline_record(update_traffic, parts, roofs, working_set_bytes)["phases"];
+  return record;
 }
 
 Vec3 TimedRun::probe(const nlohmann::json& box) const {
@@ -131,6 +137,7 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     const int warmup = std::min<int>(options.warmup_steps, static_cast<int>(out.solves.size()) - 1);
     const std::vector<double> after(out.rotation_iterations.begin() + std::max(warmup, 0), out.rotation_iterations.end());
     out.traffic = step_traffic(problem, *mg, median(after), out.median_iterations(std::max(warmup, 0)));
+    out.update_traffic = update_traffic(*mg);
     const MultigridHierarchy& h = mg->hierarchy();
     out.working_set_bytes = static_cast<double>(sizeof(ElementRest) * problem.elements.size()) +
                             static_cast<double>(h.stream_bytes());

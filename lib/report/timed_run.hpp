@@ -43,6 +43,7 @@ struct TimedRun {
   /// Bytes and flops per step of each phase (step_roofline.hpp) at the median iteration counts
   /// after warm-up, and the bytes of the step's main structures; empty unless a multigrid solve.
   std::map<std::string, Traffic> traffic;
+  std::map<std::string, Traffic> update_traffic;  ///< the update phase's parts
   double working_set_bytes = 0;
 
   /// Median of a phase over the steps after warm-up.

@@ -14,6 +14,13 @@ QuadraturePoints quadrature_points(const std::array<Vec3, 4>& v, double volume) 
   return q;
 }
 
+MomentArms moment_arms(const QuadraturePoints& rest) {
+  MomentArms m;
+  for (int v = 0; v < 4; ++v) m.h[v] = rest.weight * (kQuadratureA - kQuadratureB) * rest.offset[v];
+  m.c = rest.weight * (kQuadratureA - kQuadratureB) * (kQuadratureA - kQuadratureB);
+  return m;
+}
+
 double rotation_energy(const Mat3& q, const QuadraturePoints& rest, const QuadraturePoints& deformed) {
   double e = 0;
   for (int g = 0; g < 4; ++g) e += rest.weight * (q.transpose() * deformed.offset[g] - rest.offset[g]).squaredNorm();

@@ -22,6 +22,16 @@ struct QuadraturePoints {
 /// centre of mass of a uniform tet).
 QuadraturePoints quadrature_points(const std::array<Vec3, 4>& v, double volume);
 
+/// The rule collapsed for the moment of eq. 3: the deformed offsets are z_g = (A - B)(p_g - p_mean)
+/// and the rest ones y_g = (A - B)(x_g - x_mean), so S = sum_g w z_g y_g^T = sum_v p_v h_v^T with
+/// h_v = w (A - B) y_v (= dS/dp_v; sum_v h_v = 0 makes S translation-invariant), and
+/// a = sum_g w |z_g|^2 = c sum_v |p_v - p_mean|^2 with c = w (A - B)^2. 13 numbers per element.
+struct MomentArms {
+  std::array<Vec3, 4> h;
+  double c = 0;
+};
+MomentArms moment_arms(const QuadraturePoints& rest);
+
 /// E_e(Q) evaluated by the rule: sum_g w |Q^T z_g - y_g|^2 (z deformed, y rest offsets).
 double rotation_energy(const Mat3& q, const QuadraturePoints& rest, const QuadraturePoints& deformed);
 

@@ -25,30 +25,27 @@ Eigen::Matrix4d horn_matrix(const Mat3& m) {
   return n;
 }
 
-std::vector<QuadraturePoints> rest_quadrature(const TetMesh& mesh) {
-  std::vector<QuadraturePoints> rest;
+std::vector<MomentArms> rest_moment_arms(const TetMesh& mesh) {
+  std::vector<MomentArms> rest;
   rest.reserve(mesh.tets.size());
   for (const Tet& t : mesh.tets) {
     const std::array<Vec3, 4> v{mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]};
-    rest.push_back(quadrature_points(v, signed_volume(v[0], v[1], v[2], v[3])));
+    rest.push_back(moment_arms(quadrature_points(v, signed_volume(v[0], v[1], v[2], v[3]))));
   }
   return rest;
 }
 
-Mat3 deformed_moment(const QuadraturePoints& rest, const Tet& tet, const std::vector<Vec3>& positions,
-                     double& a) {
+Mat3 deformed_moment(const MomentArms& rest, const Tet& tet, const std::vector<Vec3>& positions, double& a) {
   const Vec3 p[4] = {positions[tet[0]], positions[tet[1]], positions[tet[2]], positions[tet[3]]};
-  const Vec3 centroid = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+  const Vec3 mean = 0.25 * (p[0] + p[1] + p[2] + p[3]);
   Mat3 s = Mat3::Zero();
-  a = 0;
-  for (int g = 0; g < 4; ++g) {
-    Vec3 z = -centroid;
-    for (int v = 0; v < 4; ++v) z += (v == g ? kQuadratureA : kQuadratureB) * p[v];
-    s.noalias() += z * rest.offset[g].transpose();
-    a += z.squaredNorm();
+  double spread = 0;
+  for (int v = 0; v < 4; ++v) {
+    const Vec3 z = p[v] - mean;  // sum_v h_v = 0: the mean drops out of S, and z keeps it well scaled
+    s.noalias() += z * rest.h[v].transpose();
+    spread += z.squaredNorm();
   }
-  s *= rest.weight;
-  a *= rest.weight;
+  a = rest.c * spread;
   return s;
 }
 
@@ -133,7 +130,7 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
 }
 
 EnergyNewtonExtractor::EnergyNewtonExtractor(const TetMesh& mesh, const RotationParams& params)
-    : mesh_(mesh), params_(params), rest_(rest_quadrature(mesh)) {}
+    : mesh_(mesh), params_(params), rest_(rest_moment_arms(mesh)) {}
 
 void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
                                     std::vector<Mat3>& rotations) {
@@ -151,7 +148,7 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
 }
 
 EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
-    : mesh_(mesh), rest_(rest_quadrature(mesh)) {}
+    : mesh_(mesh), rest_(rest_moment_arms(mesh)) {}
 
 void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
                                    std::vector<Mat3>& rotations) {

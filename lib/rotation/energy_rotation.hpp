@@ -13,13 +13,13 @@ namespace corofem {
 /// 4x4 symmetric N with q^T N q = tr(R(q)^T M) for unit quaternions q = (w, x, y, z).
 Eigen::Matrix4d horn_matrix(const Mat3& m);
 
-/// Rest quadrature data of every element (offsets y_g from the rest centroid, weight V/4).
-std::vector<QuadraturePoints> rest_quadrature(const TetMesh& mesh);
+/// Moment arms of every element (element_quadrature.hpp) from its rest quadrature.
+std::vector<MomentArms> rest_moment_arms(const TetMesh& mesh);
 
-/// Quadrature of the deformed element: S = sum_g w z_g y_g^T and a = sum_g w |z_g|^2, z_g the
-/// deformed offsets from the deformed centroid at the quadrature points.
-Mat3 deformed_moment(const QuadraturePoints& rest, const Tet& tet, const std::vector<Vec3>& positions,
-                     double& a);
+/// Quadrature of the deformed element: S = sum_g w z_g y_g^T = sum_v p_v h_v^T and
+/// a = sum_g w |z_g|^2, z_g the deformed offsets from the deformed centroid at the quadrature
+/// points.
+Mat3 deformed_moment(const MomentArms& rest, const Tet& tet, const std::vector<Vec3>& positions, double& a);
 
 /// Outcome of one element's Newton solve.
 struct NewtonOutcome {
@@ -50,7 +50,7 @@ class EnergyNewtonExtractor : public RotationExtractor {
  private:
   const TetMesh& mesh_;
   RotationParams params_;
-  std::vector<QuadraturePoints> rest_;
+  std::vector<MomentArms> rest_;
 };
 
 class EnergyExactExtractor : public RotationExtractor {
@@ -61,7 +61,7 @@ class EnergyExactExtractor : public RotationExtractor {
 
  private:
   const TetMesh& mesh_;
-  std::vector<QuadraturePoints> rest_;
+  std::vector<MomentArms> rest_;
 };
 
 }  // namespace corofem
