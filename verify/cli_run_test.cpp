@@ -7,6 +7,7 @@
 #include <vector>
 #include <nlohmann/json.hpp>
 
+#include "solver/petsc_solver.hpp"
 #include "test_support.hpp"
 
 namespace corofem {
@@ -120,6 +121,29 @@ TEST(CliRun, NonConvergenceExitsOneAndSaysSo) {
   EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
   const auto j = nlohmann::json::parse(test::read_text(dir / "result.json"));
   EXPECT_FALSE(j["converged"].get<bool>());
+}
+
+TEST(CliRun, RivalSolverRunsWhereBuiltAndIsBadInputWhereNot) {
+  // petsc-gamg on the static bar: where this build has PETSc it runs and converges; where it does
+  // not (the sanitizer build leaves it out), the scene is bad input naming the solver and the
+  // library, and no output file is written.
+  TempDir dir;
+  auto scene = nlohmann::json::parse(kScene);
+  scene["analysis"]["solver"] = "petsc-gamg";
+  scene["analysis"]["formulation"] = "linear";
+  scene.erase("output");
+  write_text(dir / "bar.json", scene.dump());
+  const auto r = run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "result.json").string() + "'");
+  if (have_petsc()) {
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(test::read_text(dir / "result.json"));
+    EXPECT_TRUE(j["converged"].get<bool>());
+    EXPECT_EQ(j["scene"]["analysis"]["solver"], "petsc-gamg");
+  } else {
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("'petsc-gamg' needs PETSc"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "result.json"));
+  }
 }
 
 /// A cube [0,1]^3 in Kuhn cells, fixed at x = 0, solved statically by multigrid on two levels;

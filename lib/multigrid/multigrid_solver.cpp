@@ -163,13 +163,9 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
     return preconditioned_cg(
         a, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { vcycle(0, r, z); },
         params_.tolerance, params_.max_iterations, "mgpcg");
-  if (x.size() != b.size()) x.setZero(b.size());
   SolveStats stats;
-  const double b_norm = b.norm();
-  if (b_norm == 0) {
-    x.setZero();
-    return stats;
-  }
+  const double b_norm = start_iterative_solve(b, x);
+  if (b_norm == 0) return stats;
   const double r0 = (b - a * x).norm();
   const int cap = params_.vcycles > 0 ? params_.vcycles : params_.max_iterations;
   double rk = r0;

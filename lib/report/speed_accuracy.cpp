@@ -6,6 +6,7 @@
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 #include "rotation/rotation_extractor.hpp"
+#include "solver/petsc_solver.hpp"
 
 namespace corofem {
 using nlohmann::json;
@@ -35,6 +36,9 @@ std::vector<json> solver_settings(const ReportConfig& config, int levels) {
   for (int vcycles : {1, 2})
     settings.push_back({{"solver", "multigrid"}, {"vcycles", vcycles}, {"hierarchy", "lattice"}});
   settings.push_back({{"solver", "jacobi-pcg"}, {"tolerance", 1e-4}});
+  if (have_petsc())  // the algebraic multigrid users would pick instead
+    for (const char* rival : {"petsc-gamg", "hypre-boomeramg"})
+      for (double tolerance : {1e-4, 1e-6}) settings.push_back({{"solver", rival}, {"tolerance", tolerance}});
   if (config.mode == ReportConfig::Mode::Smoke) settings.resize(3);
   return settings;
 }

@@ -17,4 +17,11 @@ void require_converged(const SolveStats& stats, double tolerance, const std::str
   throw NotConverged(solver + ": " + text);
 }
 
+double start_iterative_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (x.size() != b.size()) x.setZero(b.size());
+  const double b_norm = b.norm();
+  if (b_norm == 0) x.setZero();
+  return b_norm;
+}
+
 }  // namespace corofem

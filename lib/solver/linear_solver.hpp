@@ -21,6 +21,10 @@ struct SolveStats {
 void require_converged(const SolveStats& stats, double tolerance, const std::string& solver,
                        const std::string& unit);
 
+/// The start of every iterative solve: x sized like b (zero if it was not), and |b|. For b = 0
+/// the solution is x = 0, set here; the caller returns at once when the returned norm is 0.
+double start_iterative_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;

@@ -11,12 +11,8 @@ SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen
                              const Preconditioner& precondition, double tolerance,
                              int max_iterations, const char* name) {
   SolveStats stats;
-  if (x.size() != b.size()) x.setZero(b.size());
-  const double b_norm = b.norm();
-  if (b_norm == 0) {
-    x.setZero();
-    return stats;
-  }
+  const double b_norm = start_iterative_solve(b, x);
+  if (b_norm == 0) return stats;
   Eigen::VectorXd r = b - a * x, z = Eigen::VectorXd::Zero(b.size()), q;
   const double r0 = r.norm();
   double rk = r0;

@@ -1,10 +1,13 @@
 #include "solver/solver_factory.hpp"
 
+#include "solver/petsc_solver.hpp"
 #include "solver/preconditioned_cg.hpp"
 
 namespace corofem {
 
-std::vector<std::string> linear_solver_names() { return {"cholmod", "multigrid", "mgpcg", "jacobi-pcg"}; }
+std::vector<std::string> linear_solver_names() {
+  return {"cholmod", "multigrid", "mgpcg", "jacobi-pcg", "petsc-gamg", "hypre-boomeramg"};
+}
 
 MultigridParams multigrid_params(const AnalysisSpec& a) {
   MultigridParams p;
@@ -38,6 +41,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
                                                  const std::vector<TetMesh>& coarse_meshes) {
   if (a.solver == "cholmod") return make_cholmod_solver();
   if (a.solver == "jacobi-pcg") return make_jacobi_pcg_solver(a.tolerance, 100000);
+  if (a.solver == "petsc-gamg" || a.solver == "hypre-boomeramg")
+    return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);
   return make_multigrid_solver(a, problem, coarse_meshes, a.solver == "mgpcg");
 }
 

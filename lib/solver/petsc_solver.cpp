@@ -1,0 +1,193 @@
+#include "solver/petsc_solver.hpp"
+
+#include "core/errors.hpp"
+
+#ifdef COROFEM_HAVE_PETSC
+#include <petscksp.h>
+
+#include <cmath>
+#endif
+
+namespace corofem {
+
+#ifndef COROFEM_HAVE_PETSC
+
+bool have_petsc() { return false; }
+
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&, double, int,
+                                                bool) {
+  throw InputError("analysis.solver '" + kind +
+                   "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
+                   "libhypre-dev, as ci/setup does, and rebuild)");
+}
+
+#else
+
+bool have_petsc() { return true; }
+
+namespace {
+
+void check(PetscErrorCode code, const char* what) {
+  if (code != 0) throw NumericalFault(std::string("PETSc: ") + what + " failed (error " + std::to_string(code) + ")");
+}
+
+/// PETSc (and MPI, unless the program started it) initialized once, finalized at exit after
+/// every solver is gone. Errors come back as codes, not as messages printed by PETSc.
+class PetscSession {
+ public:
+  static void ensure() { static PetscSession session; }
+
+ private:
+  PetscSession() {
+    // PETSc's signal handler would turn every crash or interrupt of the whole program into an
+    // MPI_Abort; corofem keeps its own.
+    check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
+    check(PetscInitializeNoArguments(), "PetscInitialize");
+    check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
+  }
+  ~PetscSession() { PetscFinalize(); }
+};
+
+class PetscSolver : public LinearSolver {
+ public:
+  PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations, bool reuse)
+      : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations), reuse_(reuse) {
+    PetscSession::ensure();
+  }
+  ~PetscSolver() override {
+    if (ksp_) KSPDestroy(&ksp_);
+    if (a_) MatDestroy(&a_);
+  }
+  std::string name() const override { return kind_; }
+
+  void set_matrix(const BrcMatrix& a) override {
+    if (!a_) create(a);
+    PetscScalar* values = nullptr;
+    check(MatSeqAIJGetArray(a_, &values), "MatSeqAIJGetArray");
+    for (std::size_t i = 0; i < scatter_.size(); ++i) values[i] = a.values[scatter_[i]];
+    check(MatSeqAIJRestoreArray(a_, &values), "MatSeqAIJRestoreArray");
+    check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
+    if (reuse_ && set_up_) check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
+    check(KSPSetUp(ksp_), "KSPSetUp");
+    check(PCSetUp(pc_), "PCSetUp");  // the AMG hierarchy: timed with the update, not the solve
+    set_up_ = true;
+  }
+
+  SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    SolveStats stats;
+    const double b_norm = start_iterative_solve(b, x);
+    if (b_norm == 0) return stats;
+    Vec vb, vx;
+    const PetscInt n = static_cast<PetscInt>(b.size());
+    check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, b.data(), &vb), "VecCreateSeqWithArray");
+    check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, x.data(), &vx), "VecCreateSeqWithArray");
+    const PetscErrorCode solved = KSPSolve(ksp_, vb, vx);
+    VecDestroy(&vb);
+    VecDestroy(&vx);
+    check(solved, "KSPSolve");
+    PetscInt iterations = 0;
+    KSPConvergedReason reason;
+    PetscReal residual = 0;
+    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    check(KSPGetResidualNorm(ksp_, &residual), "KSPGetResidualNorm");
+    stats.iterations = static_cast<int>(iterations);
+    stats.residual = residual / b_norm;
+    if (!std::isfinite(stats.residual)) throw NumericalFault(kind_ + ": residual became non-finite");
+    if (reason < 0 && reason != KSP_DIVERGED_ITS)
+      throw NumericalFault(kind_ + ": PETSc's CG stopped (KSPConvergedReason " + std::to_string(reason) + ")");
+    require_converged(stats, tolerance_, kind_, "CG iterations");
+    return stats;
+  }
+
+ private:
+  /// The AIJ pattern of the BRC one (scalar rows 3i + r, columns sorted as the blocks are) and
+  /// the position in the BRC values of every AIJ value; the near null space; CG and the AMG.
+  void create(const BrcMatrix& a) {
+    const PetscInt n = 3 * static_cast<PetscInt>(a.block_rows);
+    std::vector<PetscInt> row_start(1, 0), columns;
+    for (int i = 0; i < a.block_rows; ++i)
+      for (int r = 0; r < 3; ++r) {
+        for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
+          for (int c = 0; c < 3; ++c) {
+            columns.push_back(3 * a.col_index[k] + c);
+            scatter_.push_back(9 * static_cast<std::size_t>(k) + 3 * r + c);
+          }
+        row_start.push_back(static_cast<PetscInt>(columns.size()));
+      }
+    check(MatCreate(PETSC_COMM_SELF, &a_), "MatCreate");
+    check(MatSetSizes(a_, n, n, n, n), "MatSetSizes");
+    check(MatSetType(a_, MATSEQAIJ), "MatSetType");
+    check(MatSetBlockSize(a_, 3), "MatSetBlockSize");
+    check(MatSeqAIJSetPreallocationCSR(a_, row_start.data(), columns.data(), nullptr), "MatSeqAIJSetPreallocationCSR");
+    check(MatSetOption(a_, MAT_SPD, PETSC_TRUE), "MatSetOption");
+    // Rigid-body modes of the rest positions (three translations, three rotations).
+    Vec coordinates;
+    check(VecCreateSeq(PETSC_COMM_SELF, n, &coordinates), "VecCreateSeq");
+    check(VecSetBlockSize(coordinates, 3), "VecSetBlockSize");
+    PetscScalar* x = nullptr;
+    check(VecGetArray(coordinates, &x), "VecGetArray");
+    for (std::size_t v = 0; v < rest_.size(); ++v)
+      for (int c = 0; c < 3; ++c) x[3 * v + c] = rest_[v][c];
+    check(VecRestoreArray(coordinates, &x), "VecRestoreArray");
+    MatNullSpace rigid;
+    check(MatNullSpaceCreateRigidBody(coordinates, &rigid), "MatNullSpaceCreateRigidBody");
+    check(MatSetNearNullSpace(a_, rigid), "MatSetNearNullSpace");
+    MatNullSpaceDestroy(&rigid);
+    VecDestroy(&coordinates);
+
+    check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+    check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+    check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");  // |b - A x|, as ours
+    check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+    check(KSPSetTolerances(ksp_, tolerance_, 0.0, 1e10, max_iterations_), "KSPSetTolerances");
+    check(KSPGetPC(ksp_, &pc_), "KSPGetPC");
+    const bool gamg = kind_ == "petsc-gamg";
+    const std::string prefix = gamg ? "corofem_gamg_" : "corofem_boomeramg_";
+    check(KSPSetOptionsPrefix(ksp_, prefix.c_str()), "KSPSetOptionsPrefix");
+    const auto option = [&](const std::string& key, const char* value) {
+      PetscBool set = PETSC_FALSE;  // the user's PETSC_OPTIONS win
+      check(PetscOptionsHasName(nullptr, prefix.c_str(), key.c_str(), &set), "PetscOptionsHasName");
+      if (!set) check(PetscOptionsSetValue(nullptr, ("-" + prefix + key.substr(1)).c_str(), value), "PetscOptionsSetValue");
+    };
+    if (gamg) {
+      check(PCSetType(pc_, PCGAMG), "PCSetType");
+      option("-pc_gamg_type", "agg");
+      option("-pc_gamg_agg_nsmooths", "1");
+      option("-pc_gamg_threshold", "0.01");
+    } else {
+      check(PCSetType(pc_, PCHYPRE), "PCSetType");
+      check(PCHYPRESetType(pc_, "boomeramg"), "PCHYPRESetType");
+      // Systems AMG by the unknown approach (PETSc passes the block size 3 as the number of
+      // functions) with the strong threshold hypre's manual gives for 3D. The manual's other
+      // elasticity options, nodal coarsening and the rigid-body modes in the interpolation, were
+      // measured on quadruped-small (3.7k tets, to 1e-4): nodal 6 alone 37 ms a step, with the
+      // modes (vec_interp_variant 2) 190 ms, against 33 ms for this; variant 3 crashes hypre 2.26
+      // (hypre_BoomerAMG_LNExpandInterp). PETSC_OPTIONS switches them on.
+      option("-pc_hypre_boomeramg_strong_threshold", "0.5");
+    }
+    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  }
+
+  std::string kind_;
+  std::vector<Vec3> rest_;
+  double tolerance_;
+  int max_iterations_;
+  bool reuse_;
+  bool set_up_ = false;
+  Mat a_ = nullptr;
+  KSP ksp_ = nullptr;
+  PC pc_ = nullptr;
+  std::vector<std::size_t> scatter_;  ///< AIJ value i = BRC value scatter_[i]
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
+                                                double tolerance, int max_iterations, bool reuse_setup) {
+  return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations, reuse_setup);
+}
+
+#endif
+
+}  // namespace corofem

@@ -1,0 +1,31 @@
+#pragma once
+// The algebraic multigrid solvers users would pick instead of ours, through PETSc (issue 14):
+//   petsc-gamg       CG preconditioned by PETSc's smoothed aggregation (GAMG) with the six
+//                    rigid-body modes of the rest positions as near null space;
+//   hypre-boomeramg  CG preconditioned by hypre's BoomerAMG (PETSc's PCHYPRE) as systems AMG
+//                    (unknown approach, 3 functions) with the 3D strong threshold 0.5 of hypre's
+//                    manual (why not nodal coarsening or rigid-body interpolation: the .cpp).
+// Both solve to the scene's relative residual |b - A x| / |b| from the initial guess in x, like
+// mgpcg. set_matrix copies the values into a PETSc AIJ matrix of block size 3 (its pattern built
+// once from the BRC pattern) and sets the preconditioner up: the `update` phase of a step.
+// PETSC_OPTIONS in the environment overrides any of these settings (prefixes corofem_gamg_,
+// corofem_boomeramg_).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh/tet_mesh.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace corofem {
+
+/// Whether this build has PETSc (and with it hypre).
+bool have_petsc();
+
+/// `kind`: "petsc-gamg" or "hypre-boomeramg". `reuse_setup`: keep the preconditioner built for
+/// the first matrix (PETSc's PCSetReusePreconditioner) and only copy the values of later ones.
+/// Throws InputError naming analysis.solver when this build has no PETSc.
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
+                                                double tolerance, int max_iterations, bool reuse_setup = false);
+
+}  // namespace corofem
