@@ -14,8 +14,7 @@ namespace corofem {
 
 bool have_petsc() { return false; }
 
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&, double, int,
-                                                bool) {
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&, double, int) {
   throw InputError("analysis.solver '" + kind +
                    "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
                    "libhypre-dev, as ci/setup does, and rebuild)");
@@ -50,8 +49,8 @@ class PetscSession {
 
 class PetscSolver : public LinearSolver {
  public:
-  PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations, bool reuse)
-      : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations), reuse_(reuse) {
+  PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations)
+      : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations) {
     PetscSession::ensure();
   }
   ~PetscSolver() override {
@@ -67,10 +66,8 @@ class PetscSolver : public LinearSolver {
     for (std::size_t i = 0; i < scatter_.size(); ++i) values[i] = a.values[scatter_[i]];
     check(MatSeqAIJRestoreArray(a_, &values), "MatSeqAIJRestoreArray");
     check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
-    if (reuse_ && set_up_) check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
     check(KSPSetUp(ksp_), "KSPSetUp");
     check(PCSetUp(pc_), "PCSetUp");  // the AMG hierarchy: timed with the update, not the solve
-    set_up_ = true;
   }
 
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
@@ -173,8 +170,6 @@ class PetscSolver : public LinearSolver {
   std::vector<Vec3> rest_;
   double tolerance_;
   int max_iterations_;
-  bool reuse_;
-  bool set_up_ = false;
   Mat a_ = nullptr;
   KSP ksp_ = nullptr;
   PC pc_ = nullptr;
@@ -184,8 +179,8 @@ class PetscSolver : public LinearSolver {
 }  // namespace
 
 std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
-                                                double tolerance, int max_iterations, bool reuse_setup) {
-  return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations, reuse_setup);
+                                                double tolerance, int max_iterations) {
+  return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations);
 }
 
 #endif

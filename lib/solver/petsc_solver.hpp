@@ -22,10 +22,9 @@ namespace corofem {
 /// Whether this build has PETSc (and with it hypre).
 bool have_petsc();
 
-/// `kind`: "petsc-gamg" or "hypre-boomeramg". `reuse_setup`: keep the preconditioner built for
-/// the first matrix (PETSc's PCSetReusePreconditioner) and only copy the values of later ones.
-/// Throws InputError naming analysis.solver when this build has no PETSc.
+/// `kind`: "petsc-gamg" or "hypre-boomeramg". Throws InputError naming analysis.solver when this
+/// build has no PETSc.
 std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
-                                                double tolerance, int max_iterations, bool reuse_setup = false);
+                                                double tolerance, int max_iterations);
 
 }  // namespace corofem
