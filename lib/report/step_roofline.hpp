@@ -48,9 +48,9 @@ struct MachineRoofs {
 };
 
 /// {"stream_triad_GBps", "dense_gflops", "working_set_bytes", "floor_ms", "step_ms",
-///  "over_floor", "untimed_ms", "phases": {phase: {"bytes", "flops", "flops_per_byte",
+///  "over_floor", "phases": {phase: {"bytes", "flops", "flops_per_byte",
 ///  "floor_ms", "bound" (memory or compute), "measured_ms", "over_floor"}}}; `measured_ms` per
-/// phase and "step". TimedRun::roofline adds "update_parts" in the same form.
+/// phase and "step". TimedRun::roofline adds "update_parts" in the same form and "untimed_ms".
 nlohmann::json roofline_record(const std::map<std::string, Traffic>& traffic,
                                const std::map<std::string, double>& measured_ms, const MachineRoofs& roofs,
                                double working_set_bytes);

@@ -90,6 +90,17 @@ nlohmann::json TimedRun::roofline(int warmup, const MachineRoofs& roofs) const {
   if (multigrid.contains("update_parts_ms"))
     for (const auto& [part, ms] : multigrid["update_parts_ms"].items()) parts[part] = ms.get<double>();
   record["update_parts"] = roofline_record(update_traffic, parts, roofs, working_set_bytes)["phases"];
+  // Work of a step outside every named phase: each step's own remainder, then the median (a
+  // difference of medians is not a median of differences, and can be negative).
+  std::vector<double> untimed;
+  for (std::size_t s = warmup; s < step_ms.size(); ++s) {
+    if (step_ms[s].count("checked")) continue;
+    double rest = step_ms[s].at("step");
+    for (const auto& [phase, ms] : step_ms[s])
+      if (traffic.count(phase)) rest -= ms;
+    untimed.push_back(rest);
+  }
+  record["untimed_ms"] = median(untimed);
   return record;
 }
 
