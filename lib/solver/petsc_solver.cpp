@@ -6,6 +6,8 @@
 #include <petscksp.h>
 
 #include <cmath>
+
+#include "solver/petsc_support.hpp"
 #endif
 
 namespace corofem {
@@ -26,46 +28,23 @@ bool have_petsc() { return true; }
 
 namespace {
 
-void check(PetscErrorCode code, const char* what) {
-  if (code != 0) throw NumericalFault(std::string("PETSc: ") + what + " failed (error " + std::to_string(code) + ")");
-}
-
-/// PETSc (and MPI, unless the program started it) initialized once, finalized at exit after
-/// every solver is gone. Errors come back as codes, not as messages printed by PETSc.
-class PetscSession {
- public:
-  static void ensure() { static PetscSession session; }
-
- private:
-  PetscSession() {
-    // PETSc's signal handler would turn every crash or interrupt of the whole program into an
-    // MPI_Abort; corofem keeps its own.
-    check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
-    check(PetscInitializeNoArguments(), "PetscInitialize");
-    check(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr), "PetscPushErrorHandler");
-  }
-  ~PetscSession() { PetscFinalize(); }
-};
+using petsc::check;
 
 class PetscSolver : public LinearSolver {
  public:
   PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations)
       : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations) {
-    PetscSession::ensure();
+    petsc::ensure_session();
   }
   ~PetscSolver() override {
     if (ksp_) KSPDestroy(&ksp_);
-    if (a_) MatDestroy(&a_);
   }
   std::string name() const override { return kind_; }
 
   void set_matrix(const BrcMatrix& a) override {
     if (!a_) create(a);
-    PetscScalar* values = nullptr;
-    check(MatSeqAIJGetArray(a_, &values), "MatSeqAIJGetArray");
-    for (std::size_t i = 0; i < scatter_.size(); ++i) values[i] = a.values[scatter_[i]];
-    check(MatSeqAIJRestoreArray(a_, &values), "MatSeqAIJRestoreArray");
-    check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
+    a_->copy(a);
+    check(KSPSetOperators(ksp_, a_->mat(), a_->mat()), "KSPSetOperators");
     check(KSPSetUp(ksp_), "KSPSetUp");
     check(PCSetUp(pc_), "PCSetUp");  // the AMG hierarchy: timed with the update, not the solve
   }
@@ -98,26 +77,11 @@ class PetscSolver : public LinearSolver {
   }
 
  private:
-  /// The AIJ pattern of the BRC one (scalar rows 3i + r, columns sorted as the blocks are) and
-  /// the position in the BRC values of every AIJ value; the near null space; CG and the AMG.
+  /// The AIJ matrix of the BRC pattern; the near null space; CG and the AMG.
   void create(const BrcMatrix& a) {
     const PetscInt n = 3 * static_cast<PetscInt>(a.block_rows);
-    std::vector<PetscInt> row_start(1, 0), columns;
-    for (int i = 0; i < a.block_rows; ++i)
-      for (int r = 0; r < 3; ++r) {
-        for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
-          for (int c = 0; c < 3; ++c) {
-            columns.push_back(3 * a.col_index[k] + c);
-            scatter_.push_back(9 * static_cast<std::size_t>(k) + 3 * r + c);
-          }
-        row_start.push_back(static_cast<PetscInt>(columns.size()));
-      }
-    check(MatCreate(PETSC_COMM_SELF, &a_), "MatCreate");
-    check(MatSetSizes(a_, n, n, n, n), "MatSetSizes");
-    check(MatSetType(a_, MATSEQAIJ), "MatSetType");
-    check(MatSetBlockSize(a_, 3), "MatSetBlockSize");
-    check(MatSeqAIJSetPreallocationCSR(a_, row_start.data(), columns.data(), nullptr), "MatSeqAIJSetPreallocationCSR");
-    check(MatSetOption(a_, MAT_SPD, PETSC_TRUE), "MatSetOption");
+    a_ = std::make_unique<petsc::AijFromBrc>(a);
+    check(MatSetOption(a_->mat(), MAT_SPD, PETSC_TRUE), "MatSetOption");
     // Rigid-body modes of the rest positions (three translations, three rotations).
     Vec coordinates;
     check(VecCreateSeq(PETSC_COMM_SELF, n, &coordinates), "VecCreateSeq");
@@ -129,7 +93,7 @@ class PetscSolver : public LinearSolver {
     check(VecRestoreArray(coordinates, &x), "VecRestoreArray");
     MatNullSpace rigid;
     check(MatNullSpaceCreateRigidBody(coordinates, &rigid), "MatNullSpaceCreateRigidBody");
-    check(MatSetNearNullSpace(a_, rigid), "MatSetNearNullSpace");
+    check(MatSetNearNullSpace(a_->mat(), rigid), "MatSetNearNullSpace");
     MatNullSpaceDestroy(&rigid);
     VecDestroy(&coordinates);
 
@@ -170,10 +134,9 @@ class PetscSolver : public LinearSolver {
   std::vector<Vec3> rest_;
   double tolerance_;
   int max_iterations_;
-  Mat a_ = nullptr;
+  std::unique_ptr<petsc::AijFromBrc> a_;
   KSP ksp_ = nullptr;
   PC pc_ = nullptr;
-  std::vector<std::size_t> scatter_;  ///< AIJ value i = BRC value scatter_[i]
 };
 
 }  // namespace
