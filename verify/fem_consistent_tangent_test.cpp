@@ -43,7 +43,7 @@ Eigen::VectorXd force_at(const FeProblem& p, RotationExtractor& method, const st
                          const Eigen::VectorXd& u) {
   std::vector<Mat3> r = warm;
   method.extract(p.positions(u), r);
-  return internal_forces(p.elements, p.mesh, r, u);
+  return internal_forces(p, r, u);
 }
 
 struct Measured {

@@ -51,7 +51,7 @@ TEST(CorotatedAssembly, RigidMotionGivesZeroForce) {
     std::vector<Vec3> moved(p.mesh.rest.size());
     for (std::size_t v = 0; v < moved.size(); ++v) moved[v] = r * p.mesh.rest[v] + t;
     const auto rotations = polar_rotations(p, moved);
-    const Eigen::VectorXd f = internal_forces(p.elements, p.mesh, rotations, displacement(p, moved));
+    const Eigen::VectorXd f = internal_forces(p, rotations, displacement(p, moved));
     // Forces are K (Q^T p - x) with Q^T p - x = O(eps * |x|): relative 1e-12 of |K| |x|.
     EXPECT_LT(f.lpNorm<Eigen::Infinity>(), 1e-12 * scale * 6.0) << "trial " << trial;
     // Assembled form Ktilde p - f0 agrees.
@@ -72,12 +72,12 @@ TEST(CorotatedAssembly, ForcesAreRotationEquivariant) {
     deformed[v] = p.mesh.rest[v] + Vec3(u(rng), u(rng), u(rng)) +
                   0.3 * Vec3(p.mesh.rest[v].y(), -p.mesh.rest[v].x(), 0.1);
   const Eigen::VectorXd f =
-      internal_forces(p.elements, p.mesh, polar_rotations(p, deformed), displacement(p, deformed));
+      internal_forces(p, polar_rotations(p, deformed), displacement(p, deformed));
   const Mat3 r = random_rotation(rng);
   std::vector<Vec3> rotated(deformed.size());
   for (std::size_t v = 0; v < deformed.size(); ++v) rotated[v] = r * deformed[v] + Vec3(1, 2, 3);
   const Eigen::VectorXd g =
-      internal_forces(p.elements, p.mesh, polar_rotations(p, rotated), displacement(p, rotated));
+      internal_forces(p, polar_rotations(p, rotated), displacement(p, rotated));
   double worst = 0;
   for (int v = 0; v < p.mesh.num_vertices(); ++v)
     worst = std::max(worst, (g.segment<3>(3 * v) - r * f.segment<3>(3 * v)).norm());

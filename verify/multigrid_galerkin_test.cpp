@@ -12,6 +12,10 @@
 #include "multigrid/hierarchy_builder.hpp"
 #include "multigrid/lattice_level.hpp"
 #include "mesh/gmsh_mesh.hpp"
+#include "solver/petsc_galerkin.hpp"
+#include "solver/petsc_solver.hpp"
+#include "sparse/brc_to_eigen.hpp"
+#include "core/errors.hpp"
 #include "test_support.hpp"
 #include "sparse/brc_to_eigen.hpp"
 #include "fem/assembly_map.hpp"
@@ -114,7 +118,7 @@ TEST(Galerkin, ContinuationBytesBeyond127Pairs) {
   }
   t.transpose_prolongation();
   const BrcMatrix e = galerkin_pattern(a, t);
-  const GalerkinStream stream(a, t, e, GalerkinStream::Symmetry::Full);
+  const GalerkinStream stream(a, t, e, GalerkinStream::Symmetry::Full, 1);  // one stream: the paper's
   int continuation = 0;
   for (std::uint8_t c : stream.control()) continuation += !(c & 0x80);
   EXPECT_GT(continuation, 0);
@@ -171,6 +175,28 @@ TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
   const BuiltHierarchy built = build_hierarchy(fine, fixed, params, coarse);
   EXPECT_GT(built.levels[0]["outside_points"].get<int>(), 0) << "the jitter should leave points outside";
   check_hierarchy(a, built.transfers, 3);
+  // PETSc's MatPtAP (issue 14's rival product) on the same matrices: symbolic + numeric, then
+  // numeric reuse with new values, each level against our stream's (both exact sums of the
+  // same products: rounding only).
+  if (!have_petsc()) {
+    EXPECT_THROW(PetscPtapHierarchy(a, built.transfers), InputError);
+    return;
+  }
+  MultigridHierarchy ours(a, built.transfers);
+  PetscPtapHierarchy theirs(a, built.transfers);
+  for (int round = 0; round < 2; ++round) {
+    if (round == 1)
+      for (double& v : a.values) v *= 1.5;  // numeric-only update of a symmetric A stays symmetric
+    ours.update(a, GalerkinMethod::Stream);
+    theirs.update(a);
+    ASSERT_EQ(theirs.num_levels(), 3);
+    for (int h = 1; h < 3; ++h) {
+      const Eigen::MatrixXd e = Eigen::MatrixXd(to_eigen(ours.matrix(h)));
+      const Eigen::MatrixXd p = Eigen::MatrixXd(theirs.level(h));
+      ASSERT_EQ(p.rows(), e.rows());
+      EXPECT_LT((p - e).norm(), 1e-12 * e.norm()) << "level " << h << ", round " << round;
+    }
+  }
 }
 
 TEST(Transfer, LatticeWeightsInterpolateAffineFieldsExactly) {

@@ -216,22 +216,26 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     FeProblem p = problem_for(c);
     Eigen::VectorXd b;
     const BrcMatrix system = small_strain_system(p, b);
-    double rho[2];
-    for (int k = 0; k < 2; ++k) {
-      AnalysisSpec a = analysis("multigrid", 1e-10, k == 0 ? "meshes" : "lattice");
+    double rho[3];
+    for (int k = 0; k < 3; ++k) {
+      AnalysisSpec a = analysis("multigrid", 1e-10, k == 1 ? "lattice" : "meshes");
       a.vcycles = 12;
+      if (k == 2) a.smoother = "multicolour";  // the threaded ordering, against the sequential one
       auto solver = make_linear_solver(a, p, coarse);
       solver->set_matrix(system);
       Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
       rho[k] = solver->solve(b, x).convergence_factor;
       std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, " << a.hierarchy
-                << " hierarchy, rho = " << rho[k] << " over 12 V(1,1) cycles\n";
+                << " hierarchy, " << a.smoother << " Gauss-Seidel, rho = " << rho[k] << " over 12 V(1,1) cycles\n";
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius
     // of 0.51 (nu = 0) to 0.57 (nu = 0.3) even on nested meshes (TwoGridEqualsDenseOperator);
     // measured here 0.54 (cube), 0.52 (gmsh cube), 0.87 (bar 10:1, bending-dominated).
     EXPECT_LE(rho[0], c.name == "bar" ? 0.9 : 0.6) << c.name;
     EXPECT_LT(rho[1], 1.0) << c.name;
+    // Multicolour ordering: a different smoother, measured 0.59 (cube), 0.53 (gmsh cube), 0.96
+    // (bar) against 0.54, 0.52, 0.87: at most 15% above the sequential rho.
+    EXPECT_LE(rho[2], 1.15 * rho[0]) << c.name;
   }
 }
 

@@ -122,6 +122,18 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     EXPECT_DOUBLE_EQ(roofline["step_ms"].get<double>(), row["step_ms"].get<double>());
     // Every phase runs inside the step's clock: each step's remainder, and so their median, is >= 0.
     EXPECT_GE(roofline["untimed_ms"].get<double>(), 0.0);
+    // Table 1 at one thread and at the run's count: the same phases, each with its roofline; at
+    // one thread the record's own columns are the one-thread ones.
+    EXPECT_EQ(row["threads"], t["threads"]);
+    EXPECT_EQ(t["threads"].get<int>(), t["context"]["threads_used"].get<int>());
+    for (const char* set : {"phases_ms", "one_thread"})
+      for (const char* phase : {"checks", "rotate", "assemble", "forces", "system", "update", "solve", "step", "tps"})
+        EXPECT_GT(row[set][phase].get<double>(), 0) << set << " " << phase;
+    EXPECT_DOUBLE_EQ(row["phases_ms"]["step"].get<double>(), row["step_ms"].get<double>());
+    EXPECT_TRUE(row["one_thread"]["roofline"]["phases"].is_object());
+    EXPECT_DOUBLE_EQ(row["one_thread"]["roofline"]["stream_triad_GBps"].get<double>(),
+                     t["one_thread_roofs"]["stream_triad_GBps"].get<double>());
+    if (t["threads"].get<int>() == 1) EXPECT_EQ(row["one_thread"]["step"], row["phases_ms"]["step"]);
   }
   // The solvers users would pick instead: both for every table row; run where PETSc is built,
   // a recorded failure naming the library where it is not.

@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/threads.hpp"
 #include "report/report_driver.hpp"
 #include "scene/export_matrices.hpp"
 #include "scene/run_scene.hpp"
@@ -29,12 +30,14 @@ Commands:
 Exit status: 0 success, 1 did not converge or numerical fault, 2 bad input.
 )";
 
-const char* kRunHelp = R"(Usage: corofem run SCENE.json --out RESULT.json
+const char* kRunHelp = R"(Usage: corofem run SCENE.json --out RESULT.json [--threads N]
 
 Runs one scene (see README, "Scene format") and writes RESULT.json: node_tags, rest,
 displacement (input node order), converged, iterations, residual, timings_ms, the scene and the
 context (commit, compiler, flags, machine); with output.rotations also element_tags and rotations
 (unit quaternions [w,x,y,z] of the final state). Progress goes to stderr.
+  --threads N    threads of the step's kernels (default: all cores, or OMP_NUM_THREADS; "all");
+                 the result is bit-identical at every count
 Exit status: 0 converged, 1 did not converge or NaN/inf, 2 bad input (nothing is written).
 )";
 
@@ -48,7 +51,7 @@ levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver com
 
 const char* kReportHelp = R"(Usage: corofem report [--out DIR] [--quick | --smoke] [--models DIR] [--only NAME]
                       [--tables-only | --speed-accuracy-only | --stability-only | --model-accuracy-only]
-                      [--vtu] [--no-render]
+                      [--vtu] [--no-render] [--threads N]
 
 Runs the report's sections and writes into DIR (default out/report):
   tables.json          Tables 1 and 2 of the paper, measured (dynamic runs: energy-newton rotations,
@@ -73,6 +76,8 @@ A cache_profile.json in DIR (bench/cache_profile.sh, run by ci/report) is includ
                  quadruped-posed, horse-stretched, horse-posed)
   --vtu          VTU frames of the stability runs (every 10th step) under DIR/vtu/
   --no-render    JSON only
+  --threads N    threads of the step's kernels (default: all cores; "all"); Table 1 is measured
+                 at one thread and at N
 Progress goes to stderr. A failing case is recorded ("completed": false) and the report goes on.
 Exit status: 0 written, 2 bad options.
 )";
@@ -105,12 +110,18 @@ ParsedArgs parse_args(const std::vector<std::string>& args, const std::vector<st
   return parsed;
 }
 
+/// --threads N (or "all"): the count every parallel kernel uses from here on.
+void apply_threads_option(const ParsedArgs& parsed) {
+  if (parsed.options.count("--threads")) set_thread_count(parse_thread_count(parsed.options.at("--threads")));
+}
+
 int run_command(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(args, {"--out"}, {});
+  ParsedArgs parsed = parse_args(args, {"--out", "--threads"}, {});
   if (parsed.help) {
     std::cout << kRunHelp;
     return 0;
   }
+  apply_threads_option(parsed);
   if (parsed.positional.size() != 1) throw InputError("run needs exactly one SCENE.json (see --help)");
   if (!parsed.options.count("--out")) throw InputError("run needs --out RESULT.json");
   const std::filesystem::path out = parsed.options["--out"];
@@ -142,7 +153,7 @@ int export_command(const std::vector<std::string>& args) {
 
 int report_command(const std::vector<std::string>& args) {
   ParsedArgs parsed =
-      parse_args(args, {"--out", "--models", "--only"},
+      parse_args(args, {"--out", "--models", "--only", "--threads"},
                  {"--quick", "--smoke", "--tables-only", "--speed-accuracy-only", "--stability-only",
                   "--model-accuracy-only", "--vtu", "--no-render"});
   if (parsed.help) {
@@ -178,6 +189,7 @@ int report_command(const std::vector<std::string>& args) {
   }
   config.vtu = parsed.options.count("--vtu") > 0;
   if (parsed.options.count("--only")) config.only = parsed.options["--only"];
+  apply_threads_option(parsed);
   std::error_code ec;
   std::filesystem::create_directories(config.out_dir, ec);
   if (ec) throw InputError("report: cannot create the output folder '" + config.out_dir.string() + "': " + ec.message());

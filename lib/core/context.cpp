@@ -1,5 +1,7 @@
 #include "core/context.hpp"
 
+#include "core/threads.hpp"
+
 #include <unistd.h>
 
 #include <chrono>
@@ -59,7 +61,8 @@ nlohmann::json run_context() {
           {"cpu", cpu_model()},
           {"caches", cache_sizes()},
           {"hardware_threads", std::thread::hardware_concurrency()},
-          {"threads_used", 1},
+          {"threads_used", thread_count()},
+          {"openmp", have_openmp()},
           {"host", host},
           {"date", utc_now()}};
 }

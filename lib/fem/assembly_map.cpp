@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/threads.hpp"
+
 namespace corofem {
 
 BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map) {
@@ -20,6 +22,7 @@ BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map) {
       for (int b = 0; b < 4; ++b) map.block[e][4 * a + b] = k.find(mesh.tets[e][a], mesh.tets[e][b]);
   map.diagonal.resize(mesh.num_vertices());
   for (int v = 0; v < mesh.num_vertices(); ++v) map.diagonal[v] = k.find(v, v);
+  map.rows = partition_rows(mesh.tets, mesh.num_vertices(), thread_count());
   return k;
 }
 

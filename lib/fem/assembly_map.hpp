@@ -4,6 +4,7 @@
 #include <array>
 #include <vector>
 
+#include "fem/element_partition.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "sparse/brc_matrix.hpp"
 
@@ -12,9 +13,11 @@ namespace corofem {
 struct AssemblyMap {
   std::vector<std::array<int, 16>> block;  ///< block[e][4a+b] = block index of (tet[a], tet[b])
   std::vector<int> diagonal;               ///< block index of (v, v) per vertex
+  RowPartition rows;                       ///< rows per thread (thread_count() at construction)
 };
 
-/// Zero matrix with one block per pair of vertices sharing an element, and its assembly map.
+/// Zero matrix with one block per pair of vertices sharing an element, and its assembly map
+/// (its row partition for thread_count() threads).
 BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map);
 
 }  // namespace corofem

@@ -1,26 +1,50 @@
 #include "fem/corotated_assembly.hpp"
 
+#include <algorithm>
+
 namespace corofem {
+
+namespace {
+
+/// Which of an element's vertices lie in [lo, hi): the rows this thread writes.
+struct Owned {
+  bool vertex[4];
+  bool any;
+  Owned(const Tet& t, int lo, int hi) : any(false) {
+    for (int a = 0; a < 4; ++a) any |= vertex[a] = t[a] >= lo && t[a] < hi;
+  }
+};
+
+}  // namespace
 
 void assemble_corotated(const std::vector<ElementRest>& elements, const std::vector<Tet>& tets,
                         const AssemblyMap& map, const std::vector<Mat3>& rotations, BrcMatrix& k,
                         Eigen::VectorXd& f0) {
-  k.set_zero();
-  f0.setZero(3 * static_cast<Eigen::Index>(k.block_rows));
-  for (std::size_t e = 0; e < elements.size(); ++e) {
-    const Mat3& q = rotations[e];
-    const Mat12& ke = elements[e].stiffness;
-    const auto& blocks = map.block[e];
-    for (int a = 0; a < 4; ++a) {
-      f0.segment<3>(3 * tets[e][a]) += q * elements[e].stiffness_times_rest.segment<3>(3 * a);
-      // K_e is symmetric, so Ktilde_ba = Ktilde_ab^T: rotate the 10 blocks with b >= a only.
-      for (int b = a; b < 4; ++b) {
-        const Mat3 rotated = q * ke.block<3, 3>(3 * a, 3 * b) * q.transpose();
-        k.block(blocks[4 * a + b]) += rotated;
-        if (b != a) k.block(blocks[4 * b + a]) += rotated.transpose();
+  f0.resize(3 * static_cast<Eigen::Index>(k.block_rows));
+  const RowPartition& rows = map.rows;
+  for_each_part(rows, [&](int part) {
+    const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
+    std::fill(k.values.begin() + 9 * static_cast<std::size_t>(k.row_start[lo]),
+              k.values.begin() + 9 * static_cast<std::size_t>(k.row_start[hi]), 0.0);
+    f0.segment(3 * lo, 3 * (hi - lo)).setZero();
+    for (const int e : rows.elements[part]) {
+      const Owned own(tets[e], lo, hi);
+      const Mat3& q = rotations[e];
+      const Mat12& ke = elements[e].stiffness;
+      const auto& blocks = map.block[e];
+      for (int a = 0; a < 4; ++a) {
+        if (own.vertex[a])
+          f0.segment<3>(3 * tets[e][a]) += q * elements[e].stiffness_times_rest.segment<3>(3 * a);
+        // K_e is symmetric, so Ktilde_ba = Ktilde_ab^T: rotate the 10 blocks with b >= a only.
+        for (int b = a; b < 4; ++b) {
+          if (!own.vertex[a] && !own.vertex[b]) continue;
+          const Mat3 rotated = q * ke.block<3, 3>(3 * a, 3 * b) * q.transpose();
+          if (own.vertex[a]) k.block(blocks[4 * a + b]) += rotated;
+          if (b != a && own.vertex[b]) k.block(blocks[4 * b + a]) += rotated.transpose();
+        }
       }
     }
-  }
+  });
 }
 
 namespace {
@@ -39,16 +63,23 @@ Vec12 corotated_strain(const TetMesh& mesh, const Tet& t, const Mat3& q, const E
 
 }  // namespace
 
-Eigen::VectorXd internal_forces(const std::vector<ElementRest>& elements, const TetMesh& mesh,
-                                const std::vector<Mat3>& rotations,
+Eigen::VectorXd internal_forces(const FeProblem& problem, const std::vector<Mat3>& rotations,
                                 const Eigen::VectorXd& displacement) {
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.num_vertices());
-  for (std::size_t e = 0; e < elements.size(); ++e) {
-    const Tet& t = mesh.tets[e];
-    const Mat3& q = rotations[e];
-    const Vec12 local = elements[e].stiffness * corotated_strain(mesh, t, q, displacement);
-    for (int a = 0; a < 4; ++a) f.segment<3>(3 * t[a]) += q * local.segment<3>(3 * a);
-  }
+  const TetMesh& mesh = problem.mesh;
+  const RowPartition& rows = problem.assembly.rows;
+  Eigen::VectorXd f(3 * mesh.num_vertices());
+  for_each_part(rows, [&](int part) {
+    const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
+    f.segment(3 * lo, 3 * (hi - lo)).setZero();
+    for (const int e : rows.elements[part]) {
+      const Tet& t = mesh.tets[e];
+      const Owned own(t, lo, hi);
+      const Mat3& q = rotations[e];
+      const Vec12 local = problem.elements[e].stiffness * corotated_strain(mesh, t, q, displacement);
+      for (int a = 0; a < 4; ++a)
+        if (own.vertex[a]) f.segment<3>(3 * t[a]) += q * local.segment<3>(3 * a);
+    }
+  });
   return f;
 }
 

@@ -6,10 +6,12 @@
 
 #include "fem/assembly_map.hpp"
 #include "fem/element_rest.hpp"
+#include "fem/fe_problem.hpp"
 
 namespace corofem {
 
-/// Overwrites K's values with sum_e Q_e K_e Q_e^T and f0 with sum_e Q_e K_e x_e.
+/// Overwrites K's values with sum_e Q_e K_e Q_e^T and f0 with sum_e Q_e K_e x_e, each thread of
+/// map.rows writing its own rows (bit-identical at every thread count).
 /// `rotations` holds Qhat_e per element (the rotation taking the rest element to the deformed one).
 void assemble_corotated(const std::vector<ElementRest>& elements, const std::vector<Tet>& tets,
                         const AssemblyMap& map, const std::vector<Mat3>& rotations, BrcMatrix& k,
@@ -20,8 +22,8 @@ void assemble_corotated(const std::vector<ElementRest>& elements, const std::vec
 /// (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0) (K_e annihilates the dropped translation), so it keeps
 /// full relative accuracy where Ktilde p - f0 cancels terms of size |K||x| >> |f|.
 /// Zero for any rigid motion of the rest mesh.
-Eigen::VectorXd internal_forces(const std::vector<ElementRest>& elements, const TetMesh& mesh,
-                                const std::vector<Mat3>& rotations,
+/// Threaded as assemble_corotated, over problem.assembly.rows.
+Eigen::VectorXd internal_forces(const FeProblem& problem, const std::vector<Mat3>& rotations,
                                 const Eigen::VectorXd& displacement);
 
 /// Corotated elastic energy sum_e 1/2 s_e^T K_e s_e, s_e = Q_e^T p_e - x_e (from vertex-0 offsets,

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <memory>
 
+#include "core/threads.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
 #include "fem/rotation_tangent.hpp"
@@ -40,7 +41,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
   const Eigen::VectorXd momentum = problem.mass.cwiseProduct(velocity);
   Eigen::VectorXd internal_start;
   clock.time("forces", [&] {
-    internal_start = internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement);
+    internal_start = internal_forces(problem, result.rotations, result.displacement);
   });
   std::vector<Mat3> rotations = result.rotations;
   std::vector<Vec3> positions;
@@ -51,7 +52,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
     Eigen::VectorXd g;
     clock.time("forces", [&] {
       g = mass_factor * problem.mass.cwiseProduct(v1) - momentum -
-          dt * (problem.external_force - internal_forces(problem.elements, problem.mesh, rotations, u1));
+          dt * (problem.external_force - internal_forces(problem, rotations, u1));
       if (damping != 0) {
         Eigen::VectorXd kv;
         problem.stiffness.multiply(v1, kv);
@@ -139,7 +140,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       clock.time("forces", [&] {
         b = problem.mass.cwiseProduct(velocity) +
             dt * (problem.external_force -
-                  internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement));
+                  internal_forces(problem, result.rotations, result.displacement));
       });
       clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
       clock.time("system", [&] {
@@ -147,7 +148,9 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
         // scaled copy is one pass over Ktilde into the preallocated A.
         const double k_scale = dt * options.rayleigh_beta + dt * dt;
         const std::vector<double>& k = problem.stiffness.values;
-        for (std::size_t i = 0; i < k.size(); ++i) system.values[i] = k_scale * k[i];
+        const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
+#pragma omp parallel for schedule(static) num_threads(thread_count())
+        for (std::ptrdiff_t i = 0; i < values; ++i) system.values[i] = k_scale * k[i];
         add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, system);
         apply_dirichlet(bc, system, b);
       });
@@ -176,7 +179,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
              [&] { rotate.extract(problem.positions(result.displacement), result.rotations); });
   const Eigen::VectorXd r =
       problem.external_force -
-      internal_forces(problem.elements, problem.mesh, result.rotations, result.displacement);
+      internal_forces(problem, result.rotations, result.displacement);
   check_finite(problem, r, "force", "the end of step " + std::to_string(options.steps));
   const double f_norm = free_norm(problem.dirichlet, problem.external_force);
   result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);

@@ -44,7 +44,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
         positions = problem.positions(z);
         result.inverted_max = std::max(result.inverted_max, count_inverted(problem, positions));
         clock.time("rotate", [&] { rotate.extract(positions, result.rotations); });
-        return Eigen::VectorXd(internal_forces(problem.elements, problem.mesh, result.rotations, z) - f);
+        return Eigen::VectorXd(internal_forces(problem, result.rotations, z) - f);
       };
       const auto jacobian = [&](BrcMatrix& j) {
         clock.time("assemble", [&] { tangent->assemble(positions, result.rotations, j); });
@@ -63,7 +63,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
       linearize(problem, rotate, p, result.rotations, f0, clock);
       const Eigen::VectorXd r =
-          f - internal_forces(problem.elements, problem.mesh, result.rotations, u);
+          f - internal_forces(problem, result.rotations, u);
       check_finite(problem, r, "force", "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it));
       result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
       // A linear solve is exact after one step; corotated steps iterate the lagged rotations.

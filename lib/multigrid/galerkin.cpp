@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/threads.hpp"
 
 namespace corofem {
 
@@ -80,33 +81,62 @@ void GalerkinReuse::apply(const BrcMatrix& a, const Transfer& t, BrcMatrix& e) {
   }
 }
 
-GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
-                               Symmetry symmetry) {
-  const bool upper_only = symmetry == Symmetry::Symmetric;
-  control_.reserve(a.num_blocks());
-  for (int l = 0; l < a.block_rows; ++l) {
-    for (int b = a.row_start[l]; b < a.row_start[l + 1]; ++b) {
-      const int k = a.col_index[b];
-      std::size_t count = 0;
-      for (int m = t.p_start[l]; m < t.p_start[l + 1]; ++m) {
-        const int i = t.p_col[m];
-        for (int n = t.p_start[k]; n < t.p_start[k + 1]; ++n) {
-          const int j = t.p_col[n];
-          if (upper_only && j < i) continue;
-          data_.push_back({t.p_weight[m] * t.p_weight[n], static_cast<std::uint32_t>(e.find(i, j))});
-          ++count;
-        }
-      }
-      // setNext(): one byte with the top bit set, then continuation bytes of at most 127 pairs.
-      const std::size_t first = std::min<std::size_t>(count, 127);
-      control_.push_back(static_cast<std::uint8_t>(0x80 | first));
-      for (std::size_t left = count - first; left > 0;) {
-        const std::size_t chunk = std::min<std::size_t>(left, 127);
-        control_.push_back(static_cast<std::uint8_t>(chunk));
-        left -= chunk;
-      }
-    }
+namespace {
+
+/// setNext(): one byte with the top bit set, then continuation bytes of at most 127 pairs.
+void append_control(std::vector<std::uint8_t>& control, std::size_t count) {
+  const std::size_t first = std::min<std::size_t>(count, 127);
+  control.push_back(static_cast<std::uint8_t>(0x80 | first));
+  for (std::size_t left = count - first; left > 0;) {
+    const std::size_t chunk = std::min<std::size_t>(left, 127);
+    control.push_back(static_cast<std::uint8_t>(chunk));
+    left -= chunk;
   }
+}
+
+}  // namespace
+
+GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
+                               Symmetry symmetry, int parts) {
+  const bool upper_only = symmetry == Symmetry::Symmetric;
+  // Visits the pairs of every block of A in storage order: f(block, i, j, R_il R_jk).
+  const auto for_each_pair = [&](const auto& f) {
+    for (int l = 0; l < a.block_rows; ++l)
+      for (int b = a.row_start[l]; b < a.row_start[l + 1]; ++b) {
+        const int k = a.col_index[b];
+        for (int m = t.p_start[l]; m < t.p_start[l + 1]; ++m)
+          for (int n = t.p_start[k]; n < t.p_start[k + 1]; ++n)
+            if (!upper_only || t.p_col[n] >= t.p_col[m])
+              f(b, t.p_col[m], t.p_col[n], t.p_weight[m] * t.p_weight[n]);
+      }
+  };
+  // Rows of E split by their pair counts (the numeric phase's work).
+  std::vector<long long> prefix(e.block_rows + 1, 0);
+  for_each_pair([&](int, int i, int, double) { ++prefix[i + 1]; });
+  for (int i = 0; i < e.block_rows; ++i) prefix[i + 1] += prefix[i];
+  const std::vector<int> rows = balanced_ranges(prefix, parts > 0 ? parts : thread_count());
+  parts_.resize(rows.size() - 1);
+  std::vector<int> part_of(e.block_rows);
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    parts_[p].row_lo = rows[p];
+    parts_[p].row_hi = rows[p + 1];
+    parts_[p].control.reserve(a.num_blocks());
+    for (int i = rows[p]; i < rows[p + 1]; ++i) part_of[i] = static_cast<int>(p);
+  }
+  std::vector<std::size_t> count(parts_.size(), 0);
+  int closed = 0;  // blocks of A whose control bytes are written
+  const auto close_block = [&] {
+    for (std::size_t p = 0; p < parts_.size(); ++p) append_control(parts_[p].control, count[p]);
+    std::fill(count.begin(), count.end(), 0);
+    ++closed;
+  };
+  for_each_pair([&](int b, int i, int j, double weight) {
+    while (closed < b) close_block();
+    const int p = part_of[i];
+    parts_[p].data.push_back({weight, static_cast<std::uint32_t>(e.find(i, j))});
+    ++count[p];
+  });
+  while (closed < a.num_blocks()) close_block();
   if (upper_only)
     for (int i = 0; i < e.block_rows; ++i)
       for (int b = e.row_start[i]; b < e.row_start[i + 1]; ++b)
@@ -115,21 +145,44 @@ GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcM
                                static_cast<std::uint32_t>(e.find(e.col_index[b], i)));
 }
 
+std::size_t GalerkinStream::num_pairs() const {
+  std::size_t pairs = 0;
+  for (const Part& part : parts_) pairs += part.data.size();
+  return pairs;
+}
+
+std::size_t GalerkinStream::bytes() const {
+  std::size_t bytes = 0;
+  for (const Part& part : parts_) bytes += part.control.size() + part.data.size() * sizeof(Pair);
+  return bytes;
+}
+
 void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
-  e.set_zero();
-  const double* block = a.values.data() - 9;
-  const Pair* pair = data_.data();
   double* ev = e.values.data();
-  for (const std::uint8_t c : control_) {
-    if (c & 0x80) block += 9;  // step 1: advance to the next block of A
-    for (int p = c & 0x7f; p > 0; --p, ++pair)  // step 2: p weighted scatters
-      add_scaled(ev + 9 * static_cast<std::size_t>(pair->destination), pair->weight, block);
-  }
-  for (const auto& [upper, lower] : mirror_) {  // E_ji = E_ij^T
-    const double* u = ev + 9 * static_cast<std::size_t>(upper);
-    double* l = ev + 9 * static_cast<std::size_t>(lower);
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) l[3 * r + c] = u[3 * c + r];
+  const int parts = static_cast<int>(parts_.size());
+#pragma omp parallel num_threads(thread_count() < parts ? thread_count() : parts)
+  {
+#pragma omp for schedule(static, 1)
+    for (int p = 0; p < parts; ++p) {
+      const Part& part = parts_[p];
+      std::fill(ev + 9 * static_cast<std::size_t>(e.row_start[part.row_lo]),
+                ev + 9 * static_cast<std::size_t>(e.row_start[part.row_hi]), 0.0);
+      const double* block = a.values.data() - 9;
+      const Pair* pair = part.data.data();
+      for (const std::uint8_t c : part.control) {
+        if (c & 0x80) block += 9;  // step 1: advance to the next block of A
+        for (int n = c & 0x7f; n > 0; --n, ++pair)  // step 2: n weighted scatters
+          add_scaled(ev + 9 * static_cast<std::size_t>(pair->destination), pair->weight, block);
+      }
+    }
+    const std::ptrdiff_t mirrored = static_cast<std::ptrdiff_t>(mirror_.size());
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t m = 0; m < mirrored; ++m) {  // E_ji = E_ij^T
+      const double* u = ev + 9 * static_cast<std::size_t>(mirror_[m].first);
+      double* l = ev + 9 * static_cast<std::size_t>(mirror_[m].second);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) l[3 * r + c] = u[3 * c + r];
+    }
   }
 }
 

@@ -36,6 +36,11 @@ class GalerkinReuse {
 /// (0..127) of (weight, destination) pairs to process with it; a block scattered more than 127
 /// times gets continuation bytes with the top bit 0. Data stream: the pairs (R_il R_jk, index of
 /// block E_ij). The numeric phase is one sequential pass; only the writes into E scatter.
+/// Threads: E's rows are split into ranges of about equal pair counts, and each range gets its
+/// own control and data stream (the paper's format, holding only the pairs whose destination
+/// lies in the range). A thread reads its control stream (one byte per block of A) and only the
+/// blocks of A it has pairs for, and writes only its rows of E: no two threads write one block,
+/// and every block of E sums its pairs in A's storage order, so E is bit-identical at any count.
 class GalerkinStream {
  public:
 #pragma pack(push, 1)
@@ -51,18 +56,24 @@ class GalerkinStream {
   enum class Symmetry { Full, Symmetric };
 
   GalerkinStream() = default;
+  /// `parts` streams, one per thread (0: thread_count()).
   GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
-                 Symmetry symmetry = Symmetry::Symmetric);
+                 Symmetry symmetry = Symmetry::Symmetric, int parts = 0);
   /// E = R A R^T (E is zeroed first; A must have the pattern the stream was built for).
   void apply(const BrcMatrix& a, BrcMatrix& e) const;
 
-  std::size_t num_pairs() const { return data_.size(); }
-  std::size_t bytes() const { return control_.size() + data_.size() * sizeof(Pair); }
-  const std::vector<std::uint8_t>& control() const { return control_; }
+  std::size_t num_pairs() const;
+  std::size_t bytes() const;  ///< every part's control and data streams
+  int parts() const { return static_cast<int>(parts_.size()); }
+  const std::vector<std::uint8_t>& control(int part = 0) const { return parts_[part].control; }
 
  private:
-  std::vector<std::uint8_t> control_;
-  std::vector<Pair> data_;
+  struct Part {
+    int row_lo = 0, row_hi = 0;  ///< the rows of E this part writes
+    std::vector<std::uint8_t> control;
+    std::vector<Pair> data;
+  };
+  std::vector<Part> parts_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> mirror_;  ///< (E_ij, E_ji) blocks, i < j
 };
 

@@ -21,6 +21,7 @@ struct MultigridParams {
   int max_iterations = 500;        ///< cap on V-cycles / CG iterations
   double tolerance = 1e-8;         ///< relative residual |b - A x| / |b|
   GalerkinMethod galerkin = GalerkinMethod::Stream;
+  SmootherOrdering smoother = SmootherOrdering::Sequential;  ///< the Gauss-Seidel sweeps' order
 
   nlohmann::json to_json() const;
 };

@@ -5,6 +5,7 @@
 
 #include "core/errors.hpp"
 #include "core/machine_roofs.hpp"
+#include "core/threads.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 
@@ -36,6 +37,15 @@ namespace {
 
 
 double tps_of(const TimedRun& run, int warmup) { return 1000.0 / run.median_ms("step", warmup); }
+
+/// Median ms of every phase of a step, the step and its time steps per second.
+json phase_medians(const TimedRun& run, int warmup) {
+  json phases;
+  for (const char* phase : {"checks", "rotate", "assemble", "forces", "system", "update", "solve", "step"})
+    phases[phase] = run.median_ms(phase, warmup);
+  phases["tps"] = tps_of(run, warmup);
+  return phases;
+}
 
 /// One row of the multigrid quality table: the hierarchy of `pcg` (an MG-PCG run) and its
 /// iterations and times, with the convergence factor of the stationary V(1,1) cycle (`vcycle`,
@@ -80,10 +90,19 @@ json run_paper_tables(const ReportConfig& config) {
                         {"tolerance", config.default_tolerance()},
                         {"dt", 0.01},
                         {"oracle_check_steps", nlohmann::json::array()}};
-  // The rooflines' roofs, this machine's, measured before the runs.
+  // The rooflines' roofs, this machine's, measured before the runs at the run's thread count
+  // and at one thread (Table 1 is measured at both).
+  const int threads = thread_count();
   const MachineRoofs roofs{measure_stream_triad_gbps(), measure_dense_gflops()};
+  MachineRoofs roofs_one = roofs;
+  if (threads > 1) {
+    const ScopedThreadCount one(1);
+    roofs_one = {measure_stream_triad_gbps(), measure_dense_gflops()};
+  }
+  tables["threads"] = threads;
   tables["stream_triad_GBps"] = roofs.stream_gbps;
   tables["dense_gflops"] = roofs.dense_gflops;
+  tables["one_thread_roofs"] = {{"stream_triad_GBps", roofs_one.stream_gbps}, {"dense_gflops", roofs_one.dense_gflops}};
   std::vector<int> check_steps{warmup + 1, warmup + measured / 2, steps};
   check_steps.erase(std::unique(check_steps.begin(), check_steps.end()), check_steps.end());
   tables["settings"]["oracle_check_steps"] = check_steps;
@@ -107,11 +126,28 @@ json run_paper_tables(const ReportConfig& config) {
         options.check_steps = check_steps;
         options.check_operators = true;
         main = timed_run(scene, id, options);
+        // The same run on one thread (the paper's setting), unless this one is.
+        json one_thread = nullptr;
+        if (threads > 1) {
+          say("energy-newton + MG-PCG on one thread");
+          const ScopedThreadCount one(1);
+          const TimedRun single = timed_run(scene, id, options);
+          one_thread = phase_medians(single, warmup);
+          one_thread["roofline"] = single.roofline(warmup, roofs_one);
+        }
         say("naive Galerkin update");
         const TimedRun naive = timed_run(with_analysis(scene, {{"galerkin", "naive"}}), id, {});
         say("CHOLMOD step");
         const TimedRun cholmod = timed_run(with_analysis(scene, {{"solver", "cholmod"}}), id, {});
+        json all = phase_medians(main, warmup);
+        if (one_thread.is_null()) {
+          one_thread = all;
+          one_thread["roofline"] = main.roofline(warmup, roofs_one);
+        }
         return json{{"tets", main.tets},
+                    {"threads", threads},
+                    {"phases_ms", all},
+                    {"one_thread", one_thread},
                     {"vertices", main.vertices},
                     {"levels", main.levels},
                     {"rotate_ms", main.median_ms("rotate", warmup)},

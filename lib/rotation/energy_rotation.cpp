@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "core/threads.hpp"
 #include "exact_rotation.hpp"
 #include "rotation/polar_decomposition.hpp"
 
@@ -135,7 +136,8 @@ EnergyNewtonExtractor::EnergyNewtonExtractor(const TetMesh& mesh, const Rotation
 void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
                                     std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
-  stats_.fallbacks = 0;
+  int fallbacks = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(thread_count())
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     double a = 0;
     const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
@@ -143,8 +145,9 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
                                                    params_.newton_max_iterations);
     rotations[e] = r.rotation;
     stats_.iterations[e] = static_cast<std::uint8_t>(r.iterations);
-    stats_.fallbacks += r.fell_back;
+    fallbacks += r.fell_back;
   }
+  stats_.fallbacks = fallbacks;
 }
 
 EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
@@ -153,6 +156,7 @@ EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
 void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
                                    std::vector<Mat3>& rotations) {
   stats_.iterations.assign(mesh_.tets.size(), 0);
+#pragma omp parallel for schedule(static) num_threads(thread_count())
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     double a = 0;
     rotations[e] = energy_exact_rotation(deformed_moment(rest_[e], mesh_.tets[e], positions, a));

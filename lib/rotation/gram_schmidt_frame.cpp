@@ -1,5 +1,7 @@
 #include "rotation/gram_schmidt_frame.hpp"
 
+#include "core/threads.hpp"
+
 namespace corofem {
 
 Mat3 edge_frame(const Vec3& x0, const Vec3& x1, const Vec3& x2) {
@@ -19,16 +21,18 @@ GramSchmidtFrameExtractor::GramSchmidtFrameExtractor(const TetMesh& mesh) : mesh
 void GramSchmidtFrameExtractor::extract(const std::vector<Vec3>& positions,
                                         std::vector<Mat3>& rotations) {
   stats_.iterations.assign(mesh_.tets.size(), 0);
-  stats_.fallbacks = 0;
+  int fallbacks = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(thread_count())
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     const Tet& t = mesh_.tets[e];
     const Mat3 g = edge_frame(positions[t[0]], positions[t[1]], positions[t[2]]);
     if (!g.allFinite()) {  // collapsed edge: keep the previous rotation
-      ++stats_.fallbacks;
+      ++fallbacks;
       continue;
     }
     rotations[e] = g * rest_frame_[e].transpose();
   }
+  stats_.fallbacks = fallbacks;
 }
 
 }  // namespace corofem

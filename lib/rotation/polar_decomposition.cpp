@@ -1,5 +1,6 @@
 #include "rotation/polar_decomposition.hpp"
 
+#include "core/threads.hpp"
 #include "rotation/svd_rotation.hpp"
 
 #include <Eigen/LU>
@@ -40,15 +41,17 @@ PolarExtractor::PolarExtractor(const TetMesh& mesh)
 
 void PolarExtractor::extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
-  stats_.fallbacks = 0;
+  int fallbacks = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(thread_count())
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     int iterations = 0;
     rotations[e] = polar_rotation(
         deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e],
         &iterations);
     stats_.iterations[e] = static_cast<std::uint8_t>(iterations);
-    stats_.fallbacks += iterations < 0;
+    fallbacks += iterations < 0;
   }
+  stats_.fallbacks = fallbacks;
 }
 
 void IdentityExtractor::extract(const std::vector<Vec3>&, std::vector<Mat3>& rotations) {

@@ -1,5 +1,6 @@
 #include "rotation/svd_rotation.hpp"
 
+#include "core/threads.hpp"
 #include "exact_rotation.hpp"
 
 namespace corofem {
@@ -19,6 +20,7 @@ InversionAwareSvdExtractor::InversionAwareSvdExtractor(const TetMesh& mesh)
 void InversionAwareSvdExtractor::extract(const std::vector<Vec3>& positions,
                                          std::vector<Mat3>& rotations) {
   stats_.iterations.assign(mesh_.tets.size(), 0);
+#pragma omp parallel for schedule(static) num_threads(thread_count())
   for (int e = 0; e < mesh_.num_tets(); ++e)
     rotations[e] = reference::rotation_factor_svd(
         deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]));

@@ -54,7 +54,7 @@ struct MoveSpec {
 
 /// The `analysis` keys that belong to the multigrid solvers (ignored, with a warning, by others).
 inline constexpr const char* kMultigridAnalysisKeys[] = {"levels", "vcycles", "smoothing", "galerkin",
-                                                         "hierarchy"};
+                                                         "hierarchy", "smoother"};
 
 /// multigrid and mgpcg: the solvers with a hierarchy.
 inline bool is_multigrid_solver(const std::string& solver) { return solver == "multigrid" || solver == "mgpcg"; }
@@ -75,6 +75,9 @@ struct AnalysisSpec {
   int levels = 1;
   int vcycles = 0;          ///< 0: iterate to tolerance
   int smoothing = 1;
+  /// Gauss-Seidel ordering: sequential (one thread; the default: its rho is the better one, see
+  /// README "Threads") | multicolour (every thread)
+  std::string smoother = "sequential";
   double dt = 0.01;
   int steps = 1;
   int load_steps = 1;

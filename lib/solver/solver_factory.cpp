@@ -17,6 +17,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   p.vcycles = a.vcycles;
   p.tolerance = a.tolerance;
   p.galerkin = galerkin_method(a.galerkin);
+  p.smoother = smoother_ordering(a.smoother);
   return p;
 }
 

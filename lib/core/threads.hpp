@@ -1,0 +1,38 @@
+#pragma once
+// Threads of the step's kernels (OpenMP). One process-wide count, set by --threads before any
+// work starts; every parallel kernel splits its work so that its result does not depend on the
+// count (each output written by one thread, summed in a fixed order), so runs are bit-identical
+// at any count where the algorithm is the same.
+#include <string>
+#include <vector>
+
+namespace corofem {
+
+/// Whether the build has OpenMP (without it every kernel runs on one thread).
+bool have_openmp();
+/// Cores the process may use (the default thread count).
+int available_cores();
+/// Threads the parallel kernels use.
+int thread_count();
+/// Sets the count (1..1024); throws InputError naming `what` otherwise. Without OpenMP, only 1.
+void set_thread_count(int count, const char* what = "--threads");
+/// Parses the value of a --threads option ("all" = available_cores()); throws InputError.
+int parse_thread_count(const std::string& value);
+
+/// Sets the count for a scope (a one-thread measurement inside a threaded run) and restores it.
+class ScopedThreadCount {
+ public:
+  explicit ScopedThreadCount(int count) : previous_(thread_count()) { set_thread_count(count); }
+  ~ScopedThreadCount() { set_thread_count(previous_); }
+  ScopedThreadCount(const ScopedThreadCount&) = delete;
+  ScopedThreadCount& operator=(const ScopedThreadCount&) = delete;
+
+ private:
+  int previous_;
+};
+
+/// Splits [0, n) into `parts` contiguous ranges of about equal total weight; `weight_prefix` has
+/// n + 1 entries (weight_prefix[i] = weight of [0, i)). Returns parts + 1 boundaries.
+std::vector<int> balanced_ranges(const std::vector<long long>& weight_prefix, int parts);
+
+}  // namespace corofem

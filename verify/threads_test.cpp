@@ -1,0 +1,233 @@
+// Threads (issue 12): every threaded kernel at 1, 2 and 3 threads against its one-thread bits and
+// against its oracle (Eigen products, the dense Galerkin product, CHOLMOD), and whole dynamic
+// runs bit-identical at every thread count and run to run. Every kernel writes each output from
+// one thread and sums in a fixed order, so "equal" here means equal bits, not a tolerance.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <cstring>
+#include <random>
+
+#include "core/errors.hpp"
+#include "core/threads.hpp"
+#include "fem/corotated_assembly.hpp"
+#include "fem/fe_problem.hpp"
+#include "multigrid/galerkin.hpp"
+#include "multigrid/gauss_seidel.hpp"
+#include "multigrid/mesh_level.hpp"
+#include "galerkin_oracle.hpp"
+#include "rotation/rotation_extractor.hpp"
+#include "scene/scene_simulation.hpp"
+#include "sparse/brc_to_eigen.hpp"
+#include "test_support.hpp"
+
+namespace corofem {
+namespace {
+
+const int kThreadCounts[] = {1, 2, 3};
+
+bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
+bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() && same_bits(a.data(), b.data(), a.size());
+}
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && same_bits(a.data(), b.data(), a.size());
+}
+
+/// A quadruped (thin legs: rows of very different lengths) with its rest positions disturbed.
+SceneSimulation quadruped(double size, const std::string& smoother = "multicolour") {
+  const nlohmann::json scene = {
+      {"mesh", {{"shape", "quadruped"}, {"size", size}, {"reorder", true}}},
+      {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+      {"fixed", {{{"box", {{0, -0.3, -0.01}, {0.3, 0.3, 0.05}}}}}},
+      {"gravity", {0, 0, -9.81}},
+      {"analysis", {{"type", "dynamic"}, {"rotation", "energy-newton"}, {"solver", "mgpcg"},
+                    {"smoother", smoother}, {"dt", 0.01}, {"steps", 6}, {"tolerance", 1e-6}}}};
+  return SceneSimulation(parse_scene(scene, ".", "threads"));
+}
+
+std::vector<Vec3> deformed(const TetMesh& mesh, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-0.02, 0.02);
+  std::vector<Vec3> p = mesh.rest;
+  for (Vec3& x : p) x = Eigen::AngleAxisd(0.6, Vec3(0.3, 1, 0.2).normalized()) * x + Vec3(d(rng), d(rng), d(rng));
+  return p;
+}
+
+TEST(Threads, CountIsValidatedAndParsed) {
+  EXPECT_THROW(set_thread_count(0), InputError);
+  EXPECT_THROW(parse_thread_count("two"), InputError);
+  EXPECT_THROW(parse_thread_count("2x"), InputError);
+  EXPECT_EQ(parse_thread_count("3"), 3);
+  EXPECT_EQ(parse_thread_count("all"), available_cores());
+  const std::vector<long long> prefix = {0, 5, 5, 6, 20, 21};
+  const std::vector<int> r = balanced_ranges(prefix, 2);
+  EXPECT_EQ(r, (std::vector<int>{0, 3, 5}));  // weight 6 | 15: the first prefix reaching 21/2
+}
+
+TEST(Threads, RotationsAssemblyAndForcesAreTheOneThreadBits) {
+  std::vector<Mat3> rotations_one;
+  Eigen::VectorXd f0_one, force_one;
+  std::vector<double> k_one;
+  for (const int n : kThreadCounts) {
+    ScopedThreadCount threads(n);
+    SceneSimulation sim = quadruped(0.12);  // its row partition has n parts
+    FeProblem& p = sim.problem();
+    ASSERT_EQ(p.assembly.rows.parts(), n);
+    const std::vector<Vec3> x = deformed(p.mesh, 3);
+    Eigen::VectorXd u(p.num_dofs());
+    for (int v = 0; v < p.mesh.num_vertices(); ++v) u.segment<3>(3 * v) = x[v] - p.mesh.rest[v];
+    for (const std::string& method : rotation_method_names()) {
+      std::vector<Mat3> r(p.mesh.tets.size(), Mat3::Identity());
+      make_rotation_extractor(method, p.mesh)->extract(x, r);
+      if (method != "energy-newton") continue;
+      if (n == 1) rotations_one = r;
+      for (std::size_t e = 0; e < r.size(); ++e)
+        ASSERT_TRUE(same_bits(r[e].data(), rotations_one[e].data(), 9)) << method << " element " << e << " at " << n;
+    }
+    std::vector<Mat3> r(p.mesh.tets.size(), Mat3::Identity());
+    make_rotation_extractor("energy-newton", p.mesh)->extract(x, r);
+    Eigen::VectorXd f0;
+    assemble_corotated(p.elements, p.mesh.tets, p.assembly, r, p.stiffness, f0);
+    const Eigen::VectorXd force = internal_forces(p, r, u);
+    if (n == 1) {
+      k_one = p.stiffness.values;
+      f0_one = f0;
+      force_one = force;
+      // Oracle: the same sums through an Eigen sparse matrix of triplets, element by element.
+      std::vector<Eigen::Triplet<double>> triplets;
+      Eigen::VectorXd f0_oracle = Eigen::VectorXd::Zero(p.num_dofs());
+      for (int e = 0; e < p.mesh.num_tets(); ++e) {
+        const Mat12& ke = p.elements[e].stiffness;
+        for (int a = 0; a < 4; ++a) {
+          f0_oracle.segment<3>(3 * p.mesh.tets[e][a]) += r[e] * p.elements[e].stiffness_times_rest.segment<3>(3 * a);
+          for (int b = 0; b < 4; ++b) {
+            const Mat3 blk = r[e] * ke.block<3, 3>(3 * a, 3 * b) * r[e].transpose();
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j)
+                triplets.emplace_back(3 * p.mesh.tets[e][a] + i, 3 * p.mesh.tets[e][b] + j, blk(i, j));
+          }
+        }
+      }
+      Eigen::SparseMatrix<double> k(p.num_dofs(), p.num_dofs());
+      k.setFromTriplets(triplets.begin(), triplets.end());
+      // Summation order differs from the oracle's: a few ulps of the largest entry.
+      const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
+      EXPECT_LT((Eigen::MatrixXd(ours) - Eigen::MatrixXd(k)).norm(), 1e-13 * Eigen::MatrixXd(k).norm());
+      EXPECT_LT((f0 - f0_oracle).norm(), 1e-13 * f0_oracle.norm());
+      // Ktilde p - f0 is the force (cancellation: |K||x| / |f| ~ 1e3 here, so 1e-9 relative).
+      Eigen::VectorXd positions(p.num_dofs());
+      for (int v = 0; v < p.mesh.num_vertices(); ++v) positions.segment<3>(3 * v) = x[v];
+      EXPECT_LT((ours * positions - f0 - force).norm(), 1e-9 * force.norm());
+    }
+    EXPECT_TRUE(same_bits(p.stiffness.values, k_one)) << n << " threads";
+    EXPECT_TRUE(same_bits(f0, f0_one)) << n << " threads";
+    EXPECT_TRUE(same_bits(force, force_one)) << n << " threads";
+    // Each element is visited once per part owning one of its vertices: the duplication is the
+    // partition boundary's share, small on a locality-ordered mesh.
+    if (n > 1) EXPECT_LT(p.assembly.rows.duplication(), 0.25) << n << " threads";
+  }
+}
+
+TEST(Threads, StreamProductIsTheOneThreadBitsAndTheOracle) {
+  SceneSimulation sim = quadruped(0.12);
+  FeProblem& p = sim.problem();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> w(-1, 1);
+  for (double& v : p.stiffness.values) v = w(rng);
+  // A symmetric A with random blocks: the symmetric stream's mirror must hold.
+  BrcMatrix a = p.stiffness;
+  for (int i = 0; i < a.block_rows; ++i)
+    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
+      const int j = a.col_index[k];
+      if (j < i) a.block(k) = a.block(a.find(j, i)).transpose();
+      if (j == i) a.block(k) = Mat3(a.block(k) + a.block(k).transpose());
+    }
+  SceneSimulation coarse_sim = quadruped(0.24);
+  const TetMesh& coarse = coarse_sim.problem().mesh;
+  const Transfer t =
+      make_mesh_level(p.mesh.rest, std::vector<char>(p.mesh.rest.size(), 0), coarse, "coarse").transfer;
+  const BrcMatrix pattern = galerkin_pattern(a, t);
+  const Eigen::SparseMatrix<double> r = restriction_matrix(t);
+  const Eigen::MatrixXd oracle = reference::dense_galerkin(Eigen::MatrixXd(r), Eigen::MatrixXd(to_eigen(a)));
+  std::vector<double> one;
+  for (const auto symmetry : {GalerkinStream::Symmetry::Symmetric, GalerkinStream::Symmetry::Full})
+    for (const int n : kThreadCounts) {
+      ScopedThreadCount threads(n);
+      const GalerkinStream stream(a, t, pattern, symmetry, n);
+      ASSERT_EQ(stream.parts(), n);
+      BrcMatrix e = pattern;
+      stream.apply(a, e);
+      if (n == 1) {
+        one = e.values;
+        EXPECT_LT((Eigen::MatrixXd(to_eigen(e)) - oracle).norm(), 1e-13 * oracle.norm());
+      }
+      EXPECT_TRUE(same_bits(e.values, one)) << n << " threads";
+    }
+}
+
+TEST(Threads, MulticolourSmootherIsAColouringAndTheSameBitsAtEveryCount) {
+  SceneSimulation sim = quadruped(0.12);
+  FeProblem& p = sim.problem();
+  const std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
+  Eigen::VectorXd f0;
+  assemble_corotated(p.elements, p.mesh.tets, p.assembly, identity, p.stiffness, f0);
+  BrcMatrix a = p.stiffness;
+  for (int i = 0; i < a.block_rows; ++i) a.block(a.find(i, i)) += 1e3 * Mat3::Identity();  // + M/dt^2
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * a.block_rows, -1, 1), one;
+  for (const int n : kThreadCounts) {
+    ScopedThreadCount threads(n);
+    BlockGaussSeidel gs(SmootherOrdering::Multicolour);
+    gs.set_matrix(a);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+    for (int s = 0; s < 3; ++s) {
+      gs.forward(a, b, x);
+      gs.backward(a, b, x);
+    }
+    if (n == 1) one = x;
+    EXPECT_TRUE(same_bits(x, one)) << n << " threads";
+    EXPECT_GT(gs.num_colours(), 4);
+    EXPECT_LT(gs.num_colours(), 64);
+  }
+  // Symmetric Gauss-Seidel reduces the A-norm of the error: a smoother, whatever the order.
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));
+  const Eigen::VectorXd exact = dense.ldlt().solve(b);
+  BlockGaussSeidel gs(SmootherOrdering::Multicolour);
+  gs.set_matrix(a);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  double previous = exact.dot(dense * exact);
+  for (int s = 0; s < 5; ++s) {
+    gs.forward(a, b, x);
+    gs.backward(a, b, x);
+    const Eigen::VectorXd err = exact - x;
+    const double energy = err.dot(dense * err);
+    EXPECT_LT(energy, previous);
+    previous = energy;
+  }
+}
+
+TEST(Threads, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
+  for (const std::string smoother : {"multicolour", "sequential"}) {
+    Eigen::VectorXd one;
+    for (const int n : {1, 2, 3, 2}) {  // 2 twice: run to run
+      ScopedThreadCount threads(n);
+      SceneSimulation sim = quadruped(0.12, smoother);
+      const SimulationResult result = sim.run();
+      if (one.size() == 0) one = result.displacement;
+      EXPECT_TRUE(same_bits(result.displacement, one)) << smoother << " at " << n << " threads";
+      EXPECT_GT(result.displacement.norm(), 0);
+    }
+  }
+}
+
+TEST(Threads, CliRefusesABadThreadCount) {
+  for (const char* bad : {"0", "many", "-2"}) {
+    const auto r = test::run_cli(std::string("run nothing.json --out x.json --threads ") + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace corofem
