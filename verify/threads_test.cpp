@@ -27,6 +27,14 @@ namespace {
 
 const int kThreadCounts[] = {1, 2, 3};
 
+/// The gates' meshes are small: every kernel threads them anyway (production skips threads for
+/// loops of fewer than 2048 items per thread).
+class ThreadsTest : public ::testing::Test {
+ protected:
+  void SetUp() override { set_items_per_thread(1); }
+  void TearDown() override { set_items_per_thread(2048); }
+};
+
 bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
 bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return a.size() == b.size() && same_bits(a.data(), b.data(), a.size());
@@ -55,7 +63,7 @@ std::vector<Vec3> deformed(const TetMesh& mesh, unsigned seed) {
   return p;
 }
 
-TEST(Threads, CountIsValidatedAndParsed) {
+TEST_F(ThreadsTest, CountIsValidatedAndParsed) {
   EXPECT_THROW(set_thread_count(0), InputError);
   EXPECT_THROW(parse_thread_count("two"), InputError);
   EXPECT_THROW(parse_thread_count("2x"), InputError);
@@ -63,10 +71,17 @@ TEST(Threads, CountIsValidatedAndParsed) {
   EXPECT_EQ(parse_thread_count("all"), available_cores());
   const std::vector<long long> prefix = {0, 5, 5, 6, 20, 21};
   const std::vector<int> r = balanced_ranges(prefix, 2);
-  EXPECT_EQ(r, (std::vector<int>{0, 3, 5}));  // weight 6 | 15: the first prefix reaching 21/2
+  EXPECT_EQ(r, (std::vector<int>{0, 3, 5}));  // weight 6 | 15: the boundary nearest 21/2
+  // Small loops stay on one thread; large ones use every thread, never more than they fill.
+  set_items_per_thread(2048);
+  const ScopedThreadCount three(3);
+  EXPECT_EQ(threads_for(100), 1);
+  EXPECT_EQ(threads_for(5000), 2);
+  EXPECT_EQ(threads_for(1 << 20), 3);
+  set_items_per_thread(1);
 }
 
-TEST(Threads, RotationsAssemblyAndForcesAreTheOneThreadBits) {
+TEST_F(ThreadsTest, RotationsAssemblyAndForcesAreTheOneThreadBits) {
   std::vector<Mat3> rotations_one;
   Eigen::VectorXd f0_one, force_one;
   std::vector<double> k_one;
@@ -130,7 +145,7 @@ TEST(Threads, RotationsAssemblyAndForcesAreTheOneThreadBits) {
   }
 }
 
-TEST(Threads, StreamProductIsTheOneThreadBitsAndTheOracle) {
+TEST_F(ThreadsTest, StreamProductIsTheOneThreadBitsAndTheOracle) {
   SceneSimulation sim = quadruped(0.12);
   FeProblem& p = sim.problem();
   std::mt19937 rng(5);
@@ -167,7 +182,7 @@ TEST(Threads, StreamProductIsTheOneThreadBitsAndTheOracle) {
     }
 }
 
-TEST(Threads, MulticolourSmootherIsAColouringAndTheSameBitsAtEveryCount) {
+TEST_F(ThreadsTest, MulticolourSmootherIsAColouringAndTheSameBitsAtEveryCount) {
   SceneSimulation sim = quadruped(0.12);
   FeProblem& p = sim.problem();
   const std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
@@ -207,7 +222,7 @@ TEST(Threads, MulticolourSmootherIsAColouringAndTheSameBitsAtEveryCount) {
   }
 }
 
-TEST(Threads, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
+TEST_F(ThreadsTest, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
   for (const std::string smoother : {"multicolour", "sequential"}) {
     Eigen::VectorXd one;
     for (const int n : {1, 2, 3, 2}) {  // 2 twice: run to run
@@ -221,7 +236,7 @@ TEST(Threads, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
   }
 }
 
-TEST(Threads, CliRefusesABadThreadCount) {
+TEST_F(ThreadsTest, CliRefusesABadThreadCount) {
   for (const char* bad : {"0", "many", "-2"}) {
     const auto r = test::run_cli(std::string("run nothing.json --out x.json --threads ") + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;

@@ -14,6 +14,7 @@ namespace corofem {
 
 namespace {
 int g_threads = 0;  // 0: not set: the process's default
+long long g_items_per_thread = 2048;
 #ifdef _OPENMP
 // Read before main: libraries (gmsh) change OpenMP's own count when they run, so every parallel
 // region of ours names its count (num_threads(thread_count())) rather than inheriting it.
@@ -44,6 +45,13 @@ int thread_count() {
   return 1;
 #endif
 }
+
+int threads_for(long long items) {
+  const long long useful = items / g_items_per_thread;
+  return static_cast<int>(std::max(1LL, std::min<long long>(thread_count(), useful)));
+}
+
+void set_items_per_thread(long long items) { g_items_per_thread = std::max(1LL, items); }
 
 void set_thread_count(int count, const char* what) {
   if (count < 1 || count > 1024)

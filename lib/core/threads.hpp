@@ -14,6 +14,13 @@ bool have_openmp();
 int available_cores();
 /// Threads the parallel kernels use.
 int thread_count();
+/// Threads for a loop of `items` independent items: one below a few thousand (forking and
+/// joining costs microseconds: more than a small level's whole sweep), else thread_count().
+/// Results never depend on it: every kernel gives the same bits at any count.
+int threads_for(long long items);
+/// The items per thread threads_for() asks for (default 2048); the gates set 1 so that small
+/// meshes run on every thread they ask for.
+void set_items_per_thread(long long items);
 /// Sets the count (1..1024); throws InputError naming `what` otherwise. Without OpenMP, only 1.
 void set_thread_count(int count, const char* what = "--threads");
 /// Parses the value of a --threads option ("all" = available_cores()); throws InputError.

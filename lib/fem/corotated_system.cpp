@@ -20,7 +20,7 @@ void linearize(FeProblem& problem, RotationExtractor& extractor,
 
 int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions) {
   int inverted = 0;
-#pragma omp parallel for schedule(static) reduction(+ : inverted) num_threads(thread_count())
+#pragma omp parallel for schedule(static) reduction(+ : inverted) num_threads(threads_for(problem.mesh.num_tets()))
   for (int e = 0; e < problem.mesh.num_tets(); ++e) {
     const Mat3 f =
         deformation_gradient(problem.elements[e].rest_edge_inverse, positions, problem.mesh.tets[e]);

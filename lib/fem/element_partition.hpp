@@ -22,7 +22,7 @@ struct RowPartition {
 /// Balanced by incident elements per vertex (the work of a row).
 RowPartition partition_rows(const std::vector<Tet>& tets, int num_vertices, int parts);
 
-/// Runs f(part) for every part on up to thread_count() threads.
+/// Runs f(part) for every part on up to thread_count() threads (one for a small mesh).
 template <class F>
 void for_each_part(const RowPartition& partition, const F& f);
 
@@ -35,7 +35,8 @@ namespace corofem {
 template <class F>
 void for_each_part(const RowPartition& partition, const F& f) {
   const int parts = partition.parts();
-#pragma omp parallel for schedule(static, 1) num_threads(thread_count() < parts ? thread_count() : parts)
+  const int threads = threads_for(partition.row_begin.back());
+#pragma omp parallel for schedule(static, 1) num_threads(threads < parts ? threads : parts)
   for (int p = 0; p < parts; ++p) f(p);
 }
 

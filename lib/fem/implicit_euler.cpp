@@ -149,7 +149,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
         const double k_scale = dt * options.rayleigh_beta + dt * dt;
         const std::vector<double>& k = problem.stiffness.values;
         const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
         for (std::ptrdiff_t i = 0; i < values; ++i) system.values[i] = k_scale * k[i];
         add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, system);
         apply_dirichlet(bc, system, b);

@@ -160,7 +160,8 @@ std::size_t GalerkinStream::bytes() const {
 void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
   double* ev = e.values.data();
   const int parts = static_cast<int>(parts_.size());
-#pragma omp parallel num_threads(thread_count() < parts ? thread_count() : parts)
+  const int threads = threads_for(a.block_rows);
+#pragma omp parallel num_threads(threads < parts ? threads : parts)
   {
 #pragma omp for schedule(static, 1)
     for (int p = 0; p < parts; ++p) {

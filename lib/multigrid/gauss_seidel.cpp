@@ -70,9 +70,7 @@ void BlockGaussSeidel::relax(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen
 void BlockGaussSeidel::sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                     int colour) const {
   const int first = colour_start_[colour], last = colour_start_[colour + 1];
-  // A thread per few hundred rows at least: below that the fork costs more than the rows.
-  const int threads = std::max(1, std::min(thread_count(), (last - first) / 256));
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(static) num_threads(threads_for(last - first))
   for (int n = first; n < last; ++n) relax(a, b, x, colour_rows_[n]);
 }
 
@@ -95,7 +93,7 @@ void BlockGaussSeidel::backward(const BrcMatrix& a, const Eigen::VectorXd& b, Ei
 void BlockGaussSeidel::block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   z.resize(r.size());
   const int n = static_cast<int>(inverse_diagonal_.size());
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(n))
   for (int i = 0; i < n; ++i) z.segment<3>(3 * i) = inverse_diagonal_[i] * r.segment<3>(3 * i);
 }
 

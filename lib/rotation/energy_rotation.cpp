@@ -137,7 +137,7 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
                                     std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
   int fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(thread_count())
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     double a = 0;
     const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
@@ -156,7 +156,7 @@ EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
 void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
                                    std::vector<Mat3>& rotations) {
   stats_.iterations.assign(mesh_.tets.size(), 0);
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     double a = 0;
     rotations[e] = energy_exact_rotation(deformed_moment(rest_[e], mesh_.tets[e], positions, a));

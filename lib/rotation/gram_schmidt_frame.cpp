@@ -22,7 +22,7 @@ void GramSchmidtFrameExtractor::extract(const std::vector<Vec3>& positions,
                                         std::vector<Mat3>& rotations) {
   stats_.iterations.assign(mesh_.tets.size(), 0);
   int fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(thread_count())
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     const Tet& t = mesh_.tets[e];
     const Mat3 g = edge_frame(positions[t[0]], positions[t[1]], positions[t[2]]);

@@ -31,7 +31,7 @@ Mueller2016Extractor::Mueller2016Extractor(const TetMesh& mesh, const RotationPa
 
 void Mueller2016Extractor::extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     int iterations = 0;
     rotations[e] = mueller2016_rotation(

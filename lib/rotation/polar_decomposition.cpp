@@ -42,7 +42,7 @@ PolarExtractor::PolarExtractor(const TetMesh& mesh)
 void PolarExtractor::extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
   int fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(thread_count())
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     int iterations = 0;
     rotations[e] = polar_rotation(

@@ -22,14 +22,14 @@ void SmoothedPolarExtractor::extract(const std::vector<Vec3>& positions,
   const int nt = mesh_.num_tets();
   stats_.iterations.assign(nt, 0);
   std::vector<Eigen::Vector4d> q(nt), averaged(nt);
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(nt))
   for (int e = 0; e < nt; ++e) {
     const Mat3 r = polar_rotation(deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]),
                                   rotations[e]);
     q[e] = to_quaternion(r).coeffs();  // (x, y, z, w)
   }
   for (int pass = 0; pass < params_.smoothing_passes; ++pass) {
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(nt))
     for (int e = 0; e < nt; ++e) {
       Eigen::Vector4d sum = Eigen::Vector4d::Zero();
       for (int k = rings_.start[e]; k < rings_.start[e + 1]; ++k) {
@@ -40,7 +40,7 @@ void SmoothedPolarExtractor::extract(const std::vector<Vec3>& positions,
     }
     q.swap(averaged);
   }
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(nt))
   for (int e = 0; e < nt; ++e) rotations[e] = Eigen::Quaterniond(q[e]).toRotationMatrix();
 }
 

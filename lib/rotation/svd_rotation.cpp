@@ -20,7 +20,7 @@ InversionAwareSvdExtractor::InversionAwareSvdExtractor(const TetMesh& mesh)
 void InversionAwareSvdExtractor::extract(const std::vector<Vec3>& positions,
                                          std::vector<Mat3>& rotations) {
   stats_.iterations.assign(mesh_.tets.size(), 0);
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(static) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e)
     rotations[e] = reference::rotation_factor_svd(
         deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]));
