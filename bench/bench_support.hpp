@@ -14,7 +14,8 @@ const std::filesystem::path& models_dir();
 
 /// Paper-sized problems by name: "bunny" (~11k tets), "horse" (~34k), "dragon" (~67k). With a
 /// models folder the surfaces are tetrahedralized at the sizes of the models' README; without,
-/// boxes of about the same tet counts. Cached: built once per process.
+/// boxes of about the same tet counts; surface meshes sorted for locality, as the report's are.
+/// Cached: built once per process.
 FeProblem& paper_problem(const std::string& model);
 
 /// Levels of the paper's hierarchies: bunny 3, horse 4, dragon 4.

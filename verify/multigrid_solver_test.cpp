@@ -113,6 +113,7 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
   if (have_petsc()) {  // the libraries users would pick instead (the hierarchy is not theirs)
     solvers.push_back({"petsc-gamg", "lattice"});
     solvers.push_back({"hypre-boomeramg", "lattice"});
+    solvers.push_back({"petsc-mg", "meshes"});  // PETSc's PCMG on our hierarchy
   }
   for (const auto& [name, hierarchy] : solvers) {
     const std::string what = c.name + ": " + name + (std::string(name).find('-') == std::string::npos || std::string(name) == "jacobi-pcg" ? std::string(" on ") + hierarchy : "");

@@ -182,7 +182,7 @@ TEST_F(ThreadsTest, StreamProductIsTheOneThreadBitsAndTheOracle) {
     }
 }
 
-TEST_F(ThreadsTest, MulticolourSmootherIsAColouringAndTheSameBitsAtEveryCount) {
+TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
   SceneSimulation sim = quadruped(0.12);
   FeProblem& p = sim.problem();
   const std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
@@ -190,40 +190,45 @@ TEST_F(ThreadsTest, MulticolourSmootherIsAColouringAndTheSameBitsAtEveryCount) {
   assemble_corotated(p.elements, p.mesh.tets, p.assembly, identity, p.stiffness, f0);
   BrcMatrix a = p.stiffness;
   for (int i = 0; i < a.block_rows; ++i) a.block(a.find(i, i)) += 1e3 * Mat3::Identity();  // + M/dt^2
-  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * a.block_rows, -1, 1), one;
-  for (const int n : kThreadCounts) {
-    ScopedThreadCount threads(n);
-    BlockGaussSeidel gs(SmootherOrdering::Multicolour);
-    gs.set_matrix(a);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
-    for (int s = 0; s < 3; ++s) {
-      gs.forward(a, b, x);
-      gs.backward(a, b, x);
-    }
-    if (n == 1) one = x;
-    EXPECT_TRUE(same_bits(x, one)) << n << " threads";
-    EXPECT_GT(gs.num_colours(), 4);
-    EXPECT_LT(gs.num_colours(), 64);
-  }
-  // Symmetric Gauss-Seidel reduces the A-norm of the error: a smoother, whatever the order.
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * a.block_rows, -1, 1);
   const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));
   const Eigen::VectorXd exact = dense.ldlt().solve(b);
-  BlockGaussSeidel gs(SmootherOrdering::Multicolour);
-  gs.set_matrix(a);
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
-  double previous = exact.dot(dense * exact);
-  for (int s = 0; s < 5; ++s) {
-    gs.forward(a, b, x);
-    gs.backward(a, b, x);
-    const Eigen::VectorXd err = exact - x;
-    const double energy = err.dot(dense * err);
-    EXPECT_LT(energy, previous);
-    previous = energy;
+  // Domains of 200 rows: this small mesh gets several, with boundaries between them.
+  for (const SmootherOrdering ordering : {SmootherOrdering::Multicolour, SmootherOrdering::Domains}) {
+    SCOPED_TRACE(smoother_ordering_name(ordering));
+    Eigen::VectorXd one;
+    for (const int n : kThreadCounts) {
+      ScopedThreadCount threads(n);
+      BlockGaussSeidel gs(ordering, 200);
+      gs.set_matrix(a);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+      double previous = exact.dot(dense * exact);
+      for (int s = 0; s < 4; ++s) {
+        gs.forward(a, b, x);
+        gs.backward(a, b, x);
+        // Symmetric Gauss-Seidel reduces the A-norm of the error, whatever the order.
+        const Eigen::VectorXd err = exact - x;
+        const double energy = err.dot(dense * err);
+        EXPECT_LT(energy, previous);
+        previous = energy;
+      }
+      if (n == 1) one = x;
+      EXPECT_TRUE(same_bits(x, one)) << n << " threads";
+      EXPECT_GT(gs.num_colours(), 1);
+      EXPECT_LT(gs.num_colours(), 64);
+      if (ordering == SmootherOrdering::Domains) {
+        EXPECT_EQ(gs.num_domains(), a.block_rows / 200);
+        EXPECT_LT(gs.coloured_rows(), a.block_rows);  // most rows are interior to their domain
+        EXPECT_GT(gs.coloured_rows(), 0);
+      } else {
+        EXPECT_EQ(gs.coloured_rows(), a.block_rows);
+      }
+    }
   }
 }
 
 TEST_F(ThreadsTest, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
-  for (const std::string smoother : {"multicolour", "sequential"}) {
+  for (const std::string smoother : {"multicolour", "domains", "sequential"}) {
     Eigen::VectorXd one;
     for (const int n : {1, 2, 3, 2}) {  // 2 twice: run to run
       ScopedThreadCount threads(n);

@@ -1,6 +1,7 @@
 #include "multigrid/gauss_seidel.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 
 #include "core/errors.hpp"
 #include "core/threads.hpp"
@@ -10,21 +11,26 @@ namespace corofem {
 SmootherOrdering smoother_ordering(const std::string& name) {
   if (name == "sequential") return SmootherOrdering::Sequential;
   if (name == "multicolour") return SmootherOrdering::Multicolour;
-  throw InputError("analysis.smoother: unknown ordering '" + name + "' (known: sequential, multicolour)");
+  if (name == "domains") return SmootherOrdering::Domains;
+  throw InputError("analysis.smoother: unknown ordering '" + name + "' (known: sequential, multicolour, domains)");
 }
 
 const char* smoother_ordering_name(SmootherOrdering ordering) {
-  return ordering == SmootherOrdering::Multicolour ? "multicolour" : "sequential";
+  switch (ordering) {
+    case SmootherOrdering::Multicolour: return "multicolour";
+    case SmootherOrdering::Domains: return "domains";
+    default: return "sequential";
+  }
 }
 
 namespace {
 
-/// Greedy colouring of the block graph in row order: each row takes the smallest colour none of
-/// its neighbours has. Returns the rows grouped by colour (ascending within a colour).
-void colour_rows(const BrcMatrix& a, std::vector<int>& start, std::vector<int>& rows) {
+/// Greedy colouring of the rows `which` (ascending) in the block graph: each takes the smallest
+/// colour none of its neighbours among them has. Returns them grouped by colour (ascending within).
+void colour_rows(const BrcMatrix& a, const std::vector<int>& which, std::vector<int>& start, std::vector<int>& rows) {
   std::vector<int> colour(a.block_rows, -1), used;  // used[c] == i: colour c taken around row i
   int colours = 0;
-  for (int i = 0; i < a.block_rows; ++i) {
+  for (const int i : which) {
     for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
       const int c = colour[a.col_index[k]];
       if (c >= 0) used[c] = i;
@@ -38,12 +44,13 @@ void colour_rows(const BrcMatrix& a, std::vector<int>& start, std::vector<int>& 
     colour[i] = c;
   }
   start.assign(colours + 1, 0);
-  for (int c : colour) ++start[c + 1];
+  for (const int i : which) ++start[colour[i] + 1];
   for (int c = 0; c < colours; ++c) start[c + 1] += start[c];
-  rows.resize(a.block_rows);
+  rows.resize(which.size());
   std::vector<int> next(start.begin(), start.end() - 1);
-  for (int i = 0; i < a.block_rows; ++i) rows[next[colour[i]]++] = i;
+  for (const int i : which) rows[next[colour[i]]++] = i;
 }
+
 
 }  // namespace
 
@@ -55,8 +62,45 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
     if (diagonal_block_[i] < 0) throw NumericalFault("multigrid: a level has no diagonal block");
     inverse_diagonal_[i] = Eigen::Matrix3d(a.block(diagonal_block_[i])).inverse();
   }
-  if (ordering_ == SmootherOrdering::Multicolour && colour_rows_.size() != static_cast<std::size_t>(a.block_rows))
-    colour_rows(a, colour_start_, colour_rows_);
+  if (!ordered_) order_rows(a);  // the pattern never changes: ordered once
+}
+
+void BlockGaussSeidel::order_rows(const BrcMatrix& a) {
+  ordered_ = true;
+  std::vector<int> all(a.block_rows);
+  for (int i = 0; i < a.block_rows; ++i) all[i] = i;
+  if (ordering_ == SmootherOrdering::Multicolour) colour_rows(a, all, colour_start_, colour_rows_);
+  if (ordering_ != SmootherOrdering::Domains) return;
+  // Contiguous domains of equal block counts; a row is interior when all its columns are in it.
+  const int domains = std::max(1, a.block_rows / domain_rows_target_);  // never the thread count
+  std::vector<long long> prefix(a.row_start.begin(), a.row_start.end());
+  const std::vector<int> bounds = balanced_ranges(prefix, domains);
+  std::vector<int> boundary;
+  domain_start_.assign(1, 0);
+  domain_rows_.clear();
+  for (int d = 0; d < domains; ++d) {
+    for (int i = bounds[d]; i < bounds[d + 1]; ++i) {
+      bool interior = true;
+      for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
+        interior &= a.col_index[k] >= bounds[d] && a.col_index[k] < bounds[d + 1];
+      (interior ? domain_rows_ : boundary).push_back(i);
+    }
+    domain_start_.push_back(static_cast<int>(domain_rows_.size()));
+  }
+  colour_rows(a, boundary, colour_start_, colour_rows_);
+}
+
+void BlockGaussSeidel::sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                     bool forward) const {
+  // Interior rows read only their own domain (its boundary rows keep their values meanwhile).
+  const int domains = num_domains();
+#pragma omp parallel for schedule(static, 1) num_threads(std::min(domains, threads_for(a.block_rows)))
+  for (int d = 0; d < domains; ++d) {
+    if (forward)
+      for (int n = domain_start_[d]; n < domain_start_[d + 1]; ++n) relax(a, b, x, domain_rows_[n]);
+    else
+      for (int n = domain_start_[d + 1] - 1; n >= domain_start_[d]; --n) relax(a, b, x, domain_rows_[n]);
+  }
 }
 
 void BlockGaussSeidel::relax(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
@@ -75,7 +119,8 @@ void BlockGaussSeidel::sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b
 }
 
 void BlockGaussSeidel::forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  if (ordering_ == SmootherOrdering::Multicolour) {
+  if (ordering_ == SmootherOrdering::Domains) sweep_domains(a, b, x, true);
+  if (ordering_ != SmootherOrdering::Sequential) {
     for (int c = 0; c < num_colours(); ++c) sweep_colour(a, b, x, c);
     return;
   }
@@ -83,8 +128,9 @@ void BlockGaussSeidel::forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eig
 }
 
 void BlockGaussSeidel::backward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  if (ordering_ == SmootherOrdering::Multicolour) {
+  if (ordering_ != SmootherOrdering::Sequential) {
     for (int c = num_colours() - 1; c >= 0; --c) sweep_colour(a, b, x, c);
+    if (ordering_ == SmootherOrdering::Domains) sweep_domains(a, b, x, false);
     return;
   }
   for (int i = a.block_rows - 1; i >= 0; --i) relax(a, b, x, i);

@@ -223,7 +223,7 @@ json run_paper_tables(const ReportConfig& config) {
       }));
       // The algebraic multigrid users would pick instead, to the same tolerance, their setup
       // timed as the update phase (a new matrix every step), as ours is.
-      for (const char* rival : {"petsc-gamg", "hypre-boomeramg"}) {
+      for (const char* rival : {"petsc-gamg", "hypre-boomeramg", "petsc-mg"}) {
         say(rival);
         tables["rival_solvers"].push_back(record_case({{"model", id}, {"solver", rival}}, [&] {
           const TimedRun run = timed_run(with_analysis(scene, {{"solver", rival}}), id, {});

@@ -37,7 +37,7 @@ std::vector<json> solver_settings(const ReportConfig& config, int levels) {
     settings.push_back({{"solver", "multigrid"}, {"vcycles", vcycles}, {"hierarchy", "lattice"}});
   settings.push_back({{"solver", "jacobi-pcg"}, {"tolerance", 1e-4}});
   if (have_petsc())  // the algebraic multigrid users would pick instead
-    for (const char* rival : {"petsc-gamg", "hypre-boomeramg"})
+    for (const char* rival : {"petsc-gamg", "hypre-boomeramg", "petsc-mg"})
       for (double tolerance : {1e-4, 1e-6}) settings.push_back({{"solver", rival}, {"tolerance", tolerance}});
   if (config.mode == ReportConfig::Mode::Smoke) settings.resize(3);
   return settings;

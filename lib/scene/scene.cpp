@@ -178,7 +178,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  a.smoother = one_of(f, "smoother", a.smoother, {"sequential", "multicolour"});
+  a.smoother = one_of(f, "smoother", a.smoother, {"sequential", "multicolour", "domains"});
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);

@@ -57,7 +57,10 @@ inline constexpr const char* kMultigridAnalysisKeys[] = {"levels", "vcycles", "s
                                                          "hierarchy", "smoother"};
 
 /// multigrid and mgpcg: the solvers with a hierarchy.
-inline bool is_multigrid_solver(const std::string& solver) { return solver == "multigrid" || solver == "mgpcg"; }
+/// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
+inline bool is_multigrid_solver(const std::string& solver) {
+  return solver == "multigrid" || solver == "mgpcg" || solver == "petsc-mg";
+}
 
 struct AnalysisSpec {
   std::string type = "static";              ///< static | dynamic
@@ -75,9 +78,9 @@ struct AnalysisSpec {
   int levels = 1;
   int vcycles = 0;          ///< 0: iterate to tolerance
   int smoothing = 1;
-  /// Gauss-Seidel ordering: sequential (one thread; the default: its rho is the better one, see
-  /// README "Threads") | multicolour (every thread)
-  std::string smoother = "sequential";
+  /// Gauss-Seidel ordering: domains (the default: every thread, rho as sequential) | sequential
+  /// (one thread) | multicolour (every thread, a worse rho); see README "Multigrid"
+  std::string smoother = "domains";
   double dt = 0.01;
   int steps = 1;
   int load_steps = 1;

@@ -16,7 +16,8 @@ namespace corofem {
 
 bool have_petsc() { return false; }
 
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&, double, int) {
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&, double, int,
+                                                std::vector<Transfer>, int) {
   throw InputError("analysis.solver '" + kind +
                    "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
                    "libhypre-dev, as ci/setup does, and rebuild)");
@@ -32,8 +33,10 @@ using petsc::check;
 
 class PetscSolver : public LinearSolver {
  public:
-  PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations)
-      : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations) {
+  PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations,
+              std::vector<Transfer> transfers, int smoothing)
+      : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations),
+        transfers_(std::move(transfers)), smoothing_(smoothing) {
     petsc::ensure_session();
   }
   ~PetscSolver() override {
@@ -103,15 +106,39 @@ class PetscSolver : public LinearSolver {
     check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
     check(KSPSetTolerances(ksp_, tolerance_, 0.0, 1e10, max_iterations_), "KSPSetTolerances");
     check(KSPGetPC(ksp_, &pc_), "KSPGetPC");
-    const bool gamg = kind_ == "petsc-gamg";
-    const std::string prefix = gamg ? "corofem_gamg_" : "corofem_boomeramg_";
+    const bool gamg = kind_ == "petsc-gamg", mg = kind_ == "petsc-mg";
+    const std::string prefix = gamg ? "corofem_gamg_" : mg ? "corofem_mg_" : "corofem_boomeramg_";
     check(KSPSetOptionsPrefix(ksp_, prefix.c_str()), "KSPSetOptionsPrefix");
     const auto option = [&](const std::string& key, const char* value) {
       PetscBool set = PETSC_FALSE;  // the user's PETSC_OPTIONS win
       check(PetscOptionsHasName(nullptr, prefix.c_str(), key.c_str(), &set), "PetscOptionsHasName");
       if (!set) check(PetscOptionsSetValue(nullptr, ("-" + prefix + key.substr(1)).c_str(), value), "PetscOptionsSetValue");
     };
-    if (gamg) {
+    if (mg) {
+      // PETSc numbers the levels from the coarsest (0); ours from the finest. Level l's
+      // interpolation brings PETSc level l - 1 to l: our transfer L - 1 - l, P = R^T.
+      const PetscInt levels = static_cast<PetscInt>(transfers_.size()) + 1;
+      check(PCSetType(pc_, PCMG), "PCSetType");
+      check(PCMGSetLevels(pc_, levels, nullptr), "PCMGSetLevels");
+      check(PCMGSetType(pc_, PC_MG_MULTIPLICATIVE), "PCMGSetType");
+      check(PCMGSetCycleType(pc_, PC_MG_CYCLE_V), "PCMGSetCycleType");
+      check(PCMGSetGalerkin(pc_, PC_MG_GALERKIN_BOTH), "PCMGSetGalerkin");
+      for (PetscInt l = 1; l < levels; ++l) {
+        Mat p = petsc::prolongation(transfers_[levels - 1 - l]);
+        check(PCMGSetInterpolation(pc_, l, p), "PCMGSetInterpolation");
+        MatDestroy(&p);  // PCMG keeps its own reference
+      }
+      // Level smoothers: Chebyshev (PETSc's default, eigenvalue bounds estimated at setup) on
+      // point Jacobi, degree 2 per `smoothing`. With PETSc's SOR instead, as Richardson steps at
+      // omega 1 or under Chebyshev, CG stopped on the gates' heterogeneous cube (indefinite
+      // preconditioner; NaN).
+      const std::string degree = std::to_string(2 * smoothing_);
+      option("-mg_levels_ksp_type", "chebyshev");
+      option("-mg_levels_ksp_max_it", degree.c_str());
+      option("-mg_levels_pc_type", "jacobi");
+      option("-mg_coarse_ksp_type", "preonly");
+      option("-mg_coarse_pc_type", "lu");
+    } else if (gamg) {
       check(PCSetType(pc_, PCGAMG), "PCSetType");
       option("-pc_gamg_type", "agg");
       option("-pc_gamg_agg_nsmooths", "1");
@@ -134,6 +161,8 @@ class PetscSolver : public LinearSolver {
   std::vector<Vec3> rest_;
   double tolerance_;
   int max_iterations_;
+  std::vector<Transfer> transfers_;  ///< petsc-mg: our hierarchy, finest first
+  int smoothing_;
   std::unique_ptr<petsc::AijFromBrc> a_;
   KSP ksp_ = nullptr;
   PC pc_ = nullptr;
@@ -142,8 +171,10 @@ class PetscSolver : public LinearSolver {
 }  // namespace
 
 std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
-                                                double tolerance, int max_iterations) {
-  return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations);
+                                                double tolerance, int max_iterations,
+                                                std::vector<Transfer> transfers, int smoothing) {
+  return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations, std::move(transfers),
+                                       smoothing);
 }
 
 #endif

@@ -4,7 +4,11 @@
 //                    rigid-body modes of the rest positions as near null space;
 //   hypre-boomeramg  CG preconditioned by hypre's BoomerAMG (PETSc's PCHYPRE) as systems AMG
 //                    (unknown approach, 3 functions) with the 3D strong threshold 0.5 of hypre's
-//                    manual (why not nodal coarsening or rigid-body interpolation: the .cpp).
+//                    manual (why not nodal coarsening or rigid-body interpolation: the .cpp);
+//   petsc-mg         CG preconditioned by PETSc's PCMG V-cycle on corofem's own hierarchy: our
+//                    P = R^T as interpolation, PETSc's Galerkin coarse operators (MatPtAP),
+//                    Chebyshev on point Jacobi (degree 2 per `smoothing`) on each level, and
+//                    LU of the coarsest.
 // Both solve to the scene's relative residual |b - A x| / |b| from the initial guess in x, like
 // mgpcg. set_matrix copies the values into a PETSc AIJ matrix of block size 3 (its pattern built
 // once from the BRC pattern) and sets the preconditioner up: the `update` phase of a step.
@@ -15,6 +19,7 @@
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
+#include "multigrid/transfer.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace corofem {
@@ -22,9 +27,10 @@ namespace corofem {
 /// Whether this build has PETSc (and with it hypre).
 bool have_petsc();
 
-/// `kind`: "petsc-gamg" or "hypre-boomeramg". Throws InputError naming analysis.solver when this
-/// build has no PETSc.
+/// `kind`: "petsc-gamg", "hypre-boomeramg" or "petsc-mg" (with the hierarchy's `transfers`, finest
+/// first). Throws InputError naming analysis.solver when this build has no PETSc.
 std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
-                                                double tolerance, int max_iterations);
+                                                double tolerance, int max_iterations,
+                                                std::vector<Transfer> transfers = {}, int smoothing = 1);
 
 }  // namespace corofem

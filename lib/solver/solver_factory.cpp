@@ -6,7 +6,7 @@
 namespace corofem {
 
 std::vector<std::string> linear_solver_names() {
-  return {"cholmod", "multigrid", "mgpcg", "jacobi-pcg", "petsc-gamg", "hypre-boomeramg"};
+  return {"cholmod", "multigrid", "mgpcg", "jacobi-pcg", "petsc-gamg", "hypre-boomeramg", "petsc-mg"};
 }
 
 MultigridParams multigrid_params(const AnalysisSpec& a) {
@@ -44,6 +44,14 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
   if (a.solver == "jacobi-pcg") return make_jacobi_pcg_solver(a.tolerance, 100000);
   if (a.solver == "petsc-gamg" || a.solver == "hypre-boomeramg")
     return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);
+  if (a.solver == "petsc-mg") {  // PETSc's own multigrid on our hierarchy's transfers
+    if (!have_petsc()) return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);  // says why
+    const MultigridParams params = multigrid_params(a);
+    return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000,
+                             build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy,
+                                             coarse_meshes).transfers,
+                             a.smoothing);
+  }
   return make_multigrid_solver(a, problem, coarse_meshes, a.solver == "mgpcg");
 }
 
