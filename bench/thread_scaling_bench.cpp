@@ -36,7 +36,7 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   const PaperSystem& system = paper_system(model);
   MultigridParams params;
   params.hierarchy.levels = hierarchy_levels(model, HierarchyKind::Meshes);
-  params.smoother = SmootherOrdering::Multicolour;
+  params.smoother = SmootherOrdering::Domains;  // the default ordering
   MultigridSolver solver(system.matrix, paper_transfers(model, HierarchyKind::Meshes), params, true);
   solver.set_matrix(system.matrix);
   MultigridHierarchy hierarchy(system.matrix, paper_transfers(model, HierarchyKind::Meshes).transfers);

@@ -14,8 +14,9 @@ bool have_openmp();
 int available_cores();
 /// Threads the parallel kernels use.
 int thread_count();
-/// Threads for a loop of `items` independent items: one below a few thousand (forking and
-/// joining costs microseconds: more than a small level's whole sweep), else thread_count().
+/// Threads for a loop over `items` units of work (elements, blocks, weights): one below a few
+/// thousand (forking and joining costs microseconds: more than a small level's whole sweep),
+/// else up to thread_count().
 /// Results never depend on it: every kernel gives the same bits at any count.
 int threads_for(long long items);
 /// The items per thread threads_for() asks for (default 2048); the gates set 1 so that small

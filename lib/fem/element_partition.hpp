@@ -35,7 +35,9 @@ namespace corofem {
 template <class F>
 void for_each_part(const RowPartition& partition, const F& f) {
   const int parts = partition.parts();
-  const int threads = threads_for(partition.row_begin.back());
+  long long visits = 0;  // element visits: the work
+  for (const auto& list : partition.elements) visits += static_cast<long long>(list.size());
+  const int threads = threads_for(visits);
 #pragma omp parallel for schedule(static, 1) num_threads(threads < parts ? threads : parts)
   for (int p = 0; p < parts; ++p) f(p);
 }

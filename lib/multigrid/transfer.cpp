@@ -38,7 +38,7 @@ std::vector<int> Transfer::keep_supported_coarse_vertices(int candidates) {
 
 void Transfer::restrict_to(const Eigen::VectorXd& f, Eigen::VectorXd& c) const {
   c.resize(3 * coarse);
-#pragma omp parallel for schedule(static) num_threads(threads_for(coarse))
+#pragma omp parallel for schedule(static) num_threads(threads_for(static_cast<long long>(r_col.size())))
   for (int i = 0; i < coarse; ++i) {
     Vec3 sum = Vec3::Zero();
     for (int k = r_start[i]; k < r_start[i + 1]; ++k) sum += r_weight[k] * f.segment<3>(3 * r_col[k]);
@@ -47,7 +47,7 @@ void Transfer::restrict_to(const Eigen::VectorXd& f, Eigen::VectorXd& c) const {
 }
 
 void Transfer::prolongate_add(const Eigen::VectorXd& c, Eigen::VectorXd& f) const {
-#pragma omp parallel for schedule(static) num_threads(threads_for(fine))
+#pragma omp parallel for schedule(static) num_threads(threads_for(static_cast<long long>(p_col.size())))
   for (int l = 0; l < fine; ++l) {
     Vec3 sum = Vec3::Zero();
     for (int k = p_start[l]; k < p_start[l + 1]; ++k) sum += p_weight[k] * c.segment<3>(3 * p_col[k]);

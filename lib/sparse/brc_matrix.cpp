@@ -19,7 +19,7 @@ void BrcMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   y.resize(3 * block_rows);
   const double* v = values.data();
   const double* xs = x.data();
-#pragma omp parallel for schedule(static) num_threads(threads_for(block_rows))
+#pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks()))
   for (int i = 0; i < block_rows; ++i) {
     double y0 = 0, y1 = 0, y2 = 0;
     for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
