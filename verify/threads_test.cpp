@@ -141,7 +141,9 @@ TEST_F(ThreadsTest, RotationsAssemblyAndForcesAreTheOneThreadBits) {
     EXPECT_TRUE(same_bits(force, force_one)) << n << " threads";
     // Each element is visited once per part owning one of its vertices: the duplication is the
     // partition boundary's share, small on a locality-ordered mesh.
-    if (n > 1) EXPECT_LT(p.assembly.rows.duplication(), 0.25) << n << " threads";
+    if (n > 1) {
+      EXPECT_LT(p.assembly.rows.duplication(), 0.25) << n << " threads";
+    }
   }
 }
 
