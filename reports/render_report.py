@@ -3,7 +3,8 @@
 
 Usage: render_report.py DIR [--blank-times]
 
-Reads tables.json, speed_accuracy.json, stability.json and cache_profile.json (each optional).
+Reads tables.json, speed_accuracy.json, stability.json, cache_profile.json and mpi_scaling.json
+(each optional).
 --blank-times prints every time, rate and date as "t" (the golden test of the report's format
 compares text that does not depend on the machine's speed).
 """
@@ -487,6 +488,53 @@ def render_cache(cache, md):
 
 
 # ----------------------------------------------------------------------------------------------
+def render_mpi_scaling(scaling, md):
+    md.append("## Beyond one machine: MPI ranks\n\n")
+    if scaling is None:
+        md.append("Not run in this report (ci/report runs bench/mpi_scaling.py).\n\n")
+        return
+    p = scaling.get("parameters", {})
+    ranks = p.get("ranks", [1, 2])
+    md.append(f"- {scaling.get('producer')}: `mpirun -np R corofem run` on cantilever bars (dynamic, "
+              f"tolerance {num(p.get('tolerance'))}), {p.get('steps')} steps, median of {p.get('repeats')} "
+              f"runs; ms per step, setup excluded. {scaling.get('note', '')}.\n")
+    md.append("- `distributed` is the update plus the solve, the phases the ranks share; the rest of "
+              "the step is replicated on every rank.\n\n")
+
+    def find(solver, study, count):
+        for r in scaling.get("runs", []):
+            workers = r["threads"] if solver == "mgpcg" else r["ranks"]
+            if r["solver"] == solver and workers == count and (r["study"] == study or count == ranks[0]):
+                return r
+        return None
+
+    solvers = []
+    for r in scaling.get("runs", []):
+        if r["solver"] not in solvers:
+            solvers.append(r["solver"])
+    label = {s: (f"{s} (threads)" if s == "mgpcg" else f"{s} (ranks)") for s in solvers}
+    for study, title, measure in (("strong", "Strong scaling (one bar)", "speedup"),
+                                  ("weak", "Weak scaling (elements in proportion to the ranks)", "efficiency")):
+        md.append(f"{title}:\n\n")
+        rows = []
+        for s in solvers:
+            base = find(s, study, ranks[0])
+            for count in ranks[1:]:
+                r = find(s, study, count)
+                if base is None or r is None:
+                    continue
+                b, m = base["ms_per_step"], r["ms_per_step"]
+                rows.append([label[s], f"{base['tets']} / {r['tets']}", f"{ranks[0]} / {count}",
+                             f"{t(b['step'])} / {t(m['step'])}", t(ratio(b["step"], m["step"]), 2),
+                             f"{t(b['distributed'])} / {t(m['distributed'])}",
+                             t(ratio(b["distributed"], m["distributed"]), 2),
+                             f"{num(base['linear_iterations_per_step'], 3)} / {num(r['linear_iterations_per_step'], 3)}"])
+        md.append(table(["solver", "tets", "ranks or threads", "step ms", f"step {measure}", "distributed ms",
+                         f"distributed {measure}", "iterations per step"], rows))
+        md.append("\n")
+
+
+# ----------------------------------------------------------------------------------------------
 STATUS_COLOURS = {"stable": "#8fd18f", "flutter": "#f2c14e", "diverged": "#e76f6f"}
 
 
@@ -786,6 +834,7 @@ def main(argv):
     sa = load(folder, "speed_accuracy.json")
     st = load(folder, "stability.json")
     cache = load(folder, "cache_profile.json")
+    scaling = load(folder, "mpi_scaling.json")
     ma = load(folder, "model_accuracy.json")
     if not (tables or sa or st or ma):
         print(f"render: no tables.json, speed_accuracy.json or stability.json in {folder}", file=sys.stderr)
@@ -801,6 +850,7 @@ def main(argv):
         render_speed_accuracy(sa, folder, md)
     if tables or sa:
         render_cache(cache, md)
+        render_mpi_scaling(scaling, md)
     if st:
         render_stability(st, folder, md)
     if ma:

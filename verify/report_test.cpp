@@ -290,7 +290,8 @@ fs::path golden_dir() { return test::source_dir() / "verify" / "golden" / "repor
 /// Copies the golden JSON records into `dir` and runs the renderer on them with `options`,
 /// its stderr to `stderr_file`; returns its exit status.
 int render_golden_fixture(const TempDir& dir, const std::string& options, const std::string& stderr_file) {
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json"})
+  for (const char* file :
+       {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json", "mpi_scaling.json"})
     fs::copy_file(golden_dir() / file, dir / file);
   const std::string script = (test::source_dir() / "reports" / "render").string();
   return std::system(("'" + script + "' '" + dir.path().string() + "' " + options + " 2>'" + stderr_file +

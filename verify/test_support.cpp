@@ -36,9 +36,9 @@ std::string read_text(const fs::path& file) {
   return s.str();
 }
 
-CliResult run_cli(const std::string& args) {
+CliResult run_cli(const std::string& args, const std::string& launcher) {
   TempDir dir;
-  const std::string command = std::string("'") + COROFEM_CLI + "' " + args + " > '" +
+  const std::string command = launcher + (launcher.empty() ? "" : " ") + "'" + COROFEM_CLI + "' " + args + " > '" +
                               (dir / "out").string() + "' 2> '" + (dir / "err").string() + "'";
   const int status = std::system(command.c_str());
   CliResult result;

@@ -24,8 +24,9 @@ struct CliResult {
   std::string out, err;
 };
 
-/// Runs the corofem binary with `args` (a shell-quoted string).
-CliResult run_cli(const std::string& args);
+/// Runs the corofem binary with `args` (a shell-quoted string), behind `launcher` if given
+/// ("mpirun -np 2").
+CliResult run_cli(const std::string& args, const std::string& launcher = "");
 
 void write_text(const std::filesystem::path& file, const std::string& text);
 std::string read_text(const std::filesystem::path& file);

@@ -1,5 +1,7 @@
 #include "cli/commands.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 
@@ -9,6 +11,7 @@
 #include "report/report_driver.hpp"
 #include "scene/export_matrices.hpp"
 #include "scene/run_scene.hpp"
+#include "solver/mpi_launch.hpp"
 
 namespace corofem {
 namespace {
@@ -36,8 +39,13 @@ Runs one scene (see README, "Scene format") and writes RESULT.json: node_tags, r
 displacement (input node order), converged, iterations, residual, timings_ms, the scene and the
 context (commit, compiler, flags, machine); with output.rotations also element_tags and rotations
 (unit quaternions [w,x,y,z] of the final state). Progress goes to stderr.
-  --threads N    threads of the step's kernels (default: all cores, or OMP_NUM_THREADS; "all");
-                 the result is bit-identical at every count
+  --threads N    threads of the step's kernels (default: all cores, or OMP_NUM_THREADS; "all";
+                 under mpirun, the cores shared among the machine's ranks); the result is
+                 bit-identical at every count
+Under `mpirun -np N` with analysis.solver petsc-gamg, hypre-boomeramg or petsc-mg, the linear
+solves are distributed over the N ranks (each owns a contiguous share of the vertices); every
+rank builds and assembles the whole system (replicated), and rank 0 alone writes RESULT.json,
+the VTU and the progress. RESULT.json's "mpi" says how many ranks ran.
 Exit status: 0 converged, 1 did not converge or NaN/inf, 2 bad input (nothing is written).
 )";
 
@@ -66,7 +74,8 @@ Runs the report's sections and writes into DIR (default out/report):
   model_accuracy.json  every rotation extractor's static solve against CalculiX NLGEOM on the same
                        meshes and loads, and the linear solve against CalculiX's (needs ccx)
 then draws REPORT.md and charts/*.png from the JSON alone (reports/render; needs matplotlib).
-A cache_profile.json in DIR (bench/cache_profile.sh, run by ci/report) is included.
+A cache_profile.json (bench/cache_profile.sh) and an mpi_scaling.json (bench/mpi_scaling.py) in DIR,
+both run by ci/report, are included.
 
   --quick        small versions of every scene (about 16 minutes)
   --smoke        a seconds-long run for the report's own tests
@@ -110,6 +119,18 @@ ParsedArgs parse_args(const std::vector<std::string>& args, const std::vector<st
   return parsed;
 }
 
+/// Under mpirun only the PETSc and hypre solvers are distributed: any other would run the same
+/// serial solve on every rank.
+void require_distributed_solver(const Scene& scene, int ranks) {
+  const std::string& solver = scene.analysis.solver;
+  const bool distributed = solver == "petsc-gamg" || solver == "hypre-boomeramg" || solver == "petsc-mg";
+  if (!distributed || (scene.analysis.integrator == "newton" && scene.analysis.formulation == "corotational"))
+    throw InputError(scene.name + ": analysis.solver '" + solver + "'" +
+                     (distributed ? " with integrator 'newton' (a serial sparse LU)" : "") + " under mpirun -np " +
+                     std::to_string(ranks) +
+                     ": only petsc-gamg, hypre-boomeramg and petsc-mg distribute their solves over ranks");
+}
+
 /// --threads N (or "all"): the count every parallel kernel uses from here on.
 void apply_threads_option(const ParsedArgs& parsed) {
   if (parsed.options.count("--threads")) set_thread_count(parse_thread_count(parsed.options.at("--threads")));
@@ -121,16 +142,25 @@ int run_command(const std::vector<std::string>& args) {
     std::cout << kRunHelp;
     return 0;
   }
+  const MpiLaunch mpi = mpi_launch();
   apply_threads_option(parsed);
+  if (mpi.size > 1 && !parsed.options.count("--threads") && !std::getenv("OMP_NUM_THREADS"))
+    set_thread_count(std::max(1, available_cores() / mpi.ranks_on_this_machine));  // the ranks share the cores
   if (parsed.positional.size() != 1) throw InputError("run needs exactly one SCENE.json (see --help)");
   if (!parsed.options.count("--out")) throw InputError("run needs --out RESULT.json");
   const std::filesystem::path out = parsed.options["--out"];
-  check_writable(out);
+  const bool writer = mpi.rank == 0;
+  if (writer) check_writable(out);
   Scene scene = load_scene(parsed.positional[0]);
+  if (mpi.size > 1) require_distributed_solver(scene, mpi.size);
+  if (!writer) scene.output.vtu.reset();
   if (scene.output.vtu) check_writable(*scene.output.vtu);
-  SceneRun run = run_scene(scene, &std::cerr);
-  write_file_atomically(out, [&](std::ostream& o) { o << run.record.dump(1) << '\n'; });
-  if (!run.converged) {
+  SceneRun run = run_scene(scene, writer ? &std::cerr : nullptr);
+  run.record["mpi"] = {{"ranks", mpi.size},
+                       {"distributed", mpi.size > 1 ? "the linear solves (PETSc); assembly replicated on every rank"
+                                                    : "nothing (one rank)"}};
+  if (writer) write_file_atomically(out, [&](std::ostream& o) { o << run.record.dump(1) << '\n'; });
+  if (!run.converged && writer) {
     std::cerr << "corofem: did not converge: " << run.record.value("message", "") << "\n";
     return 1;
   }
@@ -218,6 +248,8 @@ int dispatch(const std::vector<std::string>& args) {
   std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "help") rest = {"--help"};
   if (command == "run") return run_command(rest);
+  if (mpi_launch().size > 1 && command != "help" && rest != std::vector<std::string>{"--help"})
+    throw InputError("corofem " + command + " runs on one process; under mpirun only `corofem run` (see corofem help run)");
   if (command == "export-matrices") return export_command(rest);
   if (command == "report") return report_command(rest);
   throw InputError("unknown command '" + command + "' (see corofem --help)");

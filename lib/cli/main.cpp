@@ -8,10 +8,11 @@
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "solver/mpi_launch.hpp"
 
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  corofem::remove_partial_outputs_on_interrupt();
+namespace {
+
+int run(const std::vector<std::string>& args) {
   try {
     return corofem::dispatch(args);
   } catch (const corofem::InputError& e) {
@@ -30,4 +31,15 @@ int main(int argc, char** argv) {
     std::cerr << "corofem: internal error: " << e.what() << "\n";
     return 3;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  corofem::remove_partial_outputs_on_interrupt();
+  const int status = run(args);
+  // Under mpirun: no rank may be left waiting in a collective call for one that stopped.
+  if (status != 0) corofem::abort_all_ranks(status);
+  return status;
 }

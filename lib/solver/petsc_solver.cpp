@@ -38,6 +38,8 @@ class PetscSolver : public LinearSolver {
       : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations),
         transfers_(std::move(transfers)), smoothing_(smoothing) {
     petsc::ensure_session();
+    comm_ = PETSC_COMM_WORLD;
+    MPI_Comm_size(comm_, &ranks_);
   }
   ~PetscSolver() override {
     if (ksp_) KSPDestroy(&ksp_);
@@ -56,14 +58,18 @@ class PetscSolver : public LinearSolver {
     SolveStats stats;
     const double b_norm = start_iterative_solve(b, x);
     if (b_norm == 0) return stats;
+    // This rank's share of b and x, in place; then every rank gets the whole x back (each goes
+    // on with the same step).
+    const petsc::OwnedBlocks& own = a_->rows();
+    const PetscInt n = static_cast<PetscInt>(b.size()), local = 3 * own.size();
     Vec vb, vx;
-    const PetscInt n = static_cast<PetscInt>(b.size());
-    check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, b.data(), &vb), "VecCreateSeqWithArray");
-    check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, x.data(), &vx), "VecCreateSeqWithArray");
+    check(VecCreateMPIWithArray(comm_, 3, local, n, b.data() + 3 * own.begin, &vb), "VecCreateMPIWithArray");
+    check(VecCreateMPIWithArray(comm_, 3, local, n, x.data() + 3 * own.begin, &vx), "VecCreateMPIWithArray");
     const PetscErrorCode solved = KSPSolve(ksp_, vb, vx);
     VecDestroy(&vb);
     VecDestroy(&vx);
     check(solved, "KSPSolve");
+    gather(x);
     PetscInt iterations = 0;
     KSPConvergedReason reason;
     PetscReal residual = 0;
@@ -80,19 +86,33 @@ class PetscSolver : public LinearSolver {
   }
 
  private:
+  /// x (whole on every rank, this rank's share solved) made whole everywhere: the ranks' shares
+  /// are contiguous and in rank order.
+  void gather(Eigen::VectorXd& x) const {
+    if (ranks_ == 1) return;
+    std::vector<int> counts(ranks_), starts(ranks_);
+    for (int r = 0; r < ranks_; ++r) {
+      starts[r] = static_cast<int>(3 * petsc::share_start(a_->rows().count, r, ranks_));
+      counts[r] = static_cast<int>(3 * petsc::share_start(a_->rows().count, r + 1, ranks_)) - starts[r];
+    }
+    if (MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, x.data(), counts.data(), starts.data(), MPI_DOUBLE,
+                       comm_) != MPI_SUCCESS)
+      throw NumericalFault(kind_ + ": MPI_Allgatherv of the solution failed");
+  }
+
   /// The AIJ matrix of the BRC pattern; the near null space; CG and the AMG.
   void create(const BrcMatrix& a) {
-    const PetscInt n = 3 * static_cast<PetscInt>(a.block_rows);
-    a_ = std::make_unique<petsc::AijFromBrc>(a);
+    a_ = std::make_unique<petsc::AijFromBrc>(a, comm_);
+    const petsc::OwnedBlocks& own = a_->rows();
     check(MatSetOption(a_->mat(), MAT_SPD, PETSC_TRUE), "MatSetOption");
     // Rigid-body modes of the rest positions (three translations, three rotations).
     Vec coordinates;
-    check(VecCreateSeq(PETSC_COMM_SELF, n, &coordinates), "VecCreateSeq");
+    check(VecCreateMPI(comm_, 3 * own.size(), PETSC_DETERMINE, &coordinates), "VecCreateMPI");
     check(VecSetBlockSize(coordinates, 3), "VecSetBlockSize");
     PetscScalar* x = nullptr;
     check(VecGetArray(coordinates, &x), "VecGetArray");
-    for (std::size_t v = 0; v < rest_.size(); ++v)
-      for (int c = 0; c < 3; ++c) x[3 * v + c] = rest_[v][c];
+    for (PetscInt v = own.begin; v < own.end; ++v)
+      for (int c = 0; c < 3; ++c) x[3 * (v - own.begin) + c] = rest_[v][c];
     check(VecRestoreArray(coordinates, &x), "VecRestoreArray");
     MatNullSpace rigid;
     check(MatNullSpaceCreateRigidBody(coordinates, &rigid), "MatNullSpaceCreateRigidBody");
@@ -100,7 +120,7 @@ class PetscSolver : public LinearSolver {
     MatNullSpaceDestroy(&rigid);
     VecDestroy(&coordinates);
 
-    check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+    check(KSPCreate(comm_, &ksp_), "KSPCreate");
     check(KSPSetType(ksp_, KSPCG), "KSPSetType");
     check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");  // |b - A x|, as ours
     check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
@@ -124,7 +144,7 @@ class PetscSolver : public LinearSolver {
       check(PCMGSetCycleType(pc_, PC_MG_CYCLE_V), "PCMGSetCycleType");
       check(PCMGSetGalerkin(pc_, PC_MG_GALERKIN_BOTH), "PCMGSetGalerkin");
       for (PetscInt l = 1; l < levels; ++l) {
-        Mat p = petsc::prolongation(transfers_[levels - 1 - l]);
+        Mat p = petsc::prolongation(transfers_[levels - 1 - l], comm_);
         check(PCMGSetInterpolation(pc_, l, p), "PCMGSetInterpolation");
         MatDestroy(&p);  // PCMG keeps its own reference
       }
@@ -137,7 +157,12 @@ class PetscSolver : public LinearSolver {
       option("-mg_levels_ksp_max_it", degree.c_str());
       option("-mg_levels_pc_type", "jacobi");
       option("-mg_coarse_ksp_type", "preonly");
-      option("-mg_coarse_pc_type", "lu");
+      if (ranks_ == 1) {
+        option("-mg_coarse_pc_type", "lu");
+      } else {  // PETSc's own LU is serial: each rank factors the whole coarsest matrix
+        option("-mg_coarse_pc_type", "redundant");
+        option("-mg_coarse_redundant_pc_type", "lu");
+      }
     } else if (gamg) {
       check(PCSetType(pc_, PCGAMG), "PCSetType");
       option("-pc_gamg_type", "agg");
@@ -158,6 +183,8 @@ class PetscSolver : public LinearSolver {
   }
 
   std::string kind_;
+  MPI_Comm comm_ = MPI_COMM_NULL;  ///< PETSC_COMM_WORLD: one rank, or the ranks of mpirun (solver/mpi_launch.hpp)
+  int ranks_ = 1;
   std::vector<Vec3> rest_;
   double tolerance_;
   int max_iterations_;

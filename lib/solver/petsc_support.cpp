@@ -24,15 +24,17 @@ class Session {
   ~Session() { PetscFinalize(); }
 };
 
-/// A SeqAIJ matrix from CSR arrays (copied by PETSc), block size `bs`.
-Mat aij_from_csr(PetscInt rows, PetscInt cols, const std::vector<PetscInt>& row_start,
-                 const std::vector<PetscInt>& columns, const PetscScalar* values, PetscInt bs) {
+/// An AIJ matrix of block size 3 on `comm` with this rank's rows of `rows` and columns split as
+/// `cols`, its pattern from the (global) coordinates i, j of its entries; values come later, in
+/// the same order, through MatSetValuesCOO (one path for one rank and for many).
+Mat aij_from_coo(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols, std::vector<PetscInt> i,
+                 std::vector<PetscInt> j) {
   Mat m = nullptr;
-  check(MatCreate(PETSC_COMM_SELF, &m), "MatCreate");
-  check(MatSetSizes(m, rows, cols, rows, cols), "MatSetSizes");
-  check(MatSetType(m, MATSEQAIJ), "MatSetType");
-  check(MatSetBlockSize(m, bs), "MatSetBlockSize");
-  check(MatSeqAIJSetPreallocationCSR(m, row_start.data(), columns.data(), values), "MatSeqAIJSetPreallocationCSR");
+  check(MatCreate(comm, &m), "MatCreate");
+  check(MatSetSizes(m, 3 * rows.size(), 3 * cols.size(), 3 * rows.count, 3 * cols.count), "MatSetSizes");
+  check(MatSetType(m, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(m, 3), "MatSetBlockSize");
+  check(MatSetPreallocationCOO(m, static_cast<PetscCount>(i.size()), i.data(), j.data()), "MatSetPreallocationCOO");
   return m;
 }
 
@@ -40,19 +42,31 @@ Mat aij_from_csr(PetscInt rows, PetscInt cols, const std::vector<PetscInt>& row_
 
 void ensure_session() { static Session session; }
 
-AijFromBrc::AijFromBrc(const BrcMatrix& a) {
+PetscInt share_start(PetscInt count, int rank, int size) {
+  return static_cast<PetscInt>(static_cast<long long>(count) * rank / size);
+}
+
+OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm) {
+  PetscMPIInt rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  return {share_start(count, rank, size), share_start(count, rank + 1, size), count};
+}
+
+AijFromBrc::AijFromBrc(const BrcMatrix& a, MPI_Comm comm) {
   ensure_session();
-  std::vector<PetscInt> row_start(1, 0), columns;
-  for (int i = 0; i < a.block_rows; ++i)
-    for (int r = 0; r < 3; ++r) {
-      for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
+  rows_ = owned_blocks(a.block_rows, comm);
+  std::vector<PetscInt> i, j;
+  for (PetscInt b = rows_.begin; b < rows_.end; ++b)
+    for (int r = 0; r < 3; ++r)
+      for (int k = a.row_start[b]; k < a.row_start[b + 1]; ++k)
         for (int c = 0; c < 3; ++c) {
-          columns.push_back(3 * a.col_index[k] + c);
+          i.push_back(3 * b + r);
+          j.push_back(3 * a.col_index[k] + c);
           scatter_.push_back(9 * static_cast<std::size_t>(k) + 3 * r + c);
         }
-      row_start.push_back(static_cast<PetscInt>(columns.size()));
-    }
-  mat_ = aij_from_csr(3 * a.block_rows, 3 * a.block_cols, row_start, columns, nullptr, 3);
+  values_.resize(scatter_.size());
+  mat_ = aij_from_coo(comm, rows_, owned_blocks(a.block_cols, comm), std::move(i), std::move(j));
 }
 
 AijFromBrc::~AijFromBrc() {
@@ -60,25 +74,25 @@ AijFromBrc::~AijFromBrc() {
 }
 
 void AijFromBrc::copy(const BrcMatrix& a) {
-  PetscScalar* values = nullptr;
-  check(MatSeqAIJGetArray(mat_, &values), "MatSeqAIJGetArray");
-  for (std::size_t i = 0; i < scatter_.size(); ++i) values[i] = a.values[scatter_[i]];
-  check(MatSeqAIJRestoreArray(mat_, &values), "MatSeqAIJRestoreArray");
+  for (std::size_t k = 0; k < scatter_.size(); ++k) values_[k] = a.values[scatter_[k]];
+  check(MatSetValuesCOO(mat_, values_.data(), INSERT_VALUES), "MatSetValuesCOO");
 }
 
-Mat prolongation(const Transfer& t) {
+Mat prolongation(const Transfer& t, MPI_Comm comm) {
   ensure_session();
-  std::vector<PetscInt> row_start(1, 0), columns;
+  const OwnedBlocks rows = owned_blocks(t.fine, comm);
+  std::vector<PetscInt> i, j;
   std::vector<PetscScalar> values;
-  for (int l = 0; l < t.fine; ++l)
-    for (int c = 0; c < 3; ++c) {
+  for (PetscInt l = rows.begin; l < rows.end; ++l)
+    for (int c = 0; c < 3; ++c)
       for (int k = t.p_start[l]; k < t.p_start[l + 1]; ++k) {
-        columns.push_back(3 * t.p_col[k] + c);
+        i.push_back(3 * l + c);
+        j.push_back(3 * t.p_col[k] + c);
         values.push_back(t.p_weight[k]);
       }
-      row_start.push_back(static_cast<PetscInt>(columns.size()));
-    }
-  return aij_from_csr(3 * t.fine, 3 * t.coarse, row_start, columns, values.data(), 3);
+  Mat p = aij_from_coo(comm, rows, owned_blocks(t.coarse, comm), std::move(i), std::move(j));
+  check(MatSetValuesCOO(p, values.data(), INSERT_VALUES), "MatSetValuesCOO");
+  return p;
 }
 
 }  // namespace corofem::petsc

@@ -1,6 +1,9 @@
 #pragma once
 // PETSc plumbing shared by the PETSc solvers and the MatPtAP comparison; included only where
-// COROFEM_HAVE_PETSC is defined.
+// COROFEM_HAVE_PETSC is defined. Matrices live on a communicator: PETSC_COMM_SELF for the
+// one-process comparisons, PETSC_COMM_WORLD for the solvers (one rank, or the ranks of mpirun).
+// Every rank holds the whole BRC matrix (assembly is replicated); each owns a contiguous range
+// of vertices, the block rows it gives PETSc.
 #include <petscmat.h>
 
 #include <cstddef>
@@ -18,23 +21,36 @@ void check(PetscErrorCode code, const char* what);
 /// come back as codes, not as messages printed by PETSc.
 void ensure_session();
 
-/// A SeqAIJ matrix of block size 3 with a BRC matrix's pattern (scalar row 3i + r, columns in
-/// the blocks' order), built once; copy() moves new BRC values in through the stored scatter.
+/// The vertices [begin, end) of `count` this rank owns on `comm`: equal contiguous shares.
+struct OwnedBlocks {
+  PetscInt begin = 0, end = 0, count = 0;
+  PetscInt size() const { return end - begin; }
+};
+OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm);
+/// The first of `count` vertices rank `rank` of `size` owns (rank = size: count).
+PetscInt share_start(PetscInt count, int rank, int size);
+
+/// An AIJ matrix of block size 3 with a BRC matrix's pattern on `comm` (this rank's rows: its
+/// owned vertices), built once; copy() moves new BRC values in through the stored scatter.
 class AijFromBrc {
  public:
-  explicit AijFromBrc(const BrcMatrix& pattern);
+  explicit AijFromBrc(const BrcMatrix& pattern, MPI_Comm comm = PETSC_COMM_SELF);
   ~AijFromBrc();
   AijFromBrc(const AijFromBrc&) = delete;
   AijFromBrc& operator=(const AijFromBrc&) = delete;
   void copy(const BrcMatrix& a);
   Mat mat() const { return mat_; }
+  const OwnedBlocks& rows() const { return rows_; }
 
  private:
   Mat mat_ = nullptr;
-  std::vector<std::size_t> scatter_;  ///< AIJ value i = BRC value scatter_[i]
+  OwnedBlocks rows_;
+  std::vector<std::size_t> scatter_;  ///< PETSc's COO value i = BRC value scatter_[i]
+  std::vector<PetscScalar> values_;
 };
 
-/// P = R^T as a SeqAIJ matrix (3 fine x 3 coarse, R = Rs (x) I3). The caller destroys it.
-Mat prolongation(const Transfer& t);
+/// P = R^T as an AIJ matrix on `comm` (3 fine x 3 coarse, R = Rs (x) I3; rows and columns owned
+/// as owned_blocks splits the fine and the coarse vertices). The caller destroys it.
+Mat prolongation(const Transfer& t, MPI_Comm comm = PETSC_COMM_SELF);
 
 }  // namespace corofem::petsc

@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""Strong and weak scaling of the distributed solvers over MPI ranks on this machine.
+
+Usage: bench/mpi_scaling.py [--out mpi_scaling.json] [--bin build/release/bin] [--ranks 1,2]
+                            [--repeats 3] [--steps 10] [--smoke]
+
+Runs `mpirun -np R corofem run SCENE.json` for R in --ranks on procedural cantilever bars
+(dynamic, gravity, energy-newton rotations, MG-PCG's default accuracy 1e-4):
+  strong: one bar (--smoke: a small one) at every rank count;
+  weak:   a bar per rank count with R times the base bar's elements (longer along x);
+for each solver that distributes its solve (petsc-gamg, hypre-boomeramg, petsc-mg), and, for the
+same bars, corofem's own MG-PCG at R OpenMP threads on one rank (the route within one machine).
+Each configuration runs --repeats times; the record keeps the median of the per-step times
+(phases from RESULT.json's timings_ms, setup excluded). Every rank assembles the whole system
+(`corofem run --help`): only the update and solve phases are distributed, and the record says so.
+Progress goes to stderr; the JSON (with the runs' own context) to --out, written atomically.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+SOLVERS = ["petsc-gamg", "hypre-boomeramg", "petsc-mg"]
+DISTRIBUTED_PHASES = ("update", "solve")
+
+
+def bar_scene(cells, solver, steps):
+    length = cells[0] / cells[1] * 0.2  # cells of equal size: the bar grows with its cell count
+    return {"mesh": {"box": [length, 0.2, 0.2], "cells": cells},
+            "material": {"young": 5e6, "poisson": 0.3, "density": 1000},
+            "fixed": [{"box": [[0, 0, 0], [0, 0.2, 0.2]]}],
+            "gravity": [0, 0, -9.81],
+            "analysis": {"type": "dynamic", "rotation": "energy-newton", "solver": solver, "levels": 3,
+                         "dt": 0.01, "steps": steps, "tolerance": 1e-4}}
+
+
+def run_once(corofem, scene, ranks, threads, work):
+    scene_file = os.path.join(work, "scene.json")
+    out_file = os.path.join(work, "result.json")
+    with open(scene_file, "w") as f:
+        json.dump(scene, f)
+    if os.path.exists(out_file):
+        os.remove(out_file)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS=str(threads))
+    command = [corofem, "run", scene_file, "--out", out_file, "--threads", str(threads)]
+    if ranks > 1 or scene["analysis"]["solver"] in SOLVERS:
+        command = ["mpirun", "-np", str(ranks)] + command
+    done = subprocess.run(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} exited {done.returncode}: {done.stderr[-800:]}")
+    with open(out_file) as f:
+        return json.load(f)
+
+
+def measure(corofem, cells, solver, ranks, threads, steps, repeats, work):
+    per_step = {}
+    record = None
+    for _ in range(repeats):
+        record = run_once(corofem, bar_scene(cells, solver, steps), ranks, threads, work)
+        timings = record["timings_ms"]
+        phases = {k: v / record["steps"] for k, v in timings.items() if k not in ("setup", "total")}
+        phases["step"] = (timings["total"] - timings["setup"]) / record["steps"]
+        phases["distributed"] = sum(phases.get(p, 0.0) for p in DISTRIBUTED_PHASES)
+        phases["replicated"] = phases["step"] - phases["distributed"]
+        for k, v in phases.items():
+            per_step.setdefault(k, []).append(v)
+    return {"solver": solver, "ranks": ranks, "threads": threads, "cells": cells,
+            "tets": record["mesh"]["tets"], "vertices": record["mesh"]["vertices"],
+            "linear_iterations_per_step": record["linear_iterations"] / record["steps"],
+            "converged": record["converged"],
+            "ms_per_step": {k: statistics.median(v) for k, v in per_step.items()},
+            "ms_per_step_runs": per_step["step"]}, record["context"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default="mpi_scaling.json")
+    parser.add_argument("--bin", default="build/release/bin")
+    parser.add_argument("--ranks", default="1,2")
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--steps", type=int, default=10)
+    parser.add_argument("--smoke", action="store_true", help="a seconds-long run for the tests")
+    args = parser.parse_args()
+    ranks = [int(r) for r in args.ranks.split(",")]
+    if args.smoke:
+        base, repeats, steps = [8, 4, 4], 1, 2
+    else:
+        base, repeats, steps = [48, 12, 12], args.repeats, args.steps  # 41k tets
+    corofem = os.path.join(args.bin, "corofem")
+    if not os.access(corofem, os.X_OK):
+        print(f"mpi_scaling: {corofem} is not built (ci/build)", file=sys.stderr)
+        return 2
+    runs, context = [], None
+    with tempfile.TemporaryDirectory() as work:
+        for solver in SOLVERS + ["mgpcg"]:
+            for r in ranks:
+                # mgpcg: one rank, R threads; the others: R ranks of one thread each.
+                procs, threads = (1, r) if solver == "mgpcg" else (r, 1)
+                for study, cells in (("strong", base), ("weak", [base[0] * r] + base[1:])):
+                    if study == "weak" and r == ranks[0]:
+                        continue  # the weak study's first point is the strong study's
+                    print(f"mpi_scaling: {solver}, {study}, {procs} rank(s) x {threads} thread(s), "
+                          f"cells {cells}", file=sys.stderr)
+                    row, context = measure(corofem, cells, solver, procs, threads, steps, repeats, work)
+                    row["study"] = study
+                    runs.append(row)
+    result = {"producer": "bench/mpi_scaling.py", "context": context,
+              "parameters": {"ranks": ranks, "repeats": repeats, "steps": steps, "base_cells": base,
+                             "tolerance": 1e-4, "smoke": args.smoke},
+              "distributed_phases": list(DISTRIBUTED_PHASES),
+              "note": "Every rank assembles the whole system; the update and solve are distributed; "
+                      "mgpcg runs on one rank with as many OpenMP threads as the others have ranks",
+              "runs": runs}
+    folder = os.path.dirname(os.path.abspath(args.out))
+    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".json")
+    with os.fdopen(fd, "w") as f:
+        json.dump(result, f, indent=1, sort_keys=True)
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, args.out)
+    print(f"mpi_scaling: wrote {args.out}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

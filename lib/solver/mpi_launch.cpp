@@ -1,0 +1,63 @@
+#include "solver/mpi_launch.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "core/errors.hpp"
+
+#ifdef COROFEM_HAVE_PETSC
+#include "solver/petsc_support.hpp"
+#endif
+
+namespace corofem {
+
+namespace {
+
+/// The world size the launcher announced in the environment; 1 when there was no launcher.
+int launcher_size() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+    if (const char* value = std::getenv(name)) return std::max(1, std::atoi(value));
+  return 1;
+}
+
+}  // namespace
+
+MpiLaunch mpi_launch() {
+  static const MpiLaunch launch = [] {
+    MpiLaunch l;
+    const int announced = launcher_size();
+    if (announced == 1) return l;
+#ifndef COROFEM_HAVE_PETSC
+    throw InputError("launched on " + std::to_string(announced) +
+                     " MPI ranks, but this build of corofem has no PETSc and so no MPI (install petsc-dev, as "
+                     "ci/setup does, and rebuild)");
+#else
+    petsc::ensure_session();
+    MPI_Comm_rank(PETSC_COMM_WORLD, &l.rank);
+    MPI_Comm_size(PETSC_COMM_WORLD, &l.size);
+    MPI_Comm local;
+    MPI_Comm_split_type(PETSC_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+    MPI_Comm_size(local, &l.ranks_on_this_machine);
+    MPI_Comm_free(&local);
+    return l;
+#endif
+  }();
+  return launch;
+}
+
+void abort_all_ranks(int code) {
+#ifdef COROFEM_HAVE_PETSC
+  int initialized = 0, finalized = 0;
+  MPI_Initialized(&initialized);
+  MPI_Finalized(&finalized);
+  if (!initialized || finalized) return;
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size > 1) MPI_Abort(MPI_COMM_WORLD, code);
+#else
+  (void)code;
+#endif
+}
+
+}  // namespace corofem
