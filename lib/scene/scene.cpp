@@ -184,6 +184,10 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);
   a.tolerance = number_in(f, "tolerance", a.tolerance, kMinTolerance, 0.5);
   a.max_iterations = integer_in(f, "max_iterations", a.max_iterations, 1, 100000);
+  a.setup_reuse = f.boolean("setup_reuse", a.setup_reuse);
+  if (a.setup_reuse && a.solver != "petsc-gamg" && a.solver != "hypre-boomeramg")
+    std::cerr << "corofem: warning: scene '" << f.file() << "': " << f.path_of("setup_reuse")
+              << " belongs to petsc-gamg and hypre-boomeramg; ignored with solver '" << a.solver << "'\n";
   if (const nlohmann::json* damping = f.get("rayleigh")) {
     JsonFields d(*damping, f.path_of("rayleigh"), f.file());
     a.rayleigh_alpha = number_in(d, "alpha", 0.0, 0.0, kMaxDamping);

@@ -85,6 +85,10 @@ struct AnalysisSpec {
   int steps = 1;
   int load_steps = 1;
   double tolerance = 1e-8;
+  /// petsc-gamg: keep the first matrix's interpolation (PETSc's -pc_gamg_reuse_interpolation),
+  /// recompute the coarse operators; hypre-boomeramg: keep the whole first hierarchy (CG still
+  /// runs on each step's matrix). Default: set up again at every matrix, as MG-PCG updates.
+  bool setup_reuse = false;
   int max_iterations = 100;
   double rayleigh_alpha = 0, rayleigh_beta = 0;
 };

@@ -17,7 +17,7 @@ namespace corofem {
 bool have_petsc() { return false; }
 
 std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&, double, int,
-                                                std::vector<Transfer>, int) {
+                                                std::vector<Transfer>, int, bool) {
   throw InputError("analysis.solver '" + kind +
                    "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
                    "libhypre-dev, as ci/setup does, and rebuild)");
@@ -34,9 +34,9 @@ using petsc::check;
 class PetscSolver : public LinearSolver {
  public:
   PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations,
-              std::vector<Transfer> transfers, int smoothing)
+              std::vector<Transfer> transfers, int smoothing, bool setup_reuse)
       : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations),
-        transfers_(std::move(transfers)), smoothing_(smoothing) {
+        transfers_(std::move(transfers)), smoothing_(smoothing), setup_reuse_(setup_reuse) {
     petsc::ensure_session();
     comm_ = PETSC_COMM_WORLD;
     MPI_Comm_size(comm_, &ranks_);
@@ -52,6 +52,9 @@ class PetscSolver : public LinearSolver {
     check(KSPSetOperators(ksp_, a_->mat(), a_->mat()), "KSPSetOperators");
     check(KSPSetUp(ksp_), "KSPSetUp");
     check(PCSetUp(pc_), "PCSetUp");  // the AMG hierarchy: timed with the update, not the solve
+    // BoomerAMG's reuse: the hierarchy of this first matrix preconditions every later solve.
+    if (setup_reuse_ && kind_ == "hypre-boomeramg")
+      check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
   }
 
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
@@ -168,6 +171,7 @@ class PetscSolver : public LinearSolver {
       option("-pc_gamg_type", "agg");
       option("-pc_gamg_agg_nsmooths", "1");
       option("-pc_gamg_threshold", "0.01");
+      if (setup_reuse_) option("-pc_gamg_reuse_interpolation", "true");
     } else {
       check(PCSetType(pc_, PCHYPRE), "PCSetType");
       check(PCHYPRESetType(pc_, "boomeramg"), "PCHYPRESetType");
@@ -190,6 +194,7 @@ class PetscSolver : public LinearSolver {
   int max_iterations_;
   std::vector<Transfer> transfers_;  ///< petsc-mg: our hierarchy, finest first
   int smoothing_;
+  bool setup_reuse_;
   std::unique_ptr<petsc::AijFromBrc> a_;
   KSP ksp_ = nullptr;
   PC pc_ = nullptr;
@@ -199,9 +204,9 @@ class PetscSolver : public LinearSolver {
 
 std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
-                                                std::vector<Transfer> transfers, int smoothing) {
+                                                std::vector<Transfer> transfers, int smoothing, bool setup_reuse) {
   return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations, std::move(transfers),
-                                       smoothing);
+                                       smoothing, setup_reuse);
 }
 
 #endif

@@ -12,6 +12,8 @@
 // Both solve to the scene's relative residual |b - A x| / |b| from the initial guess in x, like
 // mgpcg. set_matrix copies the values into a PETSc AIJ matrix of block size 3 (its pattern built
 // once from the BRC pattern) and sets the preconditioner up: the `update` phase of a step.
+// With setup_reuse (scene key analysis.setup_reuse), GAMG keeps its first interpolation and
+// recomputes only the coarse operators, BoomerAMG keeps its whole first hierarchy.
 // PETSC_OPTIONS in the environment overrides any of these settings (prefixes corofem_gamg_,
 // corofem_boomeramg_).
 #include <memory>
@@ -31,6 +33,7 @@ bool have_petsc();
 /// first). Throws InputError naming analysis.solver when this build has no PETSc.
 std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
-                                                std::vector<Transfer> transfers = {}, int smoothing = 1);
+                                                std::vector<Transfer> transfers = {}, int smoothing = 1,
+                                                bool setup_reuse = false);
 
 }  // namespace corofem

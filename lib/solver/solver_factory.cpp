@@ -43,7 +43,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
   if (a.solver == "cholmod") return make_cholmod_solver();
   if (a.solver == "jacobi-pcg") return make_jacobi_pcg_solver(a.tolerance, 100000);
   if (a.solver == "petsc-gamg" || a.solver == "hypre-boomeramg")
-    return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);
+    return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000, {}, 1, a.setup_reuse);
   if (a.solver == "petsc-mg") {  // PETSc's own multigrid on our hierarchy's transfers
     if (!have_petsc()) return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);  // says why
     const MultigridParams params = multigrid_params(a);
