@@ -1,5 +1,7 @@
 #include "bench_support.hpp"
 
+#include <chrono>
+
 #include <iostream>
 #include <map>
 #include <memory>
@@ -17,6 +19,12 @@
 #include "scene/scene_problem.hpp"
 
 namespace corofem::bench {
+
+double time_ms(const std::function<void()>& f) {
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 namespace {
 std::filesystem::path g_models;
 

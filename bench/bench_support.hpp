@@ -1,6 +1,7 @@
 #pragma once
 // Shared fixtures of the benchmarks: the paper-sized meshes, built once per process.
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "fem/fe_problem.hpp"
@@ -8,6 +9,9 @@
 #include "scene/scene.hpp"
 
 namespace corofem::bench {
+
+/// Wall time of one call of f, in ms (for ratios of kernels alternated within one run).
+double time_ms(const std::function<void()>& f);
 
 void set_models_dir(const std::filesystem::path& dir);
 const std::filesystem::path& models_dir();

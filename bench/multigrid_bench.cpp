@@ -11,6 +11,7 @@
 #include "bench_support.hpp"
 #include "galerkin_oracle.hpp"
 #include "core/statistics.hpp"
+#include "core/threads.hpp"
 #include "core/machine_roofs.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "solver/petsc_galerkin.hpp"
@@ -89,39 +90,33 @@ void BM_GalerkinRatio(benchmark::State& state, const std::string& model) {
   const BrcMatrix& a = paper_system(model).matrix;
   std::vector<Eigen::SparseMatrix<double>> r;
   for (int l = 0; l + 1 < h.num_levels(); ++l) r.push_back(restriction_matrix(h.transfer(l)));
-  using clock = std::chrono::steady_clock;
-  double t[6] = {0, 0, 0, 0, 0, 0};
+  double t[6] = {0, 0, 0, 0, 0, 0};  // ms
   std::unique_ptr<PetscPtapHierarchy> petsc;  // PETSc's MatPtAP in numeric-reuse mode
   if (have_petsc()) {
     petsc = std::make_unique<PetscPtapHierarchy>(a, paper_transfers(model, HierarchyKind::Meshes).transfers);
     petsc->update(a);
   }
-  auto time = [&](auto&& f) {
-    const auto start = clock::now();
-    f();
-    return std::chrono::duration<double>(clock::now() - start).count();
-  };
   for (auto _ : state) {
-    t[0] += time([&] { h.update(a, GalerkinMethod::Naive); });
-    t[1] += time([&] { h.update(a, GalerkinMethod::Stream); });
-    t[2] += time([&] { h.update(a, GalerkinMethod::Reuse); });
-    t[3] += time([&] { eigen_update(h, r); });
-    t[4] += time([&] { h.update(a, GalerkinMethod::StreamFull); });
-    if (petsc) t[5] += time([&] { petsc->update(a); });
+    t[0] += time_ms([&] { h.update(a, GalerkinMethod::Naive); });
+    t[1] += time_ms([&] { h.update(a, GalerkinMethod::Stream); });
+    t[2] += time_ms([&] { h.update(a, GalerkinMethod::Reuse); });
+    t[3] += time_ms([&] { eigen_update(h, r); });
+    t[4] += time_ms([&] { h.update(a, GalerkinMethod::StreamFull); });
+    if (petsc) t[5] += time_ms([&] { petsc->update(a); });
   }
   const double n = static_cast<double>(state.iterations());
-  state.counters["naive_ms"] = 1e3 * t[0] / n;
-  state.counters["stream_ms"] = 1e3 * t[1] / n;
-  state.counters["reuse_ms"] = 1e3 * t[2] / n;
-  state.counters["eigen_ms"] = 1e3 * t[3] / n;
+  state.counters["naive_ms"] = t[0] / n;
+  state.counters["stream_ms"] = t[1] / n;
+  state.counters["reuse_ms"] = t[2] / n;
+  state.counters["eigen_ms"] = t[3] / n;
   state.counters["naive_over_stream"] = t[0] / t[1];
   state.counters["reuse_over_stream"] = t[2] / t[1];
   state.counters["eigen_over_stream"] = t[3] / t[1];
-  state.counters["stream_full_ms"] = 1e3 * t[4] / n;
+  state.counters["stream_full_ms"] = t[4] / n;
   state.counters["naive_over_stream_full"] = t[0] / t[4];
   state.counters["reuse_over_stream_full"] = t[2] / t[4];
   if (petsc) {  // issue 14's target: stream >= 2x MatPtAP numeric reuse
-    state.counters["petsc_ptap_ms"] = 1e3 * t[5] / n;
+    state.counters["petsc_ptap_ms"] = t[5] / n;
     state.counters["petsc_ptap_over_stream"] = t[5] / t[1];
   }
 }
@@ -197,6 +192,41 @@ const PaperSystem& step_system(const std::string& model) {
   return cache[model] = std::move(s);
 }
 
+/// One Gauss-Seidel sweep of the fine level (the mean of a forward and a backward one) in each
+/// ordering against one product with the same matrix, alternated in one run: a sweep reads
+/// what a product reads (every block once, x, b), so sweep / product near 1 is its floor.
+void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
+  const PaperSystem& system = step_system(model);
+  const BrcMatrix& a = system.matrix;
+  const SmootherOrdering orderings[] = {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
+                                        SmootherOrdering::Domains};
+  std::vector<BlockGaussSeidel> smoothers;
+  for (const SmootherOrdering o : orderings) {
+    smoothers.emplace_back(o);
+    smoothers.back().set_matrix(a);
+  }
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(system.rhs.size()), y;
+  std::vector<std::vector<double>> sweep_ms(smoothers.size());
+  std::vector<double> product_ms;
+  for (auto _ : state) {
+    product_ms.push_back(time_ms([&] { a.multiply(system.rhs, y); }));
+    for (std::size_t s = 0; s < smoothers.size(); ++s)
+      sweep_ms[s].push_back(0.5 * time_ms([&] {
+                              smoothers[s].forward(a, system.rhs, x);
+                              smoothers[s].backward(a, system.rhs, x);
+                            }));
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["product_ms"] = median(product_ms);
+  for (std::size_t s = 0; s < smoothers.size(); ++s) {
+    const std::string name = smoother_ordering_name(orderings[s]);
+    state.counters[name + "_sweep_ms"] = median(sweep_ms[s]);
+    state.counters[name + "_over_product"] = median(sweep_ms[s]) / median(product_ms);
+  }
+  state.counters["vertices"] = a.block_rows;
+  state.counters["threads"] = thread_count();
+}
+
 /// Issue 11's targets in one run, for one model and hierarchy, on the dynamic step's matrix:
 /// rho of V(1,1) (mean residual reduction over 12 stationary cycles from x = 0), MG-PCG and
 /// Jacobi-PCG iterations to 1e-4, and their solve times in the same run (targets: rho <= 0.2,
@@ -238,20 +268,14 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
     Eigen::VectorXd x = Eigen::VectorXd::Zero(system.rhs.size());
     rho = vcycles.solve(system.rhs, x);
     x.setZero();
-    auto start = std::chrono::steady_clock::now();
-    mg = pcg.solve(system.rhs, x);
-    mg_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    mg_ms.push_back(time_ms([&] { mg = pcg.solve(system.rhs, x); }));
     x.setZero();
-    start = std::chrono::steady_clock::now();
-    jc = jacobi->solve(system.rhs, x);
-    jacobi_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    jacobi_ms.push_back(time_ms([&] { jc = jacobi->solve(system.rhs, x); }));
     for (Ordered& o : ordered) {
       x.setZero();
       o.rho = o.vcycles->solve(system.rhs, x);
       x.setZero();
-      start = std::chrono::steady_clock::now();
-      o.mg = o.pcg->solve(system.rhs, x);
-      o.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      o.ms.push_back(time_ms([&] { o.mg = o.pcg->solve(system.rhs, x); }));
     }
   }
   const nlohmann::json d = pcg.describe();
@@ -286,7 +310,9 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   BENCHMARK_CAPTURE(BM_GalerkinRatio, model, std::string(#model))                                \
       ->Unit(benchmark::kMillisecond)->Iterations(5);                                            \
   BENCHMARK_CAPTURE(BM_VCycle, model, std::string(#model))->Unit(benchmark::kMillisecond);       \
-  BENCHMARK_CAPTURE(BM_MgpcgSolve, model, std::string(#model))->Unit(benchmark::kMillisecond)
+  BENCHMARK_CAPTURE(BM_MgpcgSolve, model, std::string(#model))->Unit(benchmark::kMillisecond);   \
+  BENCHMARK_CAPTURE(BM_SmootherSweep, model, std::string(#model))                                \
+      ->Unit(benchmark::kMillisecond)->Iterations(20)
 
 #define QUALITY_CASES(model)                                                                      \
   BENCHMARK_CAPTURE(BM_MultigridQuality, model/meshes, std::string(#model), HierarchyKind::Meshes)  \

@@ -18,12 +18,6 @@
 namespace corofem::bench {
 namespace {
 
-double time_ms(const std::function<void()>& f) {
-  const auto start = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
 void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   FeProblem& p = paper_problem(model);
   const Eigen::VectorXd u = bent_displacement(p);

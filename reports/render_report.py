@@ -374,6 +374,23 @@ def render_multigrid_quality(tables, md):
     md.append(table(["model", "hierarchy", "levels", "vertices per level", "operator complexity", "rho",
                      "V-cycles", "MG-PCG iterations", "setup ms", "update ms", "solve ms", "step ms"], rows))
     md.append("\n")
+    parts = ["fine_smooth", "fine_residual", "fine_transfer", "coarse_levels", "coarsest"]
+    rows = []
+    for r in tables.get("multigrid", []):
+        if failed(r) or not r.get("solve_parts_ms"):
+            continue
+        sp, up = r["solve_parts_ms"], r.get("update_parts_ms") or {}
+        outer = sum(sp.get(p, 0.0) for p in parts)
+        rows.append([r["model"], r["hierarchy"]] + [t(sp.get(p)) for p in parts] +
+                    [t(r["solve_ms"] - outer) if r.get("solve_ms") is not None else "-"] +
+                    [t(up.get(p)) for p in ("galerkin", "smoothers", "coarsest")])
+    if rows:
+        md.append("Where MG-PCG's time goes (ms per step; solve parts are means over the run's solves, the "
+                  "outer iteration is CG's own product and vector updates: the median solve less the parts):\n\n")
+        md.append(table(["model", "hierarchy", "fine smoothing", "fine residual", "fine transfers",
+                         "coarser levels", "coarsest solves", "outer CG", "update: Galerkin",
+                         "update: smoothers", "update: coarsest factorization"], rows))
+        md.append("\n")
 
 
 # ----------------------------------------------------------------------------------------------

@@ -13,6 +13,24 @@
 
 namespace corofem {
 
+namespace {
+
+/// Runs f and adds its wall time in ms to totals[part].
+template <class F>
+void timed(std::map<std::string, double>& totals, const char* part, const F& f) {
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  totals[part] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::map<std::string, double> means(const std::map<std::string, double>& totals, int count) {
+  std::map<std::string, double> mean;
+  for (const auto& [part, total] : totals) mean[part] = count > 0 ? total / count : 0.0;
+  return mean;
+}
+
+}  // namespace
+
 nlohmann::json MultigridParams::to_json() const {
   const char* names[] = {"naive", "stream", "stream-full", "reuse"};
   return {{"hierarchy", hierarchy.to_json()},
@@ -72,6 +90,7 @@ nlohmann::json MultigridSolver::describe() const {
           {"operator_complexity", blocks / static_cast<double>(hierarchy_.matrix(0).col_index.size())},
           {"setup_ms", setup_ms_},
           {"update_parts_ms", update_parts_ms()},
+          {"solve_parts_ms", solve_parts_ms()},
           {"solves", rho.size()},
           {"rho", median_or_null(rho)},
           {"iterations", median_or_null(iterations)},
@@ -80,28 +99,20 @@ nlohmann::json MultigridSolver::describe() const {
 
 MultigridSolver::~MultigridSolver() = default;
 
-std::map<std::string, double> MultigridSolver::update_parts_ms() const {
-  std::map<std::string, double> mean;
-  for (const auto& [part, total] : update_ms_) mean[part] = updates_ > 0 ? total / updates_ : 0.0;
-  return mean;
-}
+std::map<std::string, double> MultigridSolver::update_parts_ms() const { return means(update_ms_, updates_); }
+std::map<std::string, double> MultigridSolver::solve_parts_ms() const { return means(solve_ms_, solves_); }
 
 double MultigridSolver::coarsest_factor_nonzeros() const { return coarsest_->cholmod.factor_nonzeros(); }
 double MultigridSolver::coarsest_factorization_flops() const { return coarsest_->cholmod.factorization_flops(); }
 
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
-  const auto timed = [this](const char* part, const auto& f) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    update_ms_[part] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  };
   ++updates_;
-  timed("galerkin", [&] { hierarchy_.update(a, params_.galerkin); });
+  timed(update_ms_, "galerkin", [&] { hierarchy_.update(a, params_.galerkin); });
   const int last = hierarchy_.num_levels() - 1;
-  timed("smoothers", [&] {
+  timed(update_ms_, "smoothers", [&] {
     for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));
   });
-  timed("coarsest", [&] { update_coarsest(); });
+  timed(update_ms_, "coarsest", [&] { update_coarsest(); });
 }
 
 void MultigridSolver::update_coarsest() {
@@ -138,21 +149,34 @@ void MultigridSolver::update_coarsest() {
 void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const int last = hierarchy_.num_levels() - 1;
   if (h == last) {
-    x = coarsest_->cholmod.solve(b);
+    timed(solve_ms_, "coarsest", [&] { x = coarsest_->cholmod.solve(b); });
     return;
   }
   const BrcMatrix& a = hierarchy_.matrix(h);
-  for (int s = 0; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
-  a.multiply(x, residual_[h]);
-  residual_[h] = b - residual_[h];
-  hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]);
-  coarse_x_[h + 1].setZero(coarse_b_[h + 1].size());
+  const bool fine = h == 0;
+  const char* smooth = fine ? "fine_smooth" : "coarse_levels";
+  const char* residual = fine ? "fine_residual" : "coarse_levels";
+  const char* transfer = fine ? "fine_transfer" : "coarse_levels";
+  timed(solve_ms_, smooth, [&] {
+    for (int s = 0; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
+  });
+  timed(solve_ms_, residual, [&] {
+    a.multiply(x, residual_[h]);
+    residual_[h] = b - residual_[h];
+  });
+  timed(solve_ms_, transfer, [&] {
+    hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]);
+    coarse_x_[h + 1].setZero(coarse_b_[h + 1].size());
+  });
   vcycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1]);
-  hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x);
-  for (int s = 0; s < params_.post_smoothing; ++s) smoothers_[h].backward(a, b, x);
+  timed(solve_ms_, transfer, [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
+  timed(solve_ms_, smooth, [&] {
+    for (int s = 0; s < params_.post_smoothing; ++s) smoothers_[h].backward(a, b, x);
+  });
 }
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  ++solves_;
   const SolveStats stats = run_solve(b, x);
   solve_log_.push_back(stats);
   return stats;

@@ -49,6 +49,11 @@ class MultigridSolver : public LinearSolver {
   /// Mean ms per set_matrix of its parts: "galerkin" (every coarse E = R A R^T), "smoothers"
   /// (inverse diagonal blocks), "coarsest" (CHOLMOD's numeric factorization and its input).
   std::map<std::string, double> update_parts_ms() const;
+  /// Mean ms per solve of the V-cycles' parts: "fine_smooth", "fine_residual", "fine_transfer"
+  /// (restriction and prolongation of the finest level), "coarse_levels" (all of these on the
+  /// levels between), "coarsest" (CHOLMOD's triangular solves). The rest of a solve is the outer
+  /// iteration (CG's product and vector updates).
+  std::map<std::string, double> solve_parts_ms() const;
   /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
   /// complexity, setup times, and the median rho and iterations over the solves so far.
   nlohmann::json describe() const;
@@ -70,6 +75,8 @@ class MultigridSolver : public LinearSolver {
   std::map<std::string, double> setup_ms_;
   std::map<std::string, double> update_ms_;  ///< totals over the updates
   int updates_ = 0;
+  std::map<std::string, double> solve_ms_;  ///< totals over the solves
+  int solves_ = 0;
   std::vector<SolveStats> solve_log_;
 };
 

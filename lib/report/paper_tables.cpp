@@ -67,6 +67,8 @@ json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warm
           {"setup_phases_ms", mg["setup_ms"]},
           {"update_ms", pcg.median_ms("update", warmup)},
           {"solve_ms", pcg.median_ms("solve", warmup)},
+          {"solve_parts_ms", mg["solve_parts_ms"]},  // means over the run's solves
+          {"update_parts_ms", mg["update_parts_ms"]},
           {"vcycle_solve_ms", vcycle.median_ms("solve", warmup)},
           {"step_ms", pcg.median_ms("step", warmup)}};
 }
