@@ -57,11 +57,17 @@ void colour_rows(const BrcMatrix& a, const std::vector<int>& which, std::vector<
 void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
   inverse_diagonal_.resize(a.block_rows);
   diagonal_block_.resize(a.block_rows);
+  int missing = 0;  // no exception may leave a parallel region: counted, thrown after it
+#pragma omp parallel for schedule(static) reduction(+ : missing) num_threads(threads_for(a.block_rows))
   for (int i = 0; i < a.block_rows; ++i) {
     diagonal_block_[i] = a.find(i, i);
-    if (diagonal_block_[i] < 0) throw NumericalFault("multigrid: a level has no diagonal block");
+    if (diagonal_block_[i] < 0) {
+      ++missing;
+      continue;
+    }
     inverse_diagonal_[i] = Eigen::Matrix3d(a.block(diagonal_block_[i])).inverse();
   }
+  if (missing > 0) throw NumericalFault("multigrid: a level has no diagonal block");
   if (!ordered_) order_rows(a);  // the pattern never changes: ordered once
 }
 
