@@ -134,6 +134,18 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     EXPECT_DOUBLE_EQ(row["one_thread"]["roofline"]["stream_triad_GBps"].get<double>(),
                      t["one_thread_roofs"]["stream_triad_GBps"].get<double>());
     if (t["threads"].get<int>() == 1) EXPECT_EQ(row["one_thread"]["step"], row["phases_ms"]["step"]);
+    // Our stream against PETSc's MatPtAP on the same matrices, where PETSc is built.
+    if (have_petsc()) {
+      const json& g = row["galerkin_vs_matptap"];
+      ASSERT_TRUE(g.is_object()) << row.dump();
+      EXPECT_GT(g["matptap_ms"].get<double>(), 0);
+      EXPECT_GT(g["stream_one_thread_ms"].get<double>(), 0);
+      EXPECT_NEAR(g["matptap_over_stream_one_thread"].get<double>(),
+                  g["matptap_ms"].get<double>() / g["stream_one_thread_ms"].get<double>(),
+                  1e-9 * g["matptap_over_stream_one_thread"].get<double>());
+    } else {
+      EXPECT_TRUE(row["galerkin_vs_matptap"].is_null());
+    }
   }
   // The solvers users would pick instead: all three for every table row, and the two AMGs again
   // with their setup reused; run where PETSc is built, a recorded failure naming the library

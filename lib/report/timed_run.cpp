@@ -1,6 +1,7 @@
 #include "report/timed_run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -12,6 +13,8 @@
 #include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene_simulation.hpp"
+#include "solver/petsc_galerkin.hpp"
+#include "solver/petsc_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
@@ -154,6 +157,21 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
                             static_cast<double>(h.stream_bytes());
     for (int level = 0; level < h.num_levels(); ++level)
       out.working_set_bytes += 76.0 * static_cast<double>(h.matrix(level).col_index.size());
+  }
+  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test); mg && options.time_matptap && have_petsc()) {
+    // The Galerkin product a PETSc user would call, on the same matrices as our last update.
+    const MultigridHierarchy& h = mg->hierarchy();
+    std::vector<Transfer> transfers;
+    for (int level = 0; level + 1 < h.num_levels(); ++level) transfers.push_back(h.transfer(level));
+    PetscPtapHierarchy ptap(h.matrix(0), transfers);
+    ptap.update(h.matrix(0));  // the symbolic phase, untimed
+    std::vector<double> ms;
+    for (int k = 0; k < 5; ++k) {
+      const auto start = std::chrono::steady_clock::now();
+      ptap.update(h.matrix(0));
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    out.matptap_ms = median(ms);
   }
   out.rest_volume = total_volume(problem.mesh, problem.mesh.rest);
   const auto final_positions = problem.positions(out.result.displacement);

@@ -18,6 +18,8 @@ struct TimedRunOptions {
   int warmup_steps = 0;            ///< steps left out of the medians
   std::vector<int> check_steps;    ///< steps whose linear solve is checked against CHOLMOD
   bool check_operators = false;    ///< Galerkin levels and rotations against the oracles, at the end
+  /// Multigrid runs with PETSc built: time PETSc's MatPtAP (numeric reuse) on the final matrix.
+  bool time_matptap = false;
   /// Called after every step with the problem (for study metrics); may throw to stop the run.
   std::function<void(const StepState&, const FeProblem&)> on_step;
 };
@@ -35,6 +37,9 @@ struct TimedRun {
   double galerkin_error_max = -1;   ///< |E_h - R A R^T|_F / |R A R^T|_F over levels (Eigen oracle)
   double rotation_error_max_rad = -1;  ///< energy-newton against energy-exact at the final state
   int rotation_elements_compared = 0;
+  /// PETSc's MatPtAP in numeric-reuse mode on the run's final fine matrix and transfers, every
+  /// coarse level: median ms of 5 updates after the symbolic one (negative: not run).
+  double matptap_ms = -1;
   /// A multigrid solve's description (MultigridSolver::describe() with setup_ms.coarse_meshes);
   /// null for other solvers.
   nlohmann::json multigrid;
