@@ -30,6 +30,9 @@ std::string mpirun_two_ranks() {
 
 bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") == 0; }
 
+/// Where the build has PETSc, mpirun must be there too (ci/setup installs it with petsc-dev).
+void require_mpirun() { ASSERT_TRUE(have_mpirun()) << "mpirun is missing (ci/setup installs it with petsc-dev)"; }
+
 /// A cantilever bar under gravity, 6 implicit Euler steps, solved to a relative residual of
 /// 1e-12 by `solver` on a three-level hierarchy (petsc-mg's).
 nlohmann::json dynamic_bar(const std::string& solver) {
@@ -51,7 +54,7 @@ std::vector<double> displacements(const nlohmann::json& record) {
 
 TEST(CliMpi, TwoRanksEqualOneRankOnADynamicScene) {
   if (!have_petsc()) GTEST_SKIP() << "this build has no PETSc: CliMpi.TwoRanksNeedPetsc covers it";
-  ASSERT_TRUE(have_mpirun()) << "mpirun is missing (ci/setup installs it with petsc-dev)";
+  ASSERT_NO_FATAL_FAILURE(require_mpirun());
   for (const std::string solver : {"petsc-gamg", "hypre-boomeramg", "petsc-mg"}) {
     SCOPED_TRACE(solver);
     TempDir dir;
@@ -67,6 +70,7 @@ TEST(CliMpi, TwoRanksEqualOneRankOnADynamicScene) {
     EXPECT_EQ(b["mpi"]["ranks"], 2);
     // Rank 0 alone writes and reports progress: one "converged" line, not two.
     const std::string& err = two.err;
+    ASSERT_NE(err.find("converged"), std::string::npos) << err;
     EXPECT_EQ(err.find("converged"), err.rfind("converged")) << err;
     // Each run solves every step to |r| / |b| <= 1e-12 with its own partition (GAMG aggregates
     // and BoomerAMG coarsens per rank), so they agree to about cond(A) 1e-12; the bar's dynamic
@@ -85,7 +89,7 @@ TEST(CliMpi, TwoRanksEqualOneRankOnADynamicScene) {
 
 TEST(CliMpi, SerialSolverUnderMpirunIsBadInput) {
   if (!have_petsc()) GTEST_SKIP() << "this build has no PETSc: CliMpi.TwoRanksNeedPetsc covers it";
-  ASSERT_TRUE(have_mpirun()) << "mpirun is missing (ci/setup installs it with petsc-dev)";
+  ASSERT_NO_FATAL_FAILURE(require_mpirun());
   TempDir dir;
   write_text(dir / "bar.json", dynamic_bar("mgpcg").dump());
   const auto r = run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "r.json").string() + "'",
@@ -99,7 +103,7 @@ TEST(CliMpi, ScalingScriptRecordsEveryConfiguration) {
   // bench/mpi_scaling.py --smoke: the strong and weak studies at 1 and 2 ranks (threads for
   // mgpcg) on small bars; the report renders its record.
   if (!have_petsc()) GTEST_SKIP() << "this build has no PETSc: no distributed solver to scale";
-  ASSERT_TRUE(have_mpirun()) << "mpirun is missing (ci/setup installs it with petsc-dev)";
+  ASSERT_NO_FATAL_FAILURE(require_mpirun());
   TempDir dir;
   const std::filesystem::path bin = std::filesystem::path(COROFEM_CLI).parent_path();
   const std::string command = "python3 '" + (test::source_dir() / "bench" / "mpi_scaling.py").string() +

@@ -123,7 +123,7 @@ ParsedArgs parse_args(const std::vector<std::string>& args, const std::vector<st
 /// serial solve on every rank.
 void require_distributed_solver(const Scene& scene, int ranks) {
   const std::string& solver = scene.analysis.solver;
-  const bool distributed = solver == "petsc-gamg" || solver == "hypre-boomeramg" || solver == "petsc-mg";
+  const bool distributed = is_petsc_solver(solver);
   if (!distributed || (scene.analysis.integrator == "newton" && scene.analysis.formulation == "corotational"))
     throw InputError(scene.name + ": analysis.solver '" + solver + "'" +
                      (distributed ? " with integrator 'newton' (a serial sparse LU)" : "") + " under mpirun -np " +

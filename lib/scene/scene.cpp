@@ -185,7 +185,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.tolerance = number_in(f, "tolerance", a.tolerance, kMinTolerance, 0.5);
   a.max_iterations = integer_in(f, "max_iterations", a.max_iterations, 1, 100000);
   a.setup_reuse = f.boolean("setup_reuse", a.setup_reuse);
-  if (a.setup_reuse && a.solver != "petsc-gamg" && a.solver != "hypre-boomeramg")
+  if (a.setup_reuse && !is_library_amg(a.solver))
     std::cerr << "corofem: warning: scene '" << f.file() << "': " << f.path_of("setup_reuse")
               << " belongs to petsc-gamg and hypre-boomeramg; ignored with solver '" << a.solver << "'\n";
   if (const nlohmann::json* damping = f.get("rayleigh")) {

@@ -56,11 +56,19 @@ struct MoveSpec {
 inline constexpr const char* kMultigridAnalysisKeys[] = {"levels", "vcycles", "smoothing", "galerkin",
                                                          "hierarchy", "smoother"};
 
-/// multigrid and mgpcg: the solvers with a hierarchy.
 /// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
 inline bool is_multigrid_solver(const std::string& solver) {
   return solver == "multigrid" || solver == "mgpcg" || solver == "petsc-mg";
 }
+
+/// The algebraic multigrid of the libraries, whose setup can be reused across steps
+/// (analysis.setup_reuse).
+inline bool is_library_amg(const std::string& solver) {
+  return solver == "petsc-gamg" || solver == "hypre-boomeramg";
+}
+
+/// Solvers through PETSc (and hypre): the ones that distribute their solves under mpirun.
+inline bool is_petsc_solver(const std::string& solver) { return is_library_amg(solver) || solver == "petsc-mg"; }
 
 struct AnalysisSpec {
   std::string type = "static";              ///< static | dynamic

@@ -42,7 +42,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
                                                  const std::vector<TetMesh>& coarse_meshes) {
   if (a.solver == "cholmod") return make_cholmod_solver();
   if (a.solver == "jacobi-pcg") return make_jacobi_pcg_solver(a.tolerance, 100000);
-  if (a.solver == "petsc-gamg" || a.solver == "hypre-boomeramg")
+  if (is_library_amg(a.solver))
     return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000, {}, 1, a.setup_reuse);
   if (a.solver == "petsc-mg") {  // PETSc's own multigrid on our hierarchy's transfers
     if (!have_petsc()) return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);  // says why
