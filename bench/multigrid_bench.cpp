@@ -199,7 +199,7 @@ void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
   const PaperSystem& system = step_system(model);
   const BrcMatrix& a = system.matrix;
   const SmootherOrdering orderings[] = {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
-                                        SmootherOrdering::Domains};
+                                        SmootherOrdering::Domains, SmootherOrdering::Hybrid};
   std::vector<BlockGaussSeidel> smoothers;
   for (const SmootherOrdering o : orderings) {
     smoothers.emplace_back(o);
@@ -253,7 +253,8 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
     SolveStats rho, mg;
   };
   std::vector<Ordered> ordered;
-  for (const SmootherOrdering ordering : {SmootherOrdering::Multicolour, SmootherOrdering::Domains}) {
+  for (const SmootherOrdering ordering :
+       {SmootherOrdering::Multicolour, SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
     MultigridParams p = params, s = stationary;
     p.smoother = s.smoother = ordering;
     Ordered o{smoother_ordering_name(ordering), std::make_unique<MultigridSolver>(system.matrix, built, s, false),

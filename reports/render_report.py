@@ -237,8 +237,8 @@ def render_thread_table(tables, md):
     n = tables.get("threads", 1)
     md.append(f"### Table 1 on one thread and on {n} threads (ms per step; in brackets paper/ours)\n\n")
     md.append("- Every kernel writes each output from one thread and sums in a fixed order: both runs give "
-              "the same bits (verify/threads_test.cpp). The smoother is domain-ordered Gauss-Seidel in both "
-              "(README, Multigrid).\n\n")
+              "the same bits (verify/threads_test.cpp). The smoother is l1 hybrid Gauss-Seidel in both, its "
+              "domains set by each level's size, not by the threads (README, Multigrid).\n\n")
     out = []
     for r in rows:
         p = r.get("paper") or {}

@@ -83,9 +83,10 @@ FeProblem problem_for(const MeshCase& c) {
 }
 
 AnalysisSpec analysis(const std::string& solver, double tolerance, const std::string& hierarchy,
-                      bool setup_reuse = false) {
+                      bool setup_reuse = false, int coarsest_max_vertices = 0) {
   AnalysisSpec a;
   a.setup_reuse = setup_reuse;
+  a.coarsest_max_vertices = coarsest_max_vertices;
   a.solver = solver;
   a.hierarchy = hierarchy;
   a.levels = 3;
@@ -113,10 +114,13 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
     const char* name;
     const char* hierarchy;
     bool setup_reuse;
+    int coarsest_max_vertices = 0;
   };
   std::vector<Solver> solvers = {{"multigrid", "meshes", false}, {"mgpcg", "meshes", false},
                                  {"multigrid", "lattice", false}, {"mgpcg", "lattice", false},
-                                 {"jacobi-pcg", "lattice", false}};
+                                 {"jacobi-pcg", "lattice", false},
+                                 // Lattice levels below the meshes, down to 20 vertices.
+                                 {"mgpcg", "meshes", false, 20}};
   if (have_petsc()) {  // the libraries users would pick instead (the hierarchy is not theirs)
     solvers.push_back({"petsc-gamg", "lattice", false});
     solvers.push_back({"hypre-boomeramg", "lattice", false});
@@ -125,8 +129,8 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
     solvers.push_back({"petsc-gamg", "lattice", true});
     solvers.push_back({"hypre-boomeramg", "lattice", true});
   }
-  for (const auto& [name, hierarchy, setup_reuse] : solvers) {
-    const std::string what = c.name + ": " + name + (std::string(name).find('-') == std::string::npos || std::string(name) == "jacobi-pcg" ? std::string(" on ") + hierarchy : "") + (setup_reuse ? " (setup reused)" : "");
+  for (const auto& [name, hierarchy, setup_reuse, coarsest_max] : solvers) {
+    const std::string what = c.name + ": " + name + (std::string(name).find('-') == std::string::npos || std::string(name) == "jacobi-pcg" ? std::string(" on ") + hierarchy : "") + (setup_reuse ? " (setup reused)" : "") + (coarsest_max > 0 ? " (coarsest <= " + std::to_string(coarsest_max) + " vertices)" : "");
     try {
       // Static linear: one solve of K u = f to relative residual 1e-10, which leaves a solution
       // error of ~cond(K) x 1e-10 / 1e4 << 1e-8 for these meshes.
@@ -134,7 +138,7 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       auto none = make_rotation_extractor("none", p.mesh);
       auto direct = make_cholmod_solver();
       const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
-      auto mg = make_linear_solver(analysis(name, 1e-10, hierarchy), p, coarse);
+      auto mg = make_linear_solver(analysis(name, 1e-10, hierarchy, false, coarsest_max), p, coarse);
       if (c.lattice_vcycles_stall && std::string(name) == "multigrid" && std::string(hierarchy) == "lattice") {
         // Says so instead of returning a solution that misses its tolerance.
         EXPECT_THROW(solve_static(p, *none, *mg, {false, 1, 1e-8, 1}), NotConverged) << what;
@@ -155,7 +159,7 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       o.rayleigh_alpha = 0.5;
       o.rayleigh_beta = 0.001;
       const SimulationResult dref = solve_dynamic(p, *polar_a, *direct, o);
-      auto mg_dyn = make_linear_solver(analysis(name, 1e-12, hierarchy, setup_reuse), p, coarse);
+      auto mg_dyn = make_linear_solver(analysis(name, 1e-12, hierarchy, setup_reuse, coarsest_max), p, coarse);
       const SimulationResult dgot = solve_dynamic(p, *polar_b, *mg_dyn, o);
       EXPECT_LT((dgot.displacement - dref.displacement).norm(), 1e-8 * dref.displacement.norm())
           << what << " dynamic";
@@ -190,6 +194,34 @@ TEST(MultigridSolver, BunnySolutionsEqualCholmod) {
   coarse.size = 0.18579;
   spec.levels = {coarse};
   expect_solutions_equal_cholmod({"bunny", spec, load_scene_mesh(spec), {}, 2, true});
+}
+
+TEST(MultigridSolver, CoarsestMaxVerticesAddsLatticeLevelsBelowTheMeshes) {
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::Quadruped;
+  spec.size = 0.1;
+  const TetMesh fine = load_scene_mesh(spec);
+  const std::vector<TetMesh> coarse = coarse_meshes(spec, 3, "quadruped");
+  const std::vector<char> fixed(fine.num_vertices(), 0);
+  HierarchyParams params;
+  params.kind = HierarchyKind::Meshes;
+  params.levels = 3;
+  const BuiltHierarchy meshes_only = build_hierarchy(fine, fixed, params, coarse);
+  ASSERT_EQ(meshes_only.transfers.size(), 2u);
+  const int mesh_coarsest = meshes_only.transfers.back().coarse;
+  params.coarsest_max_vertices = mesh_coarsest / 5;
+  const BuiltHierarchy built = build_hierarchy(fine, fixed, params, coarse);
+  ASSERT_GT(built.transfers.size(), 2u);
+  EXPECT_EQ(built.transfers[1].coarse, mesh_coarsest);  // the meshes' levels unchanged
+  for (std::size_t h = 2; h < built.transfers.size(); ++h) {
+    const Transfer& t = built.transfers[h];
+    EXPECT_EQ(t.fine, built.transfers[h - 1].coarse);
+    EXPECT_LE(2 * t.coarse, t.fine) << "level " << h + 1 << " does not halve";
+    EXPECT_EQ(built.levels[h]["source"], "lattice below the coarsest");
+  }
+  // This body coarsens by halves all the way: it stops at the limit.
+  EXPECT_LE(built.transfers.back().coarse, params.coarsest_max_vertices);
+  EXPECT_GT(built.transfers.back().coarse, params.coarsest_max_vertices / 8);
 }
 
 TEST(MultigridSolver, IterationCapAboveToleranceIsNotConverged) {

@@ -184,17 +184,41 @@ TEST_F(ThreadsTest, StreamProductIsTheOneThreadBitsAndTheOracle) {
     }
 }
 
-TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
+/// A smoother's test system: the quadruped's small-strain K + M/dt^2 (as a dynamic step's
+/// matrix), a right-hand side, and its dense form and exact solution (the oracles).
+struct SmootherSystem {
+  BrcMatrix a;
+  Eigen::VectorXd b;
+  Eigen::MatrixXd dense;
+  Eigen::VectorXd exact;
+};
+
+SmootherSystem smoother_system() {
   SceneSimulation sim = quadruped(0.12);
   FeProblem& p = sim.problem();
   const std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd f0;
   assemble_corotated(p.elements, p.mesh.tets, p.assembly, identity, p.stiffness, f0);
-  BrcMatrix a = p.stiffness;
-  for (int i = 0; i < a.block_rows; ++i) a.block(a.find(i, i)) += 1e3 * Mat3::Identity();  // + M/dt^2
-  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * a.block_rows, -1, 1);
-  const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));
-  const Eigen::VectorXd exact = dense.ldlt().solve(b);
+  SmootherSystem s{p.stiffness, {}, {}, {}};
+  for (int i = 0; i < s.a.block_rows; ++i) s.a.block(s.a.find(i, i)) += 1e3 * Mat3::Identity();  // + M/dt^2
+  s.b = Eigen::VectorXd::LinSpaced(3 * s.a.block_rows, -1, 1);
+  s.dense = Eigen::MatrixXd(to_eigen(s.a));
+  s.exact = s.dense.ldlt().solve(s.b);
+  return s;
+}
+
+/// The A-norm squared of x's error.
+double error_energy(const SmootherSystem& s, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd err = s.exact - x;
+  return err.dot(s.dense * err);
+}
+
+TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
+  const SmootherSystem system = smoother_system();
+  const BrcMatrix& a = system.a;
+  const Eigen::VectorXd& b = system.b;
+  const Eigen::MatrixXd& dense = system.dense;
+  const Eigen::VectorXd& exact = system.exact;
   // Domains of 200 rows: this small mesh gets several, with boundaries between them.
   for (const SmootherOrdering ordering : {SmootherOrdering::Multicolour, SmootherOrdering::Domains}) {
     SCOPED_TRACE(smoother_ordering_name(ordering));
@@ -209,8 +233,7 @@ TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
         gs.forward(a, b, x);
         gs.backward(a, b, x);
         // Symmetric Gauss-Seidel reduces the A-norm of the error, whatever the order.
-        const Eigen::VectorXd err = exact - x;
-        const double energy = err.dot(dense * err);
+        const double energy = error_energy(system, x);
         EXPECT_LT(energy, previous);
         previous = energy;
       }
@@ -229,8 +252,71 @@ TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
   }
 }
 
+TEST_F(ThreadsTest, HybridSmootherIsItsDenseSplittingAtEveryCount) {
+  // Oracle: a forward sweep is x + M^-1 (b - A x) with M = D + D_l1 + L_domains built densely
+  // (D the diagonal blocks, L_domains the lower blocks inside a domain, D_l1 per scalar row the
+  // sum of |A| outside its domain); a backward sweep the same with M^T.
+  const SmootherSystem system = smoother_system();
+  const BrcMatrix& a = system.a;
+  const Eigen::VectorXd& b = system.b;
+  const Eigen::MatrixXd& dense = system.dense;
+  const Eigen::VectorXd& exact = system.exact;
+  const int domain_blocks = static_cast<int>(a.num_blocks() / 5);  // 5 domains, made 6
+  BlockGaussSeidel layout(SmootherOrdering::Hybrid, domain_blocks);
+  layout.set_matrix(a);
+  ASSERT_EQ(layout.num_domains(), 6);
+  EXPECT_GT(layout.boundary_rows(), 0);
+  EXPECT_LT(layout.boundary_rows(), a.block_rows);
+  std::vector<int> domain_of(3 * a.block_rows);
+  for (int d = 0; d < layout.num_domains(); ++d)
+    for (int i = layout.domain_rows_begin(d); i < layout.domain_rows_begin(d + 1); ++i)
+      for (int c = 0; c < 3; ++c) domain_of[3 * i + c] = d;
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(dense.rows(), dense.cols());
+  for (int r = 0; r < dense.rows(); ++r)
+    for (int c = 0; c < dense.cols(); ++c) {
+      if (domain_of[c] != domain_of[r])
+        m(r, r) += std::abs(dense(r, c));
+      else if (c / 3 <= r / 3)
+        m(r, c) += dense(r, c);
+    }
+  const Eigen::PartialPivLU<Eigen::MatrixXd> forward_lu(m), backward_lu(Eigen::MatrixXd(m.transpose()));
+  Eigen::VectorXd one;
+  for (const int n : kThreadCounts) {
+    ScopedThreadCount threads(n);
+    BlockGaussSeidel gs(SmootherOrdering::Hybrid, domain_blocks);
+    gs.set_matrix(a);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+    double previous = exact.dot(dense * exact);
+    for (int s = 0; s < 3; ++s) {
+      Eigen::VectorXd expected = x + forward_lu.solve(b - dense * x);
+      gs.forward(a, b, x);
+      EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm()) << "forward sweep " << s;
+      expected = x + backward_lu.solve(b - dense * x);
+      gs.backward(a, b, x);
+      EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm()) << "backward sweep " << s;
+      // M + M^T - A = D + 2 D_l1 - A_off is positive definite: the A-norm of the error falls.
+      const double energy = error_energy(system, x);
+      EXPECT_LT(energy, previous);
+      previous = energy;
+    }
+    if (n == 1) one = x;
+    EXPECT_TRUE(same_bits(x, one)) << n << " threads";
+  }
+  // One domain: exactly the sequential smoother.
+  BlockGaussSeidel hybrid(SmootherOrdering::Hybrid, static_cast<int>(a.num_blocks()) + 1), sequential;
+  hybrid.set_matrix(a);
+  sequential.set_matrix(a);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), y = x;
+  hybrid.forward(a, b, x);
+  hybrid.backward(a, b, x);
+  sequential.forward(a, b, y);
+  sequential.backward(a, b, y);
+  EXPECT_EQ(hybrid.num_domains(), 1);
+  EXPECT_TRUE(same_bits(x, y));
+}
+
 TEST_F(ThreadsTest, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
-  for (const std::string smoother : {"multicolour", "domains", "sequential"}) {
+  for (const std::string smoother : {"multicolour", "domains", "hybrid", "sequential"}) {
     Eigen::VectorXd one;
     for (const int n : {1, 2, 3, 2}) {  // 2 twice: run to run
       ScopedThreadCount threads(n);

@@ -1,7 +1,7 @@
 #pragma once
 // Nodal 3x3-block Gauss-Seidel: x_i <- D_ii^{-1} (b_i - sum_{j != i} A_ij x_j), vertex by vertex.
 // Forward then backward sweeps make the V-cycle a symmetric preconditioner for CG.
-// Three orderings, each a fixed order of the vertices whatever the thread count (so the same
+// Four orderings, each a fixed order of the vertices whatever the thread count (so the same
 // bits at every count), the backward sweep its exact reverse (so the pair stays symmetric):
 //  - sequential: the vertices' own order, one thread;
 //  - multicolour: vertices sharing no block get one colour and relax together on every thread;
@@ -10,6 +10,15 @@
 //    another domain) in their own order, the domains side by side on the threads, then the
 //    vertices on domain boundaries by colours. On a locality-ordered mesh nearly every vertex is
 //    interior, so this is nearly the sequential smoother, with its locality, on every thread.
+//  - hybrid: l1 hybrid Gauss-Seidel (Baker, Falgout, Kolev and Yang 2011, "Multigrid smoothers
+//    for ultraparallel computing", the l1-GS of hypre's BoomerAMG): the rows split into an even
+//    number of contiguous domains of about 24576 blocks (a count set by the level's size: some
+//    2000 fine vertices, fewer on the denser Galerkin levels); each
+//    domain relaxes its rows in order, Gauss-Seidel inside it and Jacobi across its boundary (the
+//    other domains' values from before the sweep), its boundary rows' diagonal blocks increased
+//    by the l1 norm of their off-domain entries, row by row. That makes the smoother M = D + D_l1
+//    + L_domains with M + M^T - A = D + 2 D_l1 - A_off positive definite, so the V-cycle stays a
+//    convergent SPD preconditioner; no colouring, so every row keeps the sequential locality.
 // Their rho against each other: BM_MultigridQuality and verify/multigrid_solver_test.cpp.
 #include <Eigen/Core>
 #include <string>
@@ -19,39 +28,56 @@
 
 namespace corofem {
 
-enum class SmootherOrdering { Sequential, Multicolour, Domains };
-SmootherOrdering smoother_ordering(const std::string& name);  ///< "sequential" | "multicolour" | "domains"
+enum class SmootherOrdering { Sequential, Multicolour, Domains, Hybrid };
+SmootherOrdering smoother_ordering(const std::string& name);  ///< "sequential" | "multicolour" | "domains" | "hybrid"
 const char* smoother_ordering_name(SmootherOrdering ordering);
 
 class BlockGaussSeidel {
  public:
-  /// `domain_rows`: the domains' size for the domains ordering.
-  explicit BlockGaussSeidel(SmootherOrdering ordering = SmootherOrdering::Sequential, int domain_rows = 4096)
-      : ordering_(ordering), domain_rows_target_(domain_rows) {}
+  /// `domain_size`: the domains' size, in vertices for the domains ordering (0: 4096), in blocks
+  /// for the hybrid one (0: 24576).
+  explicit BlockGaussSeidel(SmootherOrdering ordering = SmootherOrdering::Sequential, int domain_size = 0)
+      : ordering_(ordering),
+        domain_size_(domain_size > 0 ? domain_size : ordering == SmootherOrdering::Hybrid ? 24576 : 4096) {}
   /// Inverts the diagonal blocks of A (recompute whenever A's values change); colours A's
   /// pattern the first time (multicolour).
   void set_matrix(const BrcMatrix& a);
   void forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   void backward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
-  /// z = D^{-1} r with the same inverted diagonal blocks (the block-Jacobi preconditioner).
+  /// z = D^{-1} r with the same inverted diagonal blocks (the block-Jacobi preconditioner; with
+  /// the hybrid ordering, the l1-augmented ones).
   void block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
   int num_colours() const { return static_cast<int>(colour_start_.size()) - 1; }
   int num_domains() const { return static_cast<int>(domain_start_.size()) - 1; }
   /// Rows relaxed by colours (all of them for multicolour, the domain boundaries for domains).
   int coloured_rows() const { return static_cast<int>(colour_rows_.size()); }
+  /// Hybrid: rows with a neighbour in another domain (coupled to it by Jacobi), and domain d's
+  /// rows [domain_rows_begin(d), domain_rows_begin(d + 1)).
+  int boundary_rows() const { return boundary_rows_; }
+  int domain_rows_begin(int d) const { return domain_start_[d]; }
 
  private:
   void relax(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i) const;
   void sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int colour) const;
   void sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
+  void relax_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i) const;
+  void sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
   void order_rows(const BrcMatrix& a);
+  void order_hybrid(const BrcMatrix& a);
   SmootherOrdering ordering_;
-  int domain_rows_target_;
+  int domain_size_;
   bool ordered_ = false;
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   std::vector<int> diagonal_block_;
   std::vector<int> colour_start_, colour_rows_;  ///< rows of each colour, ascending
   std::vector<int> domain_start_, domain_rows_;  ///< interior rows of each domain, ascending
+  // Hybrid: domain d is rows [domain_start_[d], domain_start_[d + 1]); row i's in-domain blocks
+  // are [own_begin_[i], own_end_[i]) (columns sorted, the domain contiguous); l1_[i] sums the
+  // magnitudes of its off-domain entries per scalar row.
+  std::vector<int> own_begin_, own_end_;
+  std::vector<Eigen::Vector3d> l1_;
+  int boundary_rows_ = 0;
+  mutable Eigen::VectorXd frozen_;  ///< x at the start of a hybrid sweep
 };
 
 }  // namespace corofem

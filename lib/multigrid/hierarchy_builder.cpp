@@ -21,6 +21,7 @@ std::string hierarchy_name(HierarchyKind kind) {
 nlohmann::json HierarchyParams::to_json() const {
   nlohmann::json j = {{"kind", hierarchy_name(kind)}, {"levels", levels}};
   if (kind == HierarchyKind::Lattice) j["first_cell_factor"] = first_cell_factor;
+  if (coarsest_max_vertices > 0) j["coarsest_max_vertices"] = coarsest_max_vertices;
   return j;
 }
 
@@ -32,6 +33,7 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
   std::vector<Vec3> points = fine.rest;
   std::vector<char> level_fixed = fixed;
   double cell = params.first_cell_factor * mean_edge_length(fine);
+  double spacing = mean_edge_length(fine);  // of the last level built
   for (int h = 1; h < params.levels; ++h) {
     CoarseLevel coarse;
     nlohmann::json info;
@@ -39,6 +41,7 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
       coarse = make_lattice_level(points, level_fixed, cell);
       if (coarse.transfer.coarse == 0) break;  // nothing left to coarsen
       info = {{"source", "lattice"}, {"cell", cell}};
+      spacing = cell;
       cell *= 2;
     } else {
       if (static_cast<int>(coarse_meshes.size()) < h)
@@ -47,6 +50,7 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
       const TetMesh& mesh = coarse_meshes[h - 1];
       MeshLevelFit fit;
       coarse = make_mesh_level(points, level_fixed, mesh, mesh.source, &fit);
+      spacing = mean_edge_length(mesh);
       info = {{"source", mesh.source},
               {"mesh_vertices", mesh.num_vertices()},
               {"mesh_tets", mesh.num_tets()},
@@ -61,6 +65,16 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
     built.transfers.push_back(std::move(coarse.transfer));
     points = std::move(coarse.points);
     level_fixed.clear();  // coarse levels have no fixed vertices
+  }
+  // Lattice levels below, while the coarsest is too big to factor cheaply every step.
+  const int limit = params.coarsest_max_vertices;
+  while (limit > 0 && static_cast<int>(points.size()) > limit && !built.transfers.empty()) {
+    spacing *= 2;
+    CoarseLevel coarse = make_lattice_level(points, level_fixed, spacing);
+    if (2 * coarse.transfer.coarse > static_cast<int>(points.size())) break;  // not worth a level
+    built.levels.push_back({{"source", "lattice below the coarsest"}, {"cell", spacing}});
+    built.transfers.push_back(std::move(coarse.transfer));
+    points = std::move(coarse.points);
   }
   built.setup_ms["transfers"] =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

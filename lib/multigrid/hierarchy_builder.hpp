@@ -20,6 +20,10 @@ struct HierarchyParams {
   HierarchyKind kind = HierarchyKind::Lattice;
   int levels = 3;                  ///< including the fine level
   double first_cell_factor = 1.5;  ///< lattice: level-1 cell = factor x mean fine edge length
+  /// Below the `levels` levels, lattice levels (cell twice the last level's spacing, doubling)
+  /// until the coarsest has at most this many vertices: its factorization, every step, then
+  /// costs little (0 = none added). Stops when a lattice level would not halve the vertices.
+  int coarsest_max_vertices = 0;
 
   nlohmann::json to_json() const;
 };
@@ -33,7 +37,7 @@ struct BuiltHierarchy {
 /// Transfers for `params.levels` levels below the fine mesh. `fixed` per fine vertex (its DOFs
 /// take no part in the transfer). Meshes: `coarse_meshes[h - 1]` is level h (at least
 /// levels - 1 of them; `names` for messages). Lattice: stops early when nothing is left to
-/// coarsen. Throws InputError for a coarse mesh that does not cover the level above.
+/// coarsen. Then lattice levels down to `params.coarsest_max_vertices`. Throws InputError for a coarse mesh that does not cover the level above.
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes = {});

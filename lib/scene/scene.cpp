@@ -176,9 +176,10 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.hierarchy = one_of(f, "hierarchy", a.hierarchy, {"meshes", "lattice"});
   const bool multigrid = is_multigrid_solver(a.solver);
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
+  a.coarsest_max_vertices = integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  a.smoother = one_of(f, "smoother", a.smoother, {"sequential", "multicolour", "domains"});
+  a.smoother = one_of(f, "smoother", a.smoother, {"sequential", "multicolour", "domains", "hybrid"});
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);

@@ -54,7 +54,7 @@ struct MoveSpec {
 
 /// The `analysis` keys that belong to the multigrid solvers (ignored, with a warning, by others).
 inline constexpr const char* kMultigridAnalysisKeys[] = {"levels", "vcycles", "smoothing", "galerkin",
-                                                         "hierarchy", "smoother"};
+                                                         "hierarchy", "smoother", "coarsest_max_vertices"};
 
 /// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
 inline bool is_multigrid_solver(const std::string& solver) {
@@ -84,11 +84,15 @@ struct AnalysisSpec {
   /// `mesh.levels` gives them) | lattice (covering Kuhn lattices)
   std::string hierarchy = "lattice";
   int levels = 1;
+  /// Lattice levels below the `levels` ones until the coarsest has at most this many vertices
+  /// (0: none); see README "Multigrid"
+  int coarsest_max_vertices = 0;
   int vcycles = 0;          ///< 0: iterate to tolerance
   int smoothing = 1;
-  /// Gauss-Seidel ordering: domains (the default: every thread, rho as sequential) | sequential
-  /// (one thread) | multicolour (every thread, a worse rho); see README "Multigrid"
-  std::string smoother = "domains";
+  /// Gauss-Seidel ordering: hybrid (the default: l1 Gauss-Seidel in domains, Jacobi across them,
+  /// every thread) | domains (exact Gauss-Seidel, boundaries by colours) | sequential (one
+  /// thread) | multicolour (every thread, a worse rho); see README "Multigrid"
+  std::string smoother = "hybrid";
   double dt = 0.01;
   int steps = 1;
   int load_steps = 1;

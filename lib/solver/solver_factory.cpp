@@ -13,6 +13,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   MultigridParams p;
   p.hierarchy.kind = hierarchy_kind(a.hierarchy);
   p.hierarchy.levels = a.levels;
+  p.hierarchy.coarsest_max_vertices = a.coarsest_max_vertices;
   p.pre_smoothing = p.post_smoothing = a.smoothing;
   p.vcycles = a.vcycles;
   p.tolerance = a.tolerance;
