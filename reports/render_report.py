@@ -183,13 +183,19 @@ def render_tables(tables, folder, md):
     md.append("\n")
     rows = []
     for r in tables.get("jacobi_pcg", []):
+        stiffness = f"x{num(r.get('young_scale', 1))}"
         if failed(r):
-            rows.append([r["model"], failure_text(r), "", "", ""])
+            rows.append([r["model"], stiffness, failure_text(r), "", "", "", ""])
             continue
-        rows.append([r["model"], t(r["step_ms"]), num(r["iterations"]), t(r.get("mgpcg_step_ms")),
-                     num(r.get("mgpcg_iterations"))])
+        rows.append([r["model"], stiffness, t(r["step_ms"]), num(r["iterations"]), t(r.get("mgpcg_step_ms")),
+                     num(r.get("mgpcg_iterations")), t(ratio(r["step_ms"], r.get("mgpcg_step_ms")))])
     md.append("### Jacobi-PCG at the same accuracy\n\n")
-    md.append(table(["model", "Jacobi-PCG step ms", "CG iterations", "MG-PCG step ms", "MG-PCG iterations"], rows))
+    md.append("- On each scene and on the same scene with every Young's modulus 100x. At the paper's soft "
+              "materials and dt, M + dt^2 K is dominated by the mass matrix and well conditioned: CG with the "
+              "block diagonal needs few iterations and its cheap steps tie the V-cycle's. Stiffer, the "
+              "condition number grows with E, Jacobi-PCG's iterations with its square root, MG-PCG's barely.\n\n")
+    md.append(table(["model", "Young's modulus", "Jacobi-PCG step ms", "CG iterations", "MG-PCG step ms",
+                     "MG-PCG iterations", "Jacobi / MG-PCG"], rows))
     md.append("\n")
     render_multigrid_quality(tables, md)
     render_rival_solvers(tables, md)

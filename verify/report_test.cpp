@@ -173,6 +173,19 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     ASSERT_FALSE(t[section].empty()) << section;
     for (const json& row : t[section]) EXPECT_TRUE(row["completed"].get<bool>()) << section << row.dump();
   }
+  // Jacobi-PCG on each scene and 100x stiffer: its CG iterations grow as the condition number's
+  // square root (10x in theory for 100x E, once K dominates M / dt^2), MG-PCG's far less.
+  ASSERT_EQ(t["jacobi_pcg"].size(), 2 * t["table1"].size());
+  for (std::size_t k = 0; k + 1 < t["jacobi_pcg"].size(); k += 2) {
+    const json& soft = t["jacobi_pcg"][k];
+    const json& stiff = t["jacobi_pcg"][k + 1];
+    ASSERT_EQ(soft["young_scale"].get<double>(), 1.0);
+    ASSERT_EQ(stiff["young_scale"].get<double>(), 100.0);
+    const double jacobi_growth = stiff["iterations"].get<double>() / soft["iterations"].get<double>();
+    const double mgpcg_growth = stiff["mgpcg_iterations"].get<double>() / soft["mgpcg_iterations"].get<double>();
+    EXPECT_GT(jacobi_growth, 2.0) << stiff.dump();
+    EXPECT_GT(jacobi_growth, 1.5 * mgpcg_growth) << stiff.dump();
+  }
   expect_keys(t["table2"][0], {"model", "tps", "paper_tps"}, "table2 row");
   // Multigrid quality: both hierarchies for every table row, each coarsening the fine mesh of
   // that row, with a contracting V-cycle.

@@ -154,6 +154,15 @@ json with_analysis(json scene, const json& changes) {
   return scene;
 }
 
+json with_young_scaled(json scene, double scale) {
+  json& material = scene["material"];
+  material["young"] = material["young"].get<double>() * scale;
+  if (material.contains("regions"))
+    for (json& region : material["regions"])
+      if (region.contains("young")) region["young"] = region["young"].get<double>() * scale;
+  return scene;
+}
+
 json probe_box(const std::string& model) {
   if (model == "cantilever" || model == "twisting-bar") return box(1.5, 0, 0, 1.55, 0.5, 0.5);
   if (model == "quadruped") return kHead;

@@ -35,6 +35,9 @@ nlohmann::json table_scene(const std::string& model, SceneSize size, int steps, 
 /// `scene` with analysis keys replaced by `changes` (the multigrid keys dropped for other solvers).
 nlohmann::json with_analysis(nlohmann::json scene, const nlohmann::json& changes);
 
+/// `scene` with every Young's modulus (the material's and its regions') times `scale`.
+nlohmann::json with_young_scaled(nlohmann::json scene, double scale);
+
 /// The region whose mean displacement the resolution sweep compares (a box [[lo],[hi]]).
 nlohmann::json probe_box(const std::string& model);
 
