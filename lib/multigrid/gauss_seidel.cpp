@@ -76,7 +76,6 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
       for (int k = a.row_start[i]; k < own_begin_[i]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
       for (int k = own_end_[i]; k < a.row_start[i + 1]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
       l1_[i] = l1;
-      l1_[i] = l1;
       d.diagonal() += l1;
     }
     inverse_diagonal_[i] = d.inverse();

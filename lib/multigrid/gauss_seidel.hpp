@@ -29,6 +29,9 @@
 namespace corofem {
 
 enum class SmootherOrdering { Sequential, Multicolour, Domains, Hybrid };
+/// The domains' default size: vertices for the domains ordering, blocks for the hybrid one.
+inline constexpr int kDomainVertices = 4096;
+inline constexpr int kHybridDomainBlocks = 24576;
 SmootherOrdering smoother_ordering(const std::string& name);  ///< "sequential" | "multicolour" | "domains" | "hybrid"
 const char* smoother_ordering_name(SmootherOrdering ordering);
 
@@ -38,7 +41,9 @@ class BlockGaussSeidel {
   /// for the hybrid one (0: 24576).
   explicit BlockGaussSeidel(SmootherOrdering ordering = SmootherOrdering::Sequential, int domain_size = 0)
       : ordering_(ordering),
-        domain_size_(domain_size > 0 ? domain_size : ordering == SmootherOrdering::Hybrid ? 24576 : 4096) {}
+        domain_size_(domain_size > 0                            ? domain_size
+                     : ordering == SmootherOrdering::Hybrid ? kHybridDomainBlocks
+                                                            : kDomainVertices) {}
   /// Inverts the diagonal blocks of A (recompute whenever A's values change); colours A's
   /// pattern the first time (multicolour).
   void set_matrix(const BrcMatrix& a);

@@ -31,15 +31,22 @@ std::map<std::string, double> means(const std::map<std::string, double>& totals,
 
 }  // namespace
 
+nlohmann::json MultigridParams::smoother_json() const {
+  nlohmann::json j = {{"kind", "block-gauss-seidel"},
+                      {"ordering", smoother_ordering_name(smoother)},
+                      {"pre_smoothing", pre_smoothing},
+                      {"post_smoothing", post_smoothing}};
+  if (smoother == SmootherOrdering::Hybrid) j["domain_blocks"] = kHybridDomainBlocks;
+  if (smoother == SmootherOrdering::Domains) j["domain_vertices"] = kDomainVertices;
+  return j;
+}
+
 nlohmann::json MultigridParams::to_json() const {
   const char* names[] = {"naive", "stream", "stream-full", "reuse"};
   return {{"hierarchy", hierarchy.to_json()},
           {"transfer", "barycentric in the containing or nearest coarse tet"},
           {"galerkin", names[static_cast<int>(galerkin)]},
-          {"smoother", {{"kind", "block-gauss-seidel"},
-                        {"ordering", smoother_ordering_name(smoother)},
-                        {"pre_smoothing", pre_smoothing},
-                        {"post_smoothing", post_smoothing}}},
+          {"smoother", smoother_json()},
           {"cycle", {{"kind", "V"},
                      {"vcycles", vcycles},
                      {"max_iterations", max_iterations},

@@ -24,6 +24,7 @@ struct MultigridParams {
   SmootherOrdering smoother = SmootherOrdering::Sequential;  ///< the Gauss-Seidel sweeps' order
 
   nlohmann::json to_json() const;
+  nlohmann::json smoother_json() const;  ///< the smoother's part of to_json()
 };
 
 class MultigridSolver : public LinearSolver {
