@@ -291,7 +291,7 @@ double asymptotic_rho(MultigridSolver& mg, const BrcMatrix& a, const std::vector
     if (fixed_dofs[d]) x[d] = 0;
   double previous = 0, ratio = 0;
   for (int k = 0; k < cycles; ++k) {
-    mg.vcycle(0, zero, x);
+    mg.vcycle(0, zero, x, false);
     a.multiply(x, r);
     ratio = previous > 0 ? r.norm() / previous : 0;
     previous = r.norm();
@@ -337,7 +337,7 @@ TEST(MultigridSolver, TwoGridEqualsDenseOperator) {
   for (int d = 0; d < n; ++d)
     if (p.dirichlet.fixed[d]) x[d] = 0;
   const Eigen::VectorXd expected = E * x;
-  mg->vcycle(0, Eigen::VectorXd::Zero(n), x);
+  mg->vcycle(0, Eigen::VectorXd::Zero(n), x, false);
   // A few thousand flops per entry in another order: round-off ~1e-15 relative.
   EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm());
   const Eigen::VectorXcd eigenvalues = Eigen::EigenSolver<Eigen::MatrixXd>(E, false).eigenvalues();

@@ -337,6 +337,53 @@ TEST_F(ThreadsTest, HybridSmootherIsItsDenseSplittingAtEveryCount) {
   EXPECT_TRUE(same_bits(x, y));
 }
 
+TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks) {
+  // A V-cycle's first sweep of a correction: forward_from_zero must give exactly the bits of
+  // x = 0 followed by forward(), whatever x held, at every thread count. For the sequential and
+  // hybrid orderings it may read only the blocks below the diagonal (inside its domain): the same
+  // matrix with every other off-diagonal block made NaN must give the same bits.
+  const SmootherSystem system = smoother_system();
+  const BrcMatrix& a = system.a;
+  const Eigen::VectorXd& b = system.b;
+  const int domain_blocks = static_cast<int>(a.num_blocks() / 5);
+  for (const SmootherOrdering ordering : {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
+                                          SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
+    SCOPED_TRACE(smoother_ordering_name(ordering));
+    const bool lower_only = ordering == SmootherOrdering::Sequential || ordering == SmootherOrdering::Hybrid;
+    for (const int n : kThreadCounts) {
+      ScopedThreadCount threads(n);
+      BlockGaussSeidel gs(ordering, ordering == SmootherOrdering::Domains ? 200 : domain_blocks);
+      gs.set_matrix(a);
+      Eigen::VectorXd expected = Eigen::VectorXd::Zero(b.size());
+      gs.forward(a, b, expected);
+      Eigen::VectorXd x = Eigen::VectorXd::Constant(b.size(), std::nan(""));
+      gs.forward_from_zero(a, b, x);
+      EXPECT_TRUE(same_bits(x, expected)) << n << " threads";
+      if (!lower_only) continue;
+      // The sequential ordering is one domain of all rows.
+      const bool hybrid = ordering == SmootherOrdering::Hybrid;
+      const int domains = hybrid ? gs.num_domains() : 1;
+      const auto begin = [&](int d) { return hybrid ? gs.domain_rows_begin(d) : d * a.block_rows; };
+      BrcMatrix poisoned = a;
+      int kept = 0;
+      for (int d = 0; d < domains; ++d)
+        for (int i = begin(d); i < begin(d + 1); ++i)
+          for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
+            const int j = a.col_index[k];
+            if (j < i && j >= begin(d)) {
+              ++kept;
+              continue;
+            }
+            if (j != i) poisoned.block(k).setConstant(std::nan(""));
+          }
+      EXPECT_LT(2 * kept, a.num_blocks());
+      Eigen::VectorXd y;
+      gs.forward_from_zero(poisoned, b, y);
+      EXPECT_TRUE(same_bits(y, expected)) << n << " threads, upper blocks poisoned";
+    }
+  }
+}
+
 TEST_F(ThreadsTest, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
   for (const std::string smoother : {"multicolour", "domains", "hybrid", "sequential"}) {
     Eigen::VectorXd one;

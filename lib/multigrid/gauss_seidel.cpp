@@ -75,7 +75,6 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
       Eigen::Vector3d l1 = Eigen::Vector3d::Zero();
       for (int k = a.row_start[i]; k < own_begin_[i]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
       for (int k = own_end_[i]; k < a.row_start[i + 1]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
-      l1_[i] = l1;
       d.diagonal() += l1;
     }
     inverse_diagonal_[i] = d.inverse();
@@ -117,7 +116,6 @@ void BlockGaussSeidel::order_hybrid(const BrcMatrix& a) {
   domain_start_ = balanced_ranges(prefix, domains);
   own_begin_.resize(a.block_rows);
   own_end_.resize(a.block_rows);
-  l1_.assign(a.block_rows, Eigen::Vector3d::Zero());
   boundary_rows_ = 0;
   for (int d = 0; d < domains; ++d) {
     const int lo = domain_start_[d], hi = domain_start_[d + 1];
@@ -130,17 +128,84 @@ void BlockGaussSeidel::order_hybrid(const BrcMatrix& a) {
   }
 }
 
-void BlockGaussSeidel::relax_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                    int i) const {
-  // (D + D_l1) x_i = b_i + D_l1 x_i - sum_{own j != i} A_ij x_j - sum_{other j} A_ij frozen_j
-  Eigen::Vector3d r = b.segment<3>(3 * i) + l1_[i].cwiseProduct(x.segment<3>(3 * i));
-  for (int k = a.row_start[i]; k < own_begin_[i]; ++k)
-    r.noalias() -= a.block(k) * frozen_.segment<3>(3 * a.col_index[k]);
-  for (int k = own_begin_[i]; k < own_end_[i]; ++k)
-    if (k != diagonal_block_[i]) r.noalias() -= a.block(k) * x.segment<3>(3 * a.col_index[k]);
-  for (int k = own_end_[i]; k < a.row_start[i + 1]; ++k)
-    r.noalias() -= a.block(k) * frozen_.segment<3>(3 * a.col_index[k]);
-  x.segment<3>(3 * i) = inverse_diagonal_[i] * r;
+namespace {
+
+/// s += sum_k A_k x_{col k} over blocks [begin, end) (descending: from end - 1 down), the
+/// product's scalar kernel (brc_matrix.cpp), each row's three terms summed left to right.
+template <bool Descending = false>
+inline void add_blocks(const BrcMatrix& a, int begin, int end, const double* x, double s[3]) {
+  const double* v = a.values.data();
+  for (int n = begin; n < end; ++n) {
+    const int k = Descending ? end - 1 - (n - begin) : n;
+    const double* m = v + 9 * k;
+    const double* xj = x + 3 * a.col_index[k];
+    s[0] += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
+    s[1] += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
+    s[2] += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];
+  }
+}
+
+/// x_i = D^{-1} r with D^{-1} row-major.
+inline void solve_diagonal(const double* inverse, const double r[3], double* xi) {
+  xi[0] = inverse[0] * r[0] + inverse[1] * r[1] + inverse[2] * r[2];
+  xi[1] = inverse[3] * r[0] + inverse[4] * r[1] + inverse[5] * r[2];
+  xi[2] = inverse[6] * r[0] + inverse[7] * r[1] + inverse[8] * r[2];
+}
+
+}  // namespace
+
+template <bool Hybrid, bool Backward>
+void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo,
+                                 int hi) const {
+  // x_i += M_ii^{-1} (b_i - sum_j A_ij y_j), y_j = x_j in the own domain [lo, hi) (x_i itself
+  // included), frozen_j outside it: for the hybrid smoother M_ii = D + D_l1, and this is
+  // (D + D_l1) x_i' = b_i + D_l1 x_i - sum_{j != i} A_ij y_j. One loop over the row (not one per
+  // part of it: their exits would be mispredicted branches, and cost more than the blocks).
+  // A backward sweep reads the row's blocks backwards too: the whole sweep then streams the
+  // matrix downwards, which the hardware prefetchers follow; ascending blocks in descending rows
+  // made the backward sweep 2.8x a product against the forward one's 1.3x (BM_SmootherSweep).
+  double* xs = x.data();
+  const double* frozen = Hybrid ? frozen_.data() : xs;
+  const double* v = a.values.data();
+  const unsigned width = static_cast<unsigned>(hi - lo);
+  double s0 = 0, s1 = 0, s2 = 0;
+  const int first = a.row_start[i], last = a.row_start[i + 1];
+  for (int n = first; n < last; ++n) {
+    const int k = Backward ? last - 1 - (n - first) : n;
+    const int j = a.col_index[k];
+    const double* xj = (Hybrid && static_cast<unsigned>(j - lo) >= width ? frozen : xs) + 3 * j;
+    const double* m = v + 9 * k;
+    s0 += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
+    s1 += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
+    s2 += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];
+  }
+  const double r[3] = {b[3 * i] - s0, b[3 * i + 1] - s1, b[3 * i + 2] - s2};
+  double dx[3];
+  solve_diagonal(inverse_diagonal_[i].data(), r, dx);
+  for (int c = 0; c < 3; ++c) xs[3 * i + c] += dx[c];
+}
+
+void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  x.resize(b.size());
+  const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
+  if (!hybrid && ordering_ != SmootherOrdering::Sequential) {
+    x.setZero();
+    return forward(a, b, x);
+  }
+  // From x = 0 a row reads only the values this sweep already wrote: its own domain's columns
+  // below the diagonal (every other term multiplies a zero), so half the matrix is read.
+  double* xs = x.data();
+  const int domains = hybrid ? num_domains() : 1;
+#pragma omp parallel for schedule(static, 1) num_threads(std::min(domains, threads_for(a.num_blocks())))
+  for (int d = 0; d < domains; ++d) {
+    const int first = hybrid ? domain_start_[d] : 0, last = hybrid ? domain_start_[d + 1] : a.block_rows;
+    for (int i = first; i < last; ++i) {
+      double fresh[3] = {0, 0, 0};
+      add_blocks(a, hybrid ? own_begin_[i] : a.row_start[i], diagonal_block_[i], xs, fresh);
+      const double r[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
+      solve_diagonal(inverse_diagonal_[i].data(), r, xs + 3 * i);
+    }
+  }
 }
 
 void BlockGaussSeidel::sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
@@ -150,9 +215,11 @@ void BlockGaussSeidel::sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b
 #pragma omp parallel for schedule(static, 1) num_threads(std::min(domains, threads_for(a.num_blocks())))
   for (int d = 0; d < domains; ++d) {
     if (forward)
-      for (int i = domain_start_[d]; i < domain_start_[d + 1]; ++i) relax_hybrid(a, b, x, i);
+      for (int i = domain_start_[d]; i < domain_start_[d + 1]; ++i)
+        relax_row<true, false>(a, b, x, i, domain_start_[d], domain_start_[d + 1]);
     else
-      for (int i = domain_start_[d + 1] - 1; i >= domain_start_[d]; --i) relax_hybrid(a, b, x, i);
+      for (int i = domain_start_[d + 1] - 1; i >= domain_start_[d]; --i)
+        relax_row<true, true>(a, b, x, i, domain_start_[d], domain_start_[d + 1]);
   }
 }
 
@@ -163,25 +230,19 @@ void BlockGaussSeidel::sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& 
 #pragma omp parallel for schedule(static, 1) num_threads(std::min(domains, threads_for(a.block_rows)))
   for (int d = 0; d < domains; ++d) {
     if (forward)
-      for (int n = domain_start_[d]; n < domain_start_[d + 1]; ++n) relax(a, b, x, domain_rows_[n]);
+      for (int n = domain_start_[d]; n < domain_start_[d + 1]; ++n)
+        relax_row<false, false>(a, b, x, domain_rows_[n], 0, 0);
     else
-      for (int n = domain_start_[d + 1] - 1; n >= domain_start_[d]; --n) relax(a, b, x, domain_rows_[n]);
+      for (int n = domain_start_[d + 1] - 1; n >= domain_start_[d]; --n)
+        relax_row<false, true>(a, b, x, domain_rows_[n], 0, 0);
   }
-}
-
-void BlockGaussSeidel::relax(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                             int i) const {
-  Eigen::Vector3d r = b.segment<3>(3 * i);
-  for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
-    if (k != diagonal_block_[i]) r.noalias() -= a.block(k) * x.segment<3>(3 * a.col_index[k]);
-  x.segment<3>(3 * i) = inverse_diagonal_[i] * r;
 }
 
 void BlockGaussSeidel::sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                     int colour) const {
   const int first = colour_start_[colour], last = colour_start_[colour + 1];
 #pragma omp parallel for schedule(static) num_threads(threads_for(last - first))
-  for (int n = first; n < last; ++n) relax(a, b, x, colour_rows_[n]);
+  for (int n = first; n < last; ++n) relax_row<false, false>(a, b, x, colour_rows_[n], 0, 0);
 }
 
 void BlockGaussSeidel::forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
@@ -191,7 +252,7 @@ void BlockGaussSeidel::forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eig
     for (int c = 0; c < num_colours(); ++c) sweep_colour(a, b, x, c);
     return;
   }
-  for (int i = 0; i < a.block_rows; ++i) relax(a, b, x, i);
+  for (int i = 0; i < a.block_rows; ++i) relax_row<false, false>(a, b, x, i, 0, 0);
 }
 
 void BlockGaussSeidel::backward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
@@ -201,14 +262,14 @@ void BlockGaussSeidel::backward(const BrcMatrix& a, const Eigen::VectorXd& b, Ei
     if (ordering_ == SmootherOrdering::Domains) sweep_domains(a, b, x, false);
     return;
   }
-  for (int i = a.block_rows - 1; i >= 0; --i) relax(a, b, x, i);
+  for (int i = a.block_rows - 1; i >= 0; --i) relax_row<false, true>(a, b, x, i, 0, 0);
 }
 
 void BlockGaussSeidel::block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   z.resize(r.size());
   const int n = static_cast<int>(inverse_diagonal_.size());
 #pragma omp parallel for schedule(static) num_threads(threads_for(n))
-  for (int i = 0; i < n; ++i) z.segment<3>(3 * i) = inverse_diagonal_[i] * r.segment<3>(3 * i);
+  for (int i = 0; i < n; ++i) solve_diagonal(inverse_diagonal_[i].data(), r.data() + 3 * i, z.data() + 3 * i);
 }
 
 }  // namespace corofem

@@ -49,6 +49,10 @@ class BlockGaussSeidel {
   void set_matrix(const BrcMatrix& a);
   void forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   void backward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// x = the forward sweep from x = 0, whatever x holds on entry (a V-cycle's pre-smoothing of
+  /// a correction): the same bits as x.setZero(); forward(a, b, x), reading for the sequential
+  /// and hybrid orderings only the blocks below the diagonal.
+  void forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// z = D^{-1} r with the same inverted diagonal blocks (the block-Jacobi preconditioner; with
   /// the hybrid ordering, the l1-augmented ones).
   void block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
@@ -62,25 +66,25 @@ class BlockGaussSeidel {
   int domain_rows_begin(int d) const { return domain_start_[d]; }
 
  private:
-  void relax(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i) const;
   void sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int colour) const;
   void sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
-  void relax_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i) const;
+  /// Relaxes row i: every column read from x, or, for the hybrid smoother, from x inside the
+  /// row's domain [lo, hi) and from frozen_ outside it; Backward: its blocks in reverse order.
+  template <bool Hybrid, bool Backward>
+  void relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo, int hi) const;
   void sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
   void order_rows(const BrcMatrix& a);
   void order_hybrid(const BrcMatrix& a);
   SmootherOrdering ordering_;
   int domain_size_;
   bool ordered_ = false;
-  std::vector<Eigen::Matrix3d> inverse_diagonal_;
+  std::vector<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inverse_diagonal_;
   std::vector<int> diagonal_block_;
   std::vector<int> colour_start_, colour_rows_;  ///< rows of each colour, ascending
   std::vector<int> domain_start_, domain_rows_;  ///< interior rows of each domain, ascending
   // Hybrid: domain d is rows [domain_start_[d], domain_start_[d + 1]); row i's in-domain blocks
-  // are [own_begin_[i], own_end_[i]) (columns sorted, the domain contiguous); l1_[i] sums the
-  // magnitudes of its off-domain entries per scalar row.
+  // are [own_begin_[i], own_end_[i]) (columns sorted, the domain contiguous).
   std::vector<int> own_begin_, own_end_;
-  std::vector<Eigen::Vector3d> l1_;
   int boundary_rows_ = 0;
   mutable Eigen::VectorXd frozen_;  ///< x at the start of a hybrid sweep
 };

@@ -153,7 +153,7 @@ void MultigridSolver::update_coarsest() {
   }
 }
 
-void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
   const int last = hierarchy_.num_levels() - 1;
   if (h == last) {
     timed(solve_ms_, "coarsest", [&] { x = coarsest_->cholmod.solve(b); });
@@ -165,7 +165,14 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
   const char* residual = fine ? "fine_residual" : "coarse_levels";
   const char* transfer = fine ? "fine_transfer" : "coarse_levels";
   timed(solve_ms_, smooth, [&] {
-    for (int s = 0; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
+    int s = 0;
+    if (zero_guess && params_.pre_smoothing > 0) {
+      smoothers_[h].forward_from_zero(a, b, x);
+      ++s;
+    } else if (zero_guess) {
+      x.setZero(b.size());
+    }
+    for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
   });
   timed(solve_ms_, residual, [&] {
     a.multiply(x, residual_[h]);
@@ -173,9 +180,8 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
   });
   timed(solve_ms_, transfer, [&] {
     hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]);
-    coarse_x_[h + 1].setZero(coarse_b_[h + 1].size());
   });
-  vcycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1]);
+  vcycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1], true);
   timed(solve_ms_, transfer, [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
   timed(solve_ms_, smooth, [&] {
     for (int s = 0; s < params_.post_smoothing; ++s) smoothers_[h].backward(a, b, x);
@@ -193,7 +199,7 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
   const BrcMatrix& a = hierarchy_.matrix(0);
   if (preconditioner_)
     return preconditioned_cg(
-        a, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { vcycle(0, r, z); },
+        a, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { vcycle(0, r, z, true); },
         params_.tolerance, params_.max_iterations, "mgpcg");
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
@@ -203,7 +209,7 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
   double rk = r0;
   for (int k = 0; k < cap; ++k) {
     if (params_.vcycles == 0 && rk <= params_.tolerance * b_norm) break;
-    vcycle(0, b, x);
+    vcycle(0, b, x, false);
     rk = (b - a * x).norm();
     ++stats.iterations;
     if (!std::isfinite(rk)) throw NumericalFault("multigrid: residual became non-finite");

@@ -37,7 +37,18 @@ Traffic gauss_seidel_sweep(const BrcMatrix& a) {
           18.0 * static_cast<double>(a.col_index.size()) + 21.0 * a.block_rows};
 }
 
-/// One V-cycle from level h (multigrid_solver.cpp vcycle).
+/// The first forward sweep of a correction, from x = 0 (BlockGaussSeidel::forward_from_zero): only
+/// the blocks below the diagonal, b read, x written.
+Traffic gauss_seidel_sweep_from_zero(const BrcMatrix& a) {
+  const double n = 3.0 * a.block_rows;
+  double lower = 0;
+  for (int i = 0; i < a.block_rows; ++i)
+    for (int k = a.row_start[i]; k < a.row_start[i + 1] && a.col_index[k] < i; ++k) ++lower;
+  return {(kBlock + kIndex) * lower + kIndex * (a.block_rows + 1) + (kBlock + kIndex) * a.block_rows + 16 * n,
+          18.0 * lower + 15.0 * a.block_rows};
+}
+
+/// One V-cycle from level h (multigrid_solver.cpp vcycle), x = 0 on entry on every level.
 Traffic vcycle(const MultigridSolver& solver, int h) {
   const MultigridHierarchy& hierarchy = solver.hierarchy();
   if (h == hierarchy.num_levels() - 1) {
@@ -48,14 +59,14 @@ Traffic vcycle(const MultigridSolver& solver, int h) {
   const BrcMatrix& a = hierarchy.matrix(h);
   const Transfer& t = hierarchy.transfer(h);
   const double n = 3.0 * a.block_rows, coarse = 3.0 * t.coarse;
-  const double sweeps = solver.params().pre_smoothing + solver.params().post_smoothing;
-  Traffic out = sweeps * gauss_seidel_sweep(a);
+  const int pre = solver.params().pre_smoothing, post = solver.params().post_smoothing;
+  Traffic out = (std::max(pre - 1, 0) + post) * gauss_seidel_sweep(a);
+  if (pre > 0) out += gauss_seidel_sweep_from_zero(a);
   out += matvec(a);
   out += {24 * n, n};                                          // r = b - A x
   const double r_entries = static_cast<double>(t.r_weight.size());
   const double p_entries = static_cast<double>(t.p_weight.size());
   out += {12 * r_entries + 8 * n + 8 * coarse, 6 * r_entries};  // restrict
-  out += {8 * coarse, 0};                                       // coarse x = 0
   out += vcycle(solver, h + 1);
   out += {12 * p_entries + 8 * coarse + 16 * n, 6 * p_entries};  // prolongate and add
   return out;
@@ -127,12 +138,12 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   Traffic update;
   for (const auto& [part, traffic] : update_traffic(solver)) update += traffic;
   t["update"] = update;
-  // MG-PCG (solver/preconditioned_cg.cpp): per iteration A p, one V-cycle and 15 vector passes
-  // (two dots, two axpys, a norm, z = 0, p = z + beta p); the start: r = b - A x, norms, r.z.
+  // MG-PCG (solver/preconditioned_cg.cpp): per iteration A p, one V-cycle and 14 vector passes
+  // (two dots, two axpys, a norm, p = z + beta p); the start: r = b - A x, norms, r.z.
   const Traffic cycle = vcycle(solver, 0);
   Traffic solve = (solve_iterations + 1) * matvec(solver.hierarchy().matrix(0));
   solve += solve_iterations * cycle;
-  solve += {(15 * solve_iterations + 9) * 8 * n, (12 * solve_iterations + 6) * n};
+  solve += {(14 * solve_iterations + 9) * 8 * n, (12 * solve_iterations + 6) * n};
   t["solve"] = solve;
   return t;
 }

@@ -29,7 +29,6 @@ SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen
       ++stats.iterations;
       if (!std::isfinite(rk)) throw NumericalFault(std::string(name) + ": residual became non-finite");
       if (rk <= tolerance * b_norm) break;
-      z.setZero();
       precondition(r, z);
       const double rz_next = r.dot(z);
       p = z + (rz_next / rz) * p;

@@ -8,7 +8,8 @@
 
 namespace corofem {
 
-/// z = M^{-1} r for a symmetric positive definite M (z arrives zeroed).
+/// z = M^{-1} r for a symmetric positive definite M (z arrives sized, holding the previous z:
+/// overwrite it).
 using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& z)>;
 
 /// Iterates from x (the initial guess) until |b - A x| <= tolerance |b| or max_iterations.
