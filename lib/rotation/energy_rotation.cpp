@@ -5,6 +5,7 @@
 
 #include "core/threads.hpp"
 #include "exact_rotation.hpp"
+#include "rotation/energy_newton_batch.hpp"
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
@@ -184,16 +185,37 @@ EnergyNewtonExtractor::EnergyNewtonExtractor(const TetMesh& mesh, const Rotation
 void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
                                     std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
+  const int tets = mesh_.num_tets();
+  const int batches = (tets + kNewtonLanes - 1) / kNewtonLanes;  // fixed by the mesh, not the threads
   int fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(threads_for(mesh_.num_tets()))
-  for (int e = 0; e < mesh_.num_tets(); ++e) {
-    double a = 0;
-    const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
-    const NewtonOutcome r = energy_newton_rotation(s, a, rotations[e], params_.newton_tolerance,
-                                                   params_.newton_max_iterations);
-    rotations[e] = r.rotation;
-    stats_.iterations[e] = static_cast<std::uint8_t>(r.iterations);
-    fallbacks += r.fell_back;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(threads_for(tets))
+  for (int batch = 0; batch < batches; ++batch) {
+    const int first = batch * kNewtonLanes;
+    if (first + kNewtonLanes > tets) {  // the last, partial batch: element by element
+      for (int e = first; e < tets; ++e) {
+        double a = 0;
+        const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
+        const NewtonOutcome r = energy_newton_rotation(s, a, rotations[e], params_.newton_tolerance,
+                                                       params_.newton_max_iterations);
+        rotations[e] = r.rotation;
+        stats_.iterations[e] = static_cast<std::uint8_t>(r.iterations);
+        fallbacks += r.fell_back;
+      }
+      continue;
+    }
+    Mat3 s[kNewtonLanes], warm[kNewtonLanes];
+    double a[kNewtonLanes];
+    NewtonOutcome r[kNewtonLanes];
+    for (int l = 0; l < kNewtonLanes; ++l) {
+      s[l] = deformed_moment(rest_[first + l], mesh_.tets[first + l], positions, a[l]);
+      warm[l] = rotations[first + l];
+    }
+    energy_newton_rotations(s, a, warm, params_.newton_tolerance, params_.newton_max_iterations, r);
+    for (int l = 0; l < kNewtonLanes; ++l) {
+      rotations[first + l] = r[l].rotation;
+      stats_.iterations[first + l] = static_cast<std::uint8_t>(r[l].iterations);
+      fallbacks += r[l].fell_back;
+    }
   }
   stats_.fallbacks = fallbacks;
 }
