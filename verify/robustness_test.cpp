@@ -9,6 +9,8 @@
 
 #include "core/errors.hpp"
 #include "core/memory_usage.hpp"
+#include "fem/corotated_system.hpp"
+#include "fem/fe_problem.hpp"
 #include "fem/implicit_euler.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -52,6 +54,26 @@ TEST(Robustness, OverflowingLoadStopsNamingStepAndElement) {
     EXPECT_NE(what.find("non-finite"), std::string::npos) << what;
     EXPECT_NE(what.find("step"), std::string::npos) << what;
     EXPECT_NE(what.find("element"), std::string::npos) << what;
+  }
+}
+
+TEST(Robustness, FiniteForcesWhoseNormOverflowsAreAFault) {
+  // Entries of 1e200 are finite, their squares are not: a residual or norm of them is inf, so
+  // the check must not let them through as a run that converged with a NaN residual.
+  TetMesh mesh = make_box_mesh({1.0, 0.1, 0.1}, {4, 1, 1});
+  const std::vector<Material> materials(mesh.tets.size(), Material{1e5, 0.3, 1000});
+  const FeProblem problem = make_fe_problem(std::move(mesh), materials);
+  Eigen::VectorXd f = Eigen::VectorXd::Ones(problem.num_dofs());
+  EXPECT_NO_THROW(check_finite(problem, f, "force", "step 1"));
+  const int node = problem.mesh.tets[3][2];
+  f[3 * node + 1] = 1e200;
+  try {
+    check_finite(problem, f, "force", "step 1");
+    ADD_FAILURE() << "no NumericalFault";
+  } catch (const NumericalFault& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("non-finite force norm at step 1"), std::string::npos) << what;
+    EXPECT_NE(what.find("(node " + std::to_string(problem.mesh.node_tags[node]) + ")"), std::string::npos) << what;
   }
 }
 

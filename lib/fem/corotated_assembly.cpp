@@ -36,6 +36,9 @@ void assemble_corotated(const std::vector<ElementRest>& elements, const std::vec
         if (own.vertex[a])
           f0.segment<3>(3 * tets[e][a]) += q * elements[e].stiffness_times_rest.segment<3>(3 * a);
         // K_e is symmetric, so Ktilde_ba = Ktilde_ab^T: rotate the 10 blocks with b >= a only.
+        // (Building them from the shape gradients instead, as internal_forces does, measured
+        // slower here: 14.1 -> 15.4 ms on the dragon at 1 thread. The scattered block updates,
+        // not K_e's reads, bound this loop.)
         for (int b = a; b < 4; ++b) {
           if (!own.vertex[a] && !own.vertex[b]) continue;
           const Mat3 rotated = q * ke.block<3, 3>(3 * a, 3 * b) * q.transpose();
@@ -75,9 +78,17 @@ Eigen::VectorXd internal_forces(const FeProblem& problem, const std::vector<Mat3
       const Tet& t = mesh.tets[e];
       const Owned own(t, lo, hi);
       const Mat3& q = rotations[e];
-      const Vec12 local = problem.elements[e].stiffness * corotated_strain(mesh, t, q, displacement);
+      // K_e s from the gradients (K_ab of element_stiffness.hpp): with G = sum_b s_b g_b^T,
+      // (K_e s)_a = V lambda tr(G) g_a + V mu (G + G^T) g_a; s_0 = 0.
+      const ElementRest& el = problem.elements[e];
+      const Vec12 s = corotated_strain(mesh, t, q, displacement);
+      Mat3 g = s.segment<3>(3) * el.gradient[1].transpose();
+      g.noalias() += s.segment<3>(6) * el.gradient[2].transpose();
+      g.noalias() += s.segment<3>(9) * el.gradient[3].transpose();
+      const double volumetric = el.lambda_volume * g.trace();
+      const Mat3 shear = el.mu_volume * (g + g.transpose());
       for (int a = 0; a < 4; ++a)
-        if (own.vertex[a]) f.segment<3>(3 * t[a]) += q * local.segment<3>(3 * a);
+        if (own.vertex[a]) f.segment<3>(3 * t[a]) += q * (volumetric * el.gradient[a] + shear * el.gradient[a]);
     }
   });
   return f;

@@ -31,14 +31,22 @@ int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions)
 
 void check_finite(const FeProblem& problem, const Eigen::VectorXd& u, const std::string& what,
                   const std::string& where) {
-  if (u.allFinite()) return;
+  // Finite entries whose norm overflows are as unusable (every norm, residual and energy of them
+  // is inf): they fail too, located at the largest entry.
+  if (u.allFinite() && std::isfinite(u.squaredNorm())) return;
+  const bool entries_finite = u.allFinite();
+  const double largest = entries_finite ? u.cwiseAbs().maxCoeff() : 0.0;
+  const auto bad = [&](int v) {
+    const auto s = u.segment<3>(3 * v);
+    return entries_finite ? s.cwiseAbs().maxCoeff() == largest : !s.allFinite();
+  };
+  const std::string fault = "non-finite " + what + (entries_finite ? " norm" : "") + " at " + where;
   for (int e = 0; e < problem.mesh.num_tets(); ++e)
     for (int v : problem.mesh.tets[e])
-      if (!u.segment<3>(3 * v).allFinite())
-        throw NumericalFault("non-finite " + what + " at " + where + ", first at element " +
-                             std::to_string(problem.mesh.element_tags[e]) + " (node " +
-                             std::to_string(problem.mesh.node_tags[v]) + ")");
-  throw NumericalFault("non-finite " + what + " at " + where);
+      if (bad(v))
+        throw NumericalFault(fault + ", first at element " + std::to_string(problem.mesh.element_tags[e]) +
+                             " (node " + std::to_string(problem.mesh.node_tags[v]) + ")");
+  throw NumericalFault(fault);
 }
 
 }  // namespace corofem

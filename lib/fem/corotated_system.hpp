@@ -17,7 +17,8 @@ void linearize(FeProblem& problem, RotationExtractor& extractor,
 int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);
 
 /// Throws NumericalFault naming `what` (displacement, force, ...), `where` (the step) and the
-/// first element touching a non-finite DOF of v.
+/// first element touching a non-finite DOF of v, or, where v's entries are finite but its norm
+/// overflows, its largest entry.
 void check_finite(const FeProblem& problem, const Eigen::VectorXd& v, const std::string& what,
                   const std::string& where);
 

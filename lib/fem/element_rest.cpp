@@ -1,5 +1,7 @@
 #include "fem/element_rest.hpp"
 
+#include <cmath>
+
 namespace corofem {
 
 std::vector<ElementRest> precompute_elements(const TetMesh& mesh,
@@ -16,6 +18,9 @@ std::vector<ElementRest> precompute_elements(const TetMesh& mesh,
     el.stiffness_times_rest = el.stiffness * x;
     el.rest_edge_inverse = rest_edge_inverse(x0, x1, x2, x3);
     el.volume = signed_volume(x0, x1, x2, x3);
+    el.gradient = shape_gradients(el.rest_edge_inverse);
+    el.lambda_volume = std::abs(el.volume) * materials[e].lame_lambda();
+    el.mu_volume = std::abs(el.volume) * materials[e].lame_mu();
   }
   return elements;
 }

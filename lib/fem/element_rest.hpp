@@ -7,8 +7,13 @@
 namespace corofem {
 
 struct ElementRest {
-  Mat12 stiffness;             ///< K_e
+  // K_e's blocks are V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I) (element_stiffness.hpp):
+  // the internal forces apply K_e from these 14 numbers instead of reading its 144.
+  std::array<Vec3, 4> gradient;  ///< g_a = grad N_a at rest
+  double lambda_volume = 0;      ///< V lambda
+  double mu_volume = 0;          ///< V mu
   Vec12 stiffness_times_rest;  ///< K_e x_e, so that f0_e = Q_e (K_e x_e) costs one rotation
+  Mat12 stiffness;             ///< K_e
   Mat3 rest_edge_inverse;      ///< Dm^{-1}
   double volume = 0;
 };

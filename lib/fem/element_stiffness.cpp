@@ -10,15 +10,19 @@ Mat3 rest_edge_inverse(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec
   return dm.inverse();
 }
 
+std::array<Vec3, 4> shape_gradients(const Mat3& rest_edge_inverse) {
+  std::array<Vec3, 4> g;
+  g[1] = rest_edge_inverse.row(0).transpose();
+  g[2] = rest_edge_inverse.row(1).transpose();
+  g[3] = rest_edge_inverse.row(2).transpose();
+  g[0] = -(g[1] + g[2] + g[3]);
+  return g;
+}
+
 Mat12 element_stiffness(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
                         const Material& material) {
-  const Mat3 dm_inv = rest_edge_inverse(x0, x1, x2, x3);
+  const std::array<Vec3, 4> g = shape_gradients(rest_edge_inverse(x0, x1, x2, x3));
   const double volume = std::abs(signed_volume(x0, x1, x2, x3));
-  Vec3 g[4];
-  g[1] = dm_inv.row(0).transpose();
-  g[2] = dm_inv.row(1).transpose();
-  g[3] = dm_inv.row(2).transpose();
-  g[0] = -(g[1] + g[2] + g[3]);
   const double lambda = material.lame_lambda(), mu = material.lame_mu();
   Mat12 k;
   for (int a = 0; a < 4; ++a)

@@ -1,6 +1,7 @@
 #pragma once
 // Linear tetrahedron: shape gradients, volume and the 12x12 small-strain stiffness K_e.
 #include <Eigen/Core>
+#include <array>
 
 #include "fem/material.hpp"
 
@@ -14,6 +15,9 @@ using Vec12 = Eigen::Matrix<double, 12, 1>;
 /// barycentric shape function N_i (i = 1..3); grad N_0 = -(sum of the rows). F = Ds * Dm^{-1}.
 Mat3 rest_edge_inverse(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3);
 
+/// The rest shape-function gradients g_a = grad N_a, a = 0..3 (rows of Dm^{-1}, g_0 minus their
+/// sum).
+std::array<Vec3, 4> shape_gradients(const Mat3& rest_edge_inverse);
 /// K_e with 3x3 blocks K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I), g = grad N,
 /// DOF order (vertex a, component i) -> 3a+i. Symmetric PSD with the 6 rigid modes as null space.
 Mat12 element_stiffness(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,

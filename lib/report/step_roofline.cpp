@@ -128,10 +128,11 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   t["assemble"] = {rotations + lines(sizeof(Mat12) + sizeof(Vec12)) * e + sizeof(std::array<int, 16>) * e + tets +
                        kBlock * blocks + 8 * n,
                    1116 * e};
-  // f_int = sum Q K_e (Q^T p - x) (strain 117, K_e s 288, rotate back 72 per tet) and
+  // f_int = sum Q K_e (Q^T p - x) (strain 117; K_e s from the shape gradients and V lambda,
+  // V mu: G = sum s_b g_b^T 45, tr G and G + G^T 21, per vertex 18; rotate back 72 per tet) and
   // b = M v + dt (f - f_int): mass, velocity, external force and f_int read, b written.
-  t["forces"] = {tets + rotations + lines(sizeof(Mat12)) * e + kVec3 * v + 8 * n + 8 * n + 4 * 8 * n + 8 * n,
-                 477 * e + 5 * n};
+  t["forces"] = {tets + rotations + lines(4 * kVec3 + 16) * e + kVec3 * v + 8 * n + 8 * n + 4 * 8 * n + 8 * n,
+                 327 * e + 5 * n};
   // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde and its supports: K read, A written, the
   // column indices (for the supported columns), the mass, the fixed flags, b read and written.
   t["system"] = {2 * kBlock * blocks + kIndex * blocks + 8 * n + n + 16 * n, 9 * blocks + 3 * n};
