@@ -61,15 +61,8 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
   if (!ordered_) order_rows(a);  // the pattern never changes: ordered once
   const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
   inverse_diagonal_.resize(a.block_rows);
-  diagonal_block_.resize(a.block_rows);
-  int missing = 0;  // no exception may leave a parallel region: counted, thrown after it
-#pragma omp parallel for schedule(static) reduction(+ : missing) num_threads(threads_for(a.block_rows))
+#pragma omp parallel for schedule(static) num_threads(threads_for(a.block_rows))
   for (int i = 0; i < a.block_rows; ++i) {
-    diagonal_block_[i] = a.find(i, i);
-    if (diagonal_block_[i] < 0) {
-      ++missing;
-      continue;
-    }
     Eigen::Matrix3d d = a.block(diagonal_block_[i]);
     if (hybrid) {  // the l1 norm of the off-domain entries, row by row
       Eigen::Vector3d l1 = Eigen::Vector3d::Zero();
@@ -79,10 +72,14 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
     }
     inverse_diagonal_[i] = d.inverse();
   }
-  if (missing > 0) throw NumericalFault("multigrid: a level has no diagonal block");
 }
 
 void BlockGaussSeidel::order_rows(const BrcMatrix& a) {
+  diagonal_block_.resize(a.block_rows);
+  for (int i = 0; i < a.block_rows; ++i) {
+    diagonal_block_[i] = a.find(i, i);
+    if (diagonal_block_[i] < 0) throw NumericalFault("multigrid: a level has no diagonal block");
+  }
   ordered_ = true;
   std::vector<int> all(a.block_rows);
   for (int i = 0; i < a.block_rows; ++i) all[i] = i;
