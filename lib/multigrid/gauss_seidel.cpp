@@ -127,13 +127,11 @@ void BlockGaussSeidel::order_hybrid(const BrcMatrix& a) {
 
 namespace {
 
-/// s += sum_k A_k x_{col k} over blocks [begin, end) (descending: from end - 1 down), the
-/// product's scalar kernel (brc_matrix.cpp), each row's three terms summed left to right.
-template <bool Descending = false>
+/// s += sum_k A_k x_{col k} over blocks [begin, end), the product's scalar kernel
+/// (brc_matrix.cpp), each row's three terms summed left to right.
 inline void add_blocks(const BrcMatrix& a, int begin, int end, const double* x, double s[3]) {
   const double* v = a.values.data();
-  for (int n = begin; n < end; ++n) {
-    const int k = Descending ? end - 1 - (n - begin) : n;
+  for (int k = begin; k < end; ++k) {
     const double* m = v + 9 * k;
     const double* xj = x + 3 * a.col_index[k];
     s[0] += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
@@ -156,9 +154,8 @@ void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, E
                                  int hi) const {
   // x_i += M_ii^{-1} (b_i - sum_j A_ij y_j), y_j = x_j in the own domain [lo, hi) (x_i itself
   // included), frozen_j outside it: for the hybrid smoother M_ii = D + D_l1, and this is
-  // (D + D_l1) x_i' = b_i + D_l1 x_i - sum_{j != i} A_ij y_j. One loop over the row (not one per
-  // part of it: their exits would be mispredicted branches, and cost more than the blocks).
-  // A backward sweep reads the row's blocks backwards too: the whole sweep then streams the
+  // (D + D_l1) x_i' = b_i + D_l1 x_i - sum_{j != i} A_ij y_j: one loop over the row, x or the
+  // frozen copy chosen per block, and no l1 vector to read. A backward sweep reads the row's blocks backwards too: the whole sweep then streams the
   // matrix downwards, which the hardware prefetchers follow; ascending blocks in descending rows
   // made the backward sweep 2.8x a product against the forward one's 1.3x (BM_SmootherSweep).
   double* xs = x.data();
