@@ -74,6 +74,33 @@ TEST_P(EachExtractor, ReturnsProperRotationsUnderLargeDeformation) {
   }
 }
 
+TEST_P(EachExtractor, CountsInvertedElementsLikeDetF) {
+  // Methods that count inverted elements on their way (stats().inverted >= 0; the energy methods
+  // must) against det F = det Ds / det Dm per tet, on a mesh crumpled so that many invert.
+  TetMesh mesh = make_box_mesh({1, 0.6, 0.4}, {4, 3, 3});
+  auto extractor = make_rotation_extractor(GetParam(), mesh);
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(-0.15, 0.15);
+  std::vector<Vec3> positions;
+  for (const Vec3& x : mesh.rest) positions.push_back(x + Vec3(u(rng), u(rng), u(rng)));
+  std::vector<Mat3> rotations(mesh.tets.size(), Mat3::Identity());
+  extractor->extract(positions, rotations);
+  int expected = 0;
+  for (const Tet& t : mesh.tets) {
+    Mat3 ds, dm;
+    for (int c = 0; c < 3; ++c) {
+      ds.col(c) = positions[t[c + 1]] - positions[t[0]];
+      dm.col(c) = mesh.rest[t[c + 1]] - mesh.rest[t[0]];
+    }
+    expected += ds.determinant() / dm.determinant() <= 0;
+  }
+  ASSERT_GT(expected, 0);
+  ASSERT_LT(expected, mesh.num_tets());
+  const int counted = extractor->stats().inverted;
+  if (GetParam().rfind("energy", 0) == 0) EXPECT_GE(counted, 0) << "the energy methods count on their way";
+  if (counted >= 0) EXPECT_EQ(counted, expected);
+}
+
 TEST_P(EachExtractor, SolvesTheLargeLoadCantilever) {
   const test::Cantilever bar;
   FeProblem p = bar.build(1, 4.0);

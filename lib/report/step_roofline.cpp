@@ -114,14 +114,15 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   const double blocks = static_cast<double>(k.col_index.size());
   const double tets = sizeof(Tet) * e, rotations = kBlock * e;
   std::map<std::string, Traffic> t;
-  // count_inverted: det(Ds Dm^-1) per tet (Dm^-1 read out of ElementRest); NaN checks of b and u.
-  t["checks"] = {tets + kVec3 * v + lines(kBlock) * e + 16 * n, 68 * e + 2 * n};
+  // The finiteness checks of b and u (entries and squared norm); energy-newton counts the
+  // inverted elements on its way (the sign of det S, 14 flops a tet, below).
+  t["checks"] = {16 * n, 4 * n};
   // positions p = x + u; energy-newton per tet: its moment arms, the deformed moment (S and a:
   // 120 flops), Horn's matrix and the warm start (about 80), 250 per Newton iteration (eqs. 5-8:
   // N q, gradient, Hessian, a 4x4 Cholesky and two solves) and 60 for the final gradient check,
-  // the rotation matrix (35); the previous rotation read, the new one written.
+  // the rotation matrix (35), det S (14); the previous rotation read, the new one written.
   t["rotate"] = {3 * kVec3 * v + tets + kVec3 * v + sizeof(MomentArms) * e + 2 * rotations,
-                 3 * v + (297 + 250 * newton_iterations) * e};
+                 3 * v + (311 + 250 * newton_iterations) * e};
   // Ktilde_e = Q K_e Q^T for the 10 blocks b >= a (2 x 45 flops each), 16 block += (9), f0
   // (4 x 18); K_e and K_e x_e read out of ElementRest, the 16 target blocks of the assembly map,
   // K written once (zeroing fused), f0 written.

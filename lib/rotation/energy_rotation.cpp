@@ -187,14 +187,15 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
   stats_.iterations.resize(mesh_.tets.size());
   const int tets = mesh_.num_tets();
   const int batches = (tets + kNewtonLanes - 1) / kNewtonLanes;  // fixed by the mesh, not the threads
-  int fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(threads_for(tets))
+  int fallbacks = 0, inverted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks, inverted) num_threads(threads_for(tets))
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kNewtonLanes;
     if (first + kNewtonLanes > tets) {  // the last, partial batch: element by element
       for (int e = first; e < tets; ++e) {
         double a = 0;
         const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
+        inverted += s.determinant() <= 0;
         const NewtonOutcome r = energy_newton_rotation(s, a, rotations[e], params_.newton_tolerance,
                                                        params_.newton_max_iterations);
         rotations[e] = r.rotation;
@@ -208,6 +209,7 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
     NewtonOutcome r[kNewtonLanes];
     for (int l = 0; l < kNewtonLanes; ++l) {
       s[l] = deformed_moment(rest_[first + l], mesh_.tets[first + l], positions, a[l]);
+      inverted += s[l].determinant() <= 0;
       warm[l] = rotations[first + l];
     }
     energy_newton_rotations(s, a, warm, params_.newton_tolerance, params_.newton_max_iterations, r);
@@ -218,6 +220,7 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
     }
   }
   stats_.fallbacks = fallbacks;
+  stats_.inverted = inverted;
 }
 
 EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
@@ -226,11 +229,15 @@ EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
 void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
                                    std::vector<Mat3>& rotations) {
   stats_.iterations.assign(mesh_.tets.size(), 0);
-#pragma omp parallel for schedule(static) num_threads(threads_for(mesh_.num_tets()))
+  int inverted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : inverted) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     double a = 0;
-    rotations[e] = energy_exact_rotation(deformed_moment(rest_[e], mesh_.tets[e], positions, a));
+    const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
+    inverted += s.determinant() <= 0;
+    rotations[e] = energy_exact_rotation(s);
   }
+  stats_.inverted = inverted;
 }
 
 }  // namespace corofem

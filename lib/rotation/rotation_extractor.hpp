@@ -25,6 +25,10 @@ struct RotationParams {
 struct ExtractionStats {
   std::vector<std::uint8_t> iterations;  ///< iterations per element (0 for closed-form methods)
   int fallbacks = 0;  ///< elements handed to a fallback (singular Newton Hessian, singular F)
+  /// Elements with det F <= 0 at the last extract's positions, where the method counts them on
+  /// its way (the energy methods: S = F C with C symmetric positive definite, so det S has the
+  /// sign of det F); -1 where it does not (count_inverted does it then, in a pass of its own).
+  int inverted = -1;
 };
 
 class RotationExtractor {
