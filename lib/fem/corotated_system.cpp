@@ -33,7 +33,7 @@ void check_finite(const FeProblem& problem, const Eigen::VectorXd& u, const std:
                   const std::string& where) {
   // Finite entries whose norm overflows are as unusable (every norm, residual and energy of them
   // is inf): they fail too, located at the largest entry.
-  if (u.allFinite() && std::isfinite(u.squaredNorm())) return;
+  if (std::isfinite(u.squaredNorm())) return;  // one pass: a NaN or inf entry makes it non-finite too
   const bool entries_finite = u.allFinite();
   const double largest = entries_finite ? u.cwiseAbs().maxCoeff() : 0.0;
   const auto bad = [&](int v) {

@@ -155,9 +155,10 @@ void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, E
   // x_i += M_ii^{-1} (b_i - sum_j A_ij y_j), y_j = x_j in the own domain [lo, hi) (x_i itself
   // included), frozen_j outside it: for the hybrid smoother M_ii = D + D_l1, and this is
   // (D + D_l1) x_i' = b_i + D_l1 x_i - sum_{j != i} A_ij y_j: one loop over the row, x or the
-  // frozen copy chosen per block, and no l1 vector to read. A backward sweep reads the row's blocks backwards too: the whole sweep then streams the
-  // matrix downwards, which the hardware prefetchers follow; ascending blocks in descending rows
-  // made the backward sweep 2.8x a product against the forward one's 1.3x (BM_SmootherSweep).
+  // frozen copy chosen per block, and no l1 vector to read. A backward sweep reads the row's
+  // blocks backwards too: the whole sweep then streams the matrix downwards, which the hardware
+  // prefetchers follow; ascending blocks in descending rows made the backward sweep 2.8x a
+  // product against the forward one's 1.3x (BM_SmootherSweep).
   double* xs = x.data();
   const double* frozen = Hybrid ? frozen_.data() : xs;
   const double* v = a.values.data();

@@ -39,9 +39,9 @@ class MultigridSolver : public LinearSolver {
   void set_matrix(const BrcMatrix& a) override;
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
 
-  /// One V-cycle from level h for A_h x = b (x is the initial guess on entry).
-  /// One V-cycle on level h for A_h x = b; `zero_guess`: x starts at 0 (a correction: every
-  /// coarse level, and the preconditioner), so the first forward sweep reads half the matrix.
+  /// One V-cycle from level h for A_h x = b, x the initial guess on entry; `zero_guess`: x starts
+  /// at 0 whatever it holds (a correction: every coarse level, and the preconditioner), so the
+  /// first forward sweep reads half the matrix.
   void vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
   const MultigridParams& params() const { return params_; }

@@ -14,6 +14,11 @@ struct Sym4 {
 constexpr int kD[4] = {0, 1, 2, 3};
 constexpr int kOff[4][4] = {{0, 4, 5, 6}, {4, 1, 7, 8}, {5, 7, 2, 9}, {6, 8, 9, 3}};
 
+/// x . y in lane l.
+inline double dot(const double (&x)[4][W], const double (&y)[4][W], int l) {
+  return x[0][l] * y[0][l] + x[1][l] * y[1][l] + x[2][l] * y[2][l] + x[3][l] * y[3][l];
+}
+
 /// y = M x per lane.
 void multiply(const Sym4& m, const double (&x)[4][W], double (&y)[4][W]) {
   for (int r = 0; r < 4; ++r)
@@ -92,28 +97,22 @@ void energy_newton_rotations(const Mat3 (&s)[kNewtonLanes], const double (&a)[kN
     const Eigen::Matrix4d m = horn_matrix(s[l].transpose());
     for (int r = 0; r < 4; ++r)
       for (int c = r; c < 4; ++c) n.m[kOff[r][c]][l] = m(r, c);
-    // The paper's q describes Q^T: start from the conjugate of the warm rotation's quaternion.
-    const Eigen::Quaterniond start(warm[l]);
-    q[0][l] = start.w();
-    q[1][l] = -start.x();
-    q[2][l] = -start.y();
-    q[3][l] = -start.z();
+    const Eigen::Vector4d start = newton_start(warm[l]);
+    for (int r = 0; r < 4; ++r) q[r][l] = start[r];
     active[l] = true;
     converged[l] = scalar[l] = false;
     iterations[l] = 0;
   }
   multiply(n, q, nq);
   for (int l = 0; l < W; ++l) {
-    const double qnq = q[0][l] * nq[0][l] + q[1][l] * nq[1][l] + q[2][l] * nq[2][l] + q[3][l] * nq[3][l];
-    q2[l] = q[0][l] * q[0][l] + q[1][l] * q[1][l] + q[2][l] * q[2][l] + q[3][l] * q[3][l];
-    lambda[l] = 2 * qnq - 2 * a[l] * q2[l];
+    lambda[l] = 2 * dot(q, nq, l) - 2 * a[l] * dot(q, q, l);
   }
   for (int it = 0;; ++it) {
     // Gradient of eq. (5) and constraint of eq. (6); lanes within the tolerance stop.
     if (it > 0) multiply(n, q, nq);
     bool any = false;
     for (int l = 0; l < W; ++l) {
-      q2[l] = q[0][l] * q[0][l] + q[1][l] * q[1][l] + q[2][l] * q[2][l] + q[3][l] * q[3][l];
+      q2[l] = dot(q, q, l);
       double g2 = 0;
       for (int r = 0; r < 4; ++r) {
         grad[r][l] = 4 * a[l] * q2[l] * q[r][l] - 4 * nq[r][l] + 2 * lambda[l] * q[r][l];
@@ -137,9 +136,7 @@ void energy_newton_rotations(const Mat3 (&s)[kNewtonLanes], const double (&a)[kN
     llt.solve(q, hq);
     for (int l = 0; l < W; ++l) {
       if (!active[l]) continue;
-      const double qhg = q[0][l] * hg[0][l] + q[1][l] * hg[1][l] + q[2][l] * hg[2][l] + q[3][l] * hg[3][l];
-      const double qhq = q[0][l] * hq[0][l] + q[1][l] * hq[1][l] + q[2][l] * hq[2][l] + q[3][l] * hq[3][l];
-      const double dl = (constraint[l] - 2 * qhg) / (4 * qhq);
+      const double dl = (constraint[l] - 2 * dot(q, hg, l)) / (4 * dot(q, hq, l));
       double dq[4];
       bool finite = std::isfinite(dl);
       for (int r = 0; r < 4; ++r) {
@@ -170,8 +167,7 @@ void energy_newton_rotations(const Mat3 (&s)[kNewtonLanes], const double (&a)[kN
       out[l] = energy_newton_rotation(s[l], a[l], warm[l], tolerance, max_iterations);
       continue;
     }
-    const Eigen::Quaterniond unit = Eigen::Quaterniond(q[0][l], q[1][l], q[2][l], q[3][l]).normalized();
-    out[l].rotation = unit.toRotationMatrix().transpose();
+    out[l].rotation = newton_rotation({q[0][l], q[1][l], q[2][l], q[3][l]});
     out[l].iterations = iterations[l];
     out[l].fell_back = false;
   }

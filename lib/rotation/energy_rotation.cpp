@@ -1,6 +1,7 @@
 #include "rotation/energy_rotation.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 #include "core/threads.hpp"
@@ -112,9 +113,7 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
   using Mat4 = Eigen::Matrix4d;
   NewtonOutcome out;
   const Mat4 n = horn_matrix(s.transpose());
-  // The paper's q describes Q^T: start from the conjugate of the warm rotation's quaternion.
-  const Eigen::Quaterniond start(warm);
-  Vec4 q(start.w(), -start.x(), -start.y(), -start.z());
+  Vec4 q = newton_start(warm);
   double lambda = 2 * q.dot(n * q) - 2 * a * q.squaredNorm();
   bool converged = false;
   bool last_step_definite = false;  // the last step's Hessian factored by Cholesky
@@ -174,8 +173,7 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
     out.rotation = energy_exact_rotation(s);
     return out;
   }
-  q.normalize();
-  out.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix().transpose();
+  out.rotation = newton_rotation(q);
   return out;
 }
 
@@ -191,32 +189,21 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks, inverted) num_threads(threads_for(tets))
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kNewtonLanes;
-    if (first + kNewtonLanes > tets) {  // the last, partial batch: element by element
-      for (int e = first; e < tets; ++e) {
-        double a = 0;
-        const Mat3 s = deformed_moment(rest_[e], mesh_.tets[e], positions, a);
-        inverted += s.determinant() <= 0;
-        const NewtonOutcome r = energy_newton_rotation(s, a, rotations[e], params_.newton_tolerance,
-                                                       params_.newton_max_iterations);
-        rotations[e] = r.rotation;
-        stats_.iterations[e] = static_cast<std::uint8_t>(r.iterations);
-        fallbacks += r.fell_back;
-      }
-      continue;
-    }
+    const int lanes = std::min(kNewtonLanes, tets - first);  // the last batch repeats its last element
     Mat3 s[kNewtonLanes], warm[kNewtonLanes];
     double a[kNewtonLanes];
     NewtonOutcome r[kNewtonLanes];
     for (int l = 0; l < kNewtonLanes; ++l) {
-      s[l] = deformed_moment(rest_[first + l], mesh_.tets[first + l], positions, a[l]);
-      inverted += s[l].determinant() <= 0;
-      warm[l] = rotations[first + l];
+      const int e = first + std::min(l, lanes - 1);
+      s[l] = deformed_moment(rest_[e], mesh_.tets[e], positions, a[l]);
+      warm[l] = rotations[e];
     }
     energy_newton_rotations(s, a, warm, params_.newton_tolerance, params_.newton_max_iterations, r);
-    for (int l = 0; l < kNewtonLanes; ++l) {
+    for (int l = 0; l < lanes; ++l) {
       rotations[first + l] = r[l].rotation;
       stats_.iterations[first + l] = static_cast<std::uint8_t>(r[l].iterations);
       fallbacks += r[l].fell_back;
+      inverted += s[l].determinant() <= 0;
     }
   }
   stats_.fallbacks = fallbacks;

@@ -4,6 +4,7 @@
 // E(q) = a |q|^4 - 2 q^T N q + c, q the quaternion of Q^T (the paper's variable), a = sum w |z|^2,
 // N = horn_matrix(S^T); its minimizer over unit q is N's top eigenvector (Horn 1987).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "rotation/element_quadrature.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -27,6 +28,17 @@ struct NewtonOutcome {
   int iterations = 0;
   bool fell_back = false;  ///< singular or indefinite Hessian, or no convergence: exact minimizer used
 };
+
+/// The paper's q describes Q^T: Newton starts from the conjugate of the warm rotation's
+/// quaternion, and its unit q gives back Q = R(q)^T.
+inline Eigen::Vector4d newton_start(const Mat3& warm) {
+  const Eigen::Quaterniond start(warm);
+  return {start.w(), -start.x(), -start.y(), -start.z()};
+}
+inline Mat3 newton_rotation(const Eigen::Vector4d& q) {
+  const Eigen::Vector4d unit = q.normalized();
+  return Eigen::Quaterniond(unit[0], unit[1], unit[2], unit[3]).toRotationMatrix().transpose();
+}
 
 /// Newton on (q, lambda) for eqs. (5)-(8): gradient 4a|q|^2 q - 4Nq + 2 lambda q, Hessian
 /// 4a(|q|^2 I + 2 q q^T) - 4N + 2 lambda I, bordered by 2q (eq. 8). Starts from `warm` (Q of the
