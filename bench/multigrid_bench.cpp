@@ -17,6 +17,7 @@
 #include "solver/petsc_galerkin.hpp"
 #include "solver/petsc_solver.hpp"
 #include "solver/preconditioned_cg.hpp"
+#include "sparse/block_row_sum.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem::bench {
@@ -231,6 +232,31 @@ void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
   state.counters["threads"] = thread_count();
 }
 
+/// The product in its AVX2 form against the scalar one (sparse/block_row_sum.hpp), alternated in
+/// one run (the sweeps keep the scalar form: see there why).
+void BM_BlockKernels(benchmark::State& state, const std::string& model) {
+  const PaperSystem& system = step_system(model);
+  const BrcMatrix& a = system.matrix;
+  if (!set_vector_block_kernels(true)) {
+    state.SkipWithError("this CPU has no AVX2/FMA: only the scalar form runs");
+    return;
+  }
+  Eigen::VectorXd y;
+  std::vector<double> product_ms[2];
+  for (auto _ : state) {
+    for (const bool vector : {false, true}) {
+      set_vector_block_kernels(vector);
+      product_ms[vector].push_back(time_ms([&] { a.multiply(system.rhs, y); }));
+    }
+    benchmark::DoNotOptimize(y.data());
+  }
+  set_vector_block_kernels(true);
+  state.counters["product_scalar_ms"] = median(product_ms[0]);
+  state.counters["product_avx2_ms"] = median(product_ms[1]);
+  state.counters["product_speedup"] = median(product_ms[0]) / median(product_ms[1]);
+  state.counters["threads"] = thread_count();
+}
+
 /// Issue 11's targets in one run, for one model and hierarchy, on the dynamic step's matrix:
 /// rho of V(1,1) (mean residual reduction over 12 stationary cycles from x = 0), MG-PCG and
 /// Jacobi-PCG iterations to 1e-4, and their solve times in the same run (targets: rho <= 0.2,
@@ -317,6 +343,8 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   BENCHMARK_CAPTURE(BM_VCycle, model, std::string(#model))->Unit(benchmark::kMillisecond);       \
   BENCHMARK_CAPTURE(BM_MgpcgSolve, model, std::string(#model))->Unit(benchmark::kMillisecond);   \
   BENCHMARK_CAPTURE(BM_SmootherSweep, model, std::string(#model))                                \
+      ->Unit(benchmark::kMillisecond)->Iterations(20);                                          \
+  BENCHMARK_CAPTURE(BM_BlockKernels, model, std::string(#model))                                 \
       ->Unit(benchmark::kMillisecond)->Iterations(20)
 
 #define QUALITY_CASES(model)                                                                      \

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/build_info.hpp"
+#include "sparse/block_row_sum.hpp"
 
 namespace corofem {
 namespace {
@@ -63,6 +64,7 @@ nlohmann::json run_context() {
           {"hardware_threads", std::thread::hardware_concurrency()},
           {"threads_used", thread_count()},
           {"openmp", have_openmp()},
+          {"block_kernels", block_kernels_name()},
           {"host", host},
           {"date", utc_now()}};
 }

@@ -5,6 +5,7 @@
 
 #include "core/errors.hpp"
 #include "core/threads.hpp"
+#include "sparse/block_row_sum.hpp"
 
 namespace corofem {
 
@@ -127,19 +128,6 @@ void BlockGaussSeidel::order_hybrid(const BrcMatrix& a) {
 
 namespace {
 
-/// s += sum_k A_k x_{col k} over blocks [begin, end), the product's scalar kernel
-/// (brc_matrix.cpp), each row's three terms summed left to right.
-inline void add_blocks(const BrcMatrix& a, int begin, int end, const double* x, double s[3]) {
-  const double* v = a.values.data();
-  for (int k = begin; k < end; ++k) {
-    const double* m = v + 9 * k;
-    const double* xj = x + 3 * a.col_index[k];
-    s[0] += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
-    s[1] += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
-    s[2] += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];
-  }
-}
-
 /// x_i = D^{-1} r with D^{-1} row-major.
 inline void solve_diagonal(const double* inverse, const double r[3], double* xi) {
   xi[0] = inverse[0] * r[0] + inverse[1] * r[1] + inverse[2] * r[2];
@@ -161,20 +149,11 @@ void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, E
   // product against the forward one's 1.3x (BM_SmootherSweep).
   double* xs = x.data();
   const double* frozen = Hybrid ? frozen_.data() : xs;
-  const double* v = a.values.data();
   const unsigned width = static_cast<unsigned>(hi - lo);
-  double s0 = 0, s1 = 0, s2 = 0;
-  const int first = a.row_start[i], last = a.row_start[i + 1];
-  for (int n = first; n < last; ++n) {
-    const int k = Backward ? last - 1 - (n - first) : n;
-    const int j = a.col_index[k];
-    const double* xj = (Hybrid && static_cast<unsigned>(j - lo) >= width ? frozen : xs) + 3 * j;
-    const double* m = v + 9 * k;
-    s0 += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
-    s1 += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
-    s2 += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];
-  }
-  const double r[3] = {b[3 * i] - s0, b[3 * i + 1] - s1, b[3 * i + 2] - s2};
+  auto source = [=](int j) { return (Hybrid && static_cast<unsigned>(j - lo) >= width ? frozen : xs) + 3 * j; };
+  double s[3];
+  block_row_sum_scalar<Backward>(a.col_index.data(), a.values.data(), a.row_start[i], a.row_start[i + 1], source, s);
+  const double r[3] = {b[3 * i] - s[0], b[3 * i + 1] - s[1], b[3 * i + 2] - s[2]};
   double dx[3];
   solve_diagonal(inverse_diagonal_[i].data(), r, dx);
   for (int c = 0; c < 3; ++c) xs[3 * i + c] += dx[c];
@@ -195,8 +174,9 @@ void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::Vector
   for (int d = 0; d < domains; ++d) {
     const int first = hybrid ? domain_start_[d] : 0, last = hybrid ? domain_start_[d + 1] : a.block_rows;
     for (int i = first; i < last; ++i) {
-      double fresh[3] = {0, 0, 0};
-      add_blocks(a, hybrid ? own_begin_[i] : a.row_start[i], diagonal_block_[i], xs, fresh);
+      double fresh[3];
+      block_row_sum_scalar<false>(a.col_index.data(), a.values.data(), hybrid ? own_begin_[i] : a.row_start[i],
+                           diagonal_block_[i], [xs](int j) { return xs + 3 * j; }, fresh);
       const double r[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
       solve_diagonal(inverse_diagonal_[i].data(), r, xs + 3 * i);
     }

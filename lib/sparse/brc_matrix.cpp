@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/threads.hpp"
+#include "sparse/block_row_sum.hpp"
 
 namespace corofem {
 
@@ -17,22 +18,11 @@ void BrcMatrix::set_zero() { std::fill(values.begin(), values.end(), 0.0); }
 
 void BrcMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   y.resize(3 * block_rows);
-  const double* v = values.data();
   const double* xs = x.data();
+  auto source = [xs](int j) { return xs + 3 * j; };
 #pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks()))
-  for (int i = 0; i < block_rows; ++i) {
-    double y0 = 0, y1 = 0, y2 = 0;
-    for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const double* b = v + 9 * k;
-      const double* xj = xs + 3 * col_index[k];
-      y0 += b[0] * xj[0] + b[1] * xj[1] + b[2] * xj[2];
-      y1 += b[3] * xj[0] + b[4] * xj[1] + b[5] * xj[2];
-      y2 += b[6] * xj[0] + b[7] * xj[1] + b[8] * xj[2];
-    }
-    y[3 * i] = y0;
-    y[3 * i + 1] = y1;
-    y[3 * i + 2] = y2;
-  }
+  for (int i = 0; i < block_rows; ++i)
+    block_row_sum(col_index.data(), values.data(), row_start[i], row_start[i + 1], source, y.data() + 3 * i);
 }
 
 Eigen::VectorXd BrcMatrix::operator*(const Eigen::VectorXd& x) const {

@@ -1,0 +1,98 @@
+// The block product's two forms (sparse/block_row_sum.hpp) against a dense product, at 1, 2 and
+// 3 threads: the AVX2 form's masked loads at the last block and the last vertex, its lane sums,
+// and the scalar form that every sweep and every CPU without AVX2 runs.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <limits>
+#include <algorithm>
+#include <cstring>
+#include <iostream>
+#include <random>
+
+#include "core/threads.hpp"
+#include "sparse/block_row_sum.hpp"
+#include "sparse/brc_matrix.hpp"
+
+namespace corofem {
+namespace {
+
+/// Random pattern with the diagonal, the last column in the last row (the masked loads' edge)
+/// and rows of 1 to 40 blocks; values in [-1, 1].
+BrcMatrix random_brc(int n, std::mt19937& rng) {
+  std::uniform_int_distribution<int> column(0, n - 1), count(0, 39);
+  std::vector<std::vector<int>> columns(n);
+  for (int i = 0; i < n; ++i) {
+    std::vector<int>& c = columns[i];
+    c.push_back(i);
+    for (int k = count(rng); k > 0; --k) c.push_back(column(rng));
+    if (i == n - 1) c.push_back(0);  // with the diagonal: the first and the last column
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+  }
+  BrcMatrix a = make_brc_pattern(n, columns);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (double& v : a.values) v = u(rng);
+  return a;
+}
+
+Eigen::MatrixXd dense(const BrcMatrix& a) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * a.block_rows, 3 * a.block_cols);
+  for (int i = 0; i < a.block_rows; ++i)
+    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) d.block<3, 3>(3 * i, 3 * a.col_index[k]) = a.block(k);
+  return d;
+}
+
+struct RestoreKernels {
+  bool previous = vector_block_kernels();
+  ~RestoreKernels() { set_vector_block_kernels(previous); }
+};
+
+TEST(BlockRowSum, BothFormsMatchTheDenseProductAtEveryThreadCount) {
+  RestoreKernels restore;
+  std::mt19937 rng(7);
+  const int n = 3000;  // above the threads' grain, so 2 and 3 threads really split the rows
+  const BrcMatrix a = random_brc(n, rng);
+  Eigen::VectorXd x = Eigen::VectorXd::Random(3 * n);
+  const Eigen::MatrixXd d = dense(a);
+  const Eigen::VectorXd expected = d * x;
+  // Forward error bound of a sum of m products: m u sum |terms| (Higham, Accuracy and Stability,
+  // 3.1); a row has at most 41 blocks, so m <= 123 terms: 130 u (|A| |x|)_i bounds both forms.
+  const Eigen::VectorXd scale = d.cwiseAbs() * x.cwiseAbs();
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  set_vector_block_kernels(true);
+  const bool vector_on = vector_block_kernels();
+  for (const bool vector : {false, true}) {
+    if (vector && !vector_on) {
+      std::cout << "[ note ] this CPU has no AVX2/FMA: only the scalar form is checked\n";
+      continue;
+    }
+    set_vector_block_kernels(vector);
+    Eigen::VectorXd one;
+    {
+      ScopedThreadCount threads(1);
+      a.multiply(x, one);
+    }
+    for (int i = 0; i < 3 * n; ++i)
+      ASSERT_LE(std::abs(one[i] - expected[i]), 130 * u * scale[i]) << block_kernels_name() << " entry " << i;
+    for (const int t : {2, 3}) {
+      ScopedThreadCount threads(t);
+      Eigen::VectorXd y;
+      a.multiply(x, y);
+      EXPECT_EQ(0, std::memcmp(y.data(), one.data(), sizeof(double) * y.size())) << block_kernels_name() << ", "
+                                                                                 << t << " threads";
+    }
+  }
+}
+
+TEST(BlockRowSum, TheSwitchReportsTheFormInUse) {
+  RestoreKernels restore;
+  set_vector_block_kernels(false);
+  EXPECT_FALSE(vector_block_kernels());
+  EXPECT_STREQ(block_kernels_name(), "scalar");
+  set_vector_block_kernels(true);
+  EXPECT_STREQ(block_kernels_name(), vector_block_kernels() ? "avx2-fma" : "scalar");
+}
+
+}  // namespace
+}  // namespace corofem
