@@ -17,7 +17,7 @@
 #include "solver/petsc_galerkin.hpp"
 #include "solver/petsc_solver.hpp"
 #include "solver/preconditioned_cg.hpp"
-#include "sparse/block_row_sum.hpp"
+#include "sparse/block_kernels.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem::bench {
@@ -232,7 +232,7 @@ void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
   state.counters["threads"] = thread_count();
 }
 
-/// The product in its AVX2 form against the scalar one (sparse/block_row_sum.hpp), alternated in
+/// The product in its AVX2 form against the scalar one (sparse/block_kernels.hpp), alternated in
 /// one run (the sweeps keep the scalar form: see there why).
 void BM_BlockKernels(benchmark::State& state, const std::string& model) {
   const PaperSystem& system = step_system(model);

@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "core/build_info.hpp"
-#include "sparse/block_row_sum.hpp"
+#include "sparse/block_kernels.hpp"
 
 namespace corofem {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "core/errors.hpp"
 #include "core/threads.hpp"
-#include "sparse/block_row_sum.hpp"
+#include "sparse/block_kernels.hpp"
 
 namespace corofem {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "core/threads.hpp"
-#include "sparse/block_row_sum.hpp"
+#include "sparse/block_kernels.hpp"
 
 namespace corofem {
 

@@ -1,4 +1,4 @@
-#include "sparse/block_row_sum.hpp"
+#include "sparse/block_kernels.hpp"
 
 namespace corofem {
 namespace {

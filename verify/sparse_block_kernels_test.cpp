@@ -1,4 +1,4 @@
-// The block product's two forms (sparse/block_row_sum.hpp) against a dense product, at 1, 2 and
+// The block product's two forms (sparse/block_kernels.hpp) against a dense product, at 1, 2 and
 // 3 threads: the AVX2 form's masked loads at the last block and the last vertex, its lane sums,
 // and the scalar form that every sweep and every CPU without AVX2 runs.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <random>
 
 #include "core/threads.hpp"
-#include "sparse/block_row_sum.hpp"
+#include "sparse/block_kernels.hpp"
 #include "sparse/brc_matrix.hpp"
 
 namespace corofem {
@@ -48,7 +48,7 @@ struct RestoreKernels {
   ~RestoreKernels() { set_vector_block_kernels(previous); }
 };
 
-TEST(BlockRowSum, BothFormsMatchTheDenseProductAtEveryThreadCount) {
+TEST(BlockKernels, BothFormsMatchTheDenseProductAtEveryThreadCount) {
   RestoreKernels restore;
   std::mt19937 rng(7);
   const int n = 3000;  // above the threads' grain, so 2 and 3 threads really split the rows
@@ -85,7 +85,7 @@ TEST(BlockRowSum, BothFormsMatchTheDenseProductAtEveryThreadCount) {
   }
 }
 
-TEST(BlockRowSum, TheSwitchReportsTheFormInUse) {
+TEST(BlockKernels, TheSwitchReportsTheFormInUse) {
   RestoreKernels restore;
   set_vector_block_kernels(false);
   EXPECT_FALSE(vector_block_kernels());
