@@ -6,6 +6,7 @@
 #include <Eigen/SparseCore>
 #include <random>
 
+#include "sparse/block_kernels.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/fe_problem.hpp"
 #include "mesh/box_mesh.hpp"
@@ -84,13 +85,11 @@ TEST(CorotatedAssembly, ForcesAreRotationEquivariant) {
   EXPECT_LT(worst, 1e-12 * f.lpNorm<Eigen::Infinity>());
 }
 
-TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmv) {
+TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
   FeProblem p = small_box();
   std::mt19937 rng(3);
   std::vector<Mat3> rotations(p.mesh.tets.size());
   for (auto& q : rotations) q = random_rotation(rng);
-  Eigen::VectorXd f0;
-  assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
   // Oracle: dense 12x12 Q K Q^T per element scattered as triplets.
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd f0_ref = Eigen::VectorXd::Zero(p.num_dofs());
@@ -112,13 +111,30 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmv) {
   }
   Eigen::SparseMatrix<double> ref(p.num_dofs(), p.num_dofs());
   ref.setFromTriplets(triplets.begin(), triplets.end());
-  const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
-  // Same sums in a different order: round-off of a few ulps of |K|.
-  EXPECT_LT((ours - ref).norm(), 1e-14 * ref.norm());
-  EXPECT_LT((f0 - f0_ref).norm(), 1e-14 * f0_ref.norm());
-  Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
-  const Eigen::VectorXd y_ref = ref * x;
-  EXPECT_LT((p.stiffness * x - y_ref).norm(), 1e-14 * ref.norm() * x.norm());
+  const bool vector_before = vector_block_kernels();
+  for (const bool vector : {false, true}) {  // the AVX2 form where the CPU has it
+    set_vector_block_kernels(vector);
+    Eigen::VectorXd f0;
+    assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
+    const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
+    // Same sums in a different order: round-off of a few ulps of |K|.
+    EXPECT_LT((ours - ref).norm(), 1e-14 * ref.norm()) << block_kernels_name();
+    EXPECT_LT((f0 - f0_ref).norm(), 1e-14 * f0_ref.norm()) << block_kernels_name();
+    Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
+    const Eigen::VectorXd y_ref = ref * x;
+    EXPECT_LT((p.stiffness * x - y_ref).norm(), 1e-14 * ref.norm() * x.norm()) << block_kernels_name();
+    // Off the diagonal exactly symmetric: block (j, i) is block (i, j) transposed, bit for bit
+    // (each element's pair is rotated once). The diagonal blocks Q K_aa Q^T are symmetric only
+    // to round-off, in both forms.
+    for (int i = 0; i < p.stiffness.block_rows; ++i)
+      for (int k = p.stiffness.row_start[i]; k < p.stiffness.row_start[i + 1]; ++k) {
+        const int j = p.stiffness.col_index[k];
+        if (j == i) continue;
+        ASSERT_TRUE(p.stiffness.block(k) == p.stiffness.block(p.stiffness.find(j, i)).transpose())
+            << block_kernels_name() << " block (" << i << ", " << j << ")";
+      }
+  }
+  set_vector_block_kernels(vector_before);
 }
 
 TEST(CorotatedAssembly, InternalForcesEqualTheDenseElementSum) {

@@ -1,7 +1,8 @@
 #pragma once
 // The inner loops of the passes over 3x3 blocks: the row sum s = sum_k A_k x_{col k} over a run
 // of one row's blocks (the product, the V-cycle's residual, the Gauss-Seidel sweeps), and the
-// weighted block add E_b += w A_k (the Galerkin stream's scatter).
+// weighted block add E_b += w A_k (the Galerkin stream's scatter). The assembly's AVX2 form of
+// Q K_ab Q^T (fem/corotated_assembly.cpp) is switched with them.
 // A product is bound by instruction throughput, not by memory: scalar code issues some 25
 // instructions per block, the AVX2 form 7 (BM_BlockKernels: the product 1.4-1.6x faster at 1 and
 // 2 threads; single-precision blocks, half the bytes, were no faster). Each block row is one
