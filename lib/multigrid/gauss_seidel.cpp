@@ -152,7 +152,7 @@ void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, E
   const unsigned width = static_cast<unsigned>(hi - lo);
   auto source = [=](int j) { return (Hybrid && static_cast<unsigned>(j - lo) >= width ? frozen : xs) + 3 * j; };
   double s[3];
-  block_row_sum_scalar<Backward>(a.col_index.data(), a.values.data(), a.row_start[i], a.row_start[i + 1], source, s);
+  block_row_sum<Backward, true>(a.col_index.data(), a.values.data(), a.row_start[i], a.row_start[i + 1], source, s);
   const double r[3] = {b[3 * i] - s[0], b[3 * i + 1] - s[1], b[3 * i + 2] - s[2]};
   double dx[3];
   solve_diagonal(inverse_diagonal_[i].data(), r, dx);
@@ -175,8 +175,8 @@ void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::Vector
     const int first = hybrid ? domain_start_[d] : 0, last = hybrid ? domain_start_[d + 1] : a.block_rows;
     for (int i = first; i < last; ++i) {
       double fresh[3];
-      block_row_sum_scalar<false>(a.col_index.data(), a.values.data(), hybrid ? own_begin_[i] : a.row_start[i],
-                           diagonal_block_[i], [xs](int j) { return xs + 3 * j; }, fresh);
+      block_row_sum<false, true>(a.col_index.data(), a.values.data(), hybrid ? own_begin_[i] : a.row_start[i],
+                                 diagonal_block_[i], [xs](int j) { return xs + 3 * j; }, fresh);
       const double r[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
       solve_diagonal(inverse_diagonal_[i].data(), r, xs + 3 * i);
     }

@@ -14,10 +14,12 @@
 // The Galerkin stream's scatter likewise: 9 scalar multiply-adds a pair against 2 4-wide FMAs
 // and one scalar (the dragon's update, Galerkin part, 13.9 -> 8.8 ms at 1 thread, 7.8 -> 5.3 ms
 // at 2). The FMA rounds once where the scalar form rounds twice: round-off again.
-// The Gauss-Seidel sweeps keep the scalar form: each row reads values stored a few rows before,
-// and the AVX2 form measured 1.1-1.2x faster at 1 thread but 0.94x (with x_j put together from
-// 8-byte loads) to 0.7x (one 4-wide load, which cannot be forwarded from three 8-byte stores in
-// flight) at 2 threads.
+// The Gauss-Seidel sweeps read values stored a few rows before: there x_j is put together from
+// 8-byte loads, because one 4-wide load over three 8-byte stores still in flight cannot be
+// forwarded from them (that form ran the 2-thread sweeps at 0.7x the scalar ones). In the
+// dragon's step (MG-PCG, 3 levels, medians of 3 alternated runs at 2 threads) the AVX2 sweeps
+// take the fine smoothing from 10.7 to 8.7 ms and the coarse levels from 6.9 to 5.0 ms per
+// solve; BM_BlockKernels' isolated fine sweeps gain less (1.1-1.2x at 1 thread, none at 2).
 #include <cstddef>
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -63,14 +65,18 @@ inline void block_row_sum_scalar(const int* col, const double* v, int begin, int
 /// The same sum in AVX2 (see the file comment): per block row one lane-wise product with x_j,
 /// the lanes added at the end ((l0 + l1) + l2). The third block row and x_j are masked loads,
 /// so nothing past the last block or the last vertex is read.
-template <class Source>
+/// Backward: the blocks from end - 1 down; Fresh: x holds values stored a few rows before (a
+/// sweep), so x_j is put together from 8-byte loads, which the stores can forward to.
+template <bool Backward = false, bool Fresh = false, class Source>
 __attribute__((target("avx2,fma"))) inline void block_row_sum_avx2(const int* col, const double* v, int begin,
                                                                      int end, const Source& source, double s[3]) {
   const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
   __m256d a0 = _mm256_setzero_pd(), a1 = a0, a2 = a0;
-  for (int k = begin; k < end; ++k) {
+  for (int n = begin; n < end; ++n) {
+    const int k = Backward ? end - 1 - (n - begin) : n;
     const double* m = v + 9 * static_cast<std::ptrdiff_t>(k);
-    const __m256d x = _mm256_maskload_pd(source(col[k]), first3);
+    const double* xj = source(col[k]);
+    const __m256d x = Fresh ? _mm256_set_pd(0.0, xj[2], xj[1], xj[0]) : _mm256_maskload_pd(xj, first3);
     a0 = _mm256_fmadd_pd(_mm256_loadu_pd(m), x, a0);
     a1 = _mm256_fmadd_pd(_mm256_loadu_pd(m + 3), x, a1);
     a2 = _mm256_fmadd_pd(_mm256_maskload_pd(m + 6, first3), x, a2);
@@ -83,13 +89,13 @@ __attribute__((target("avx2,fma"))) inline void block_row_sum_avx2(const int* co
 }
 #endif
 
-/// The sum, blocks in order, in the form chosen for this process (the products).
-template <class Source>
+/// The sum in the form chosen for this process (Backward and Fresh as for the AVX2 form).
+template <bool Backward = false, bool Fresh = false, class Source>
 inline void block_row_sum(const int* col, const double* v, int begin, int end, const Source& source, double s[3]) {
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-  if (vector_block_kernels()) return block_row_sum_avx2(col, v, begin, end, source, s);
+  if (vector_block_kernels()) return block_row_sum_avx2<Backward, Fresh>(col, v, begin, end, source, s);
 #endif
-  block_row_sum_scalar<false>(col, v, begin, end, source, s);
+  block_row_sum_scalar<Backward>(col, v, begin, end, source, s);
 }
 
 /// e += w a over the 9 entries of a block, in the scalar form (each entry rounded twice).
