@@ -91,10 +91,15 @@ void galerkin_naive(const BrcMatrix& a, const Transfer& t, BrcMatrix& e) {
   }
 }
 
-void GalerkinReuse::apply(const BrcMatrix& a, const Transfer& t, BrcMatrix& e) {
-  e.set_zero();
+namespace {
+
+/// Pattern reuse's numeric phase: per row i of E, its blocks' slots, then every R_il A_lk R_jk
+/// added into E_ij. The scatter in either form (the stream's kernel, so that their ratio is the
+/// algorithms').
+template <class AddScaled>
+inline void reuse_rows(const BrcMatrix& a, const Transfer& t, BrcMatrix& e, int* slot, const AddScaled& add_scaled) {
   for (int i = 0; i < e.block_rows; ++i) {
-    for (int eb = e.row_start[i]; eb < e.row_start[i + 1]; ++eb) slot_[e.col_index[eb]] = eb;
+    for (int eb = e.row_start[i]; eb < e.row_start[i + 1]; ++eb) slot[e.col_index[eb]] = eb;
     for (int m = t.r_start[i]; m < t.r_start[i + 1]; ++m) {
       const int l = t.r_col[m];
       const double r_il = t.r_weight[m];
@@ -102,10 +107,27 @@ void GalerkinReuse::apply(const BrcMatrix& a, const Transfer& t, BrcMatrix& e) {
         const int k = a.col_index[b];
         const double* ab = a.values.data() + 9 * b;
         for (int n = t.p_start[k]; n < t.p_start[k + 1]; ++n)
-          add_scaled_block_scalar(e.values.data() + 9 * slot_[t.p_col[n]], r_il * t.p_weight[n], ab);
+          add_scaled(e.values.data() + 9 * slot[t.p_col[n]], r_il * t.p_weight[n], ab);
       }
     }
   }
+}
+
+#ifdef COROFEM_HAVE_AVX2_KERNELS
+__attribute__((target("avx2,fma"))) void reuse_rows_avx2(const BrcMatrix& a, const Transfer& t, BrcMatrix& e,
+                                                         int* slot) {
+  reuse_rows(a, t, e, slot, add_scaled_block_avx2);
+}
+#endif
+
+}  // namespace
+
+void GalerkinReuse::apply(const BrcMatrix& a, const Transfer& t, BrcMatrix& e) {
+  e.set_zero();
+#ifdef COROFEM_HAVE_AVX2_KERNELS
+  if (vector_block_kernels()) return reuse_rows_avx2(a, t, e, slot_.data());
+#endif
+  reuse_rows(a, t, e, slot_.data(), add_scaled_block_scalar);
 }
 
 namespace {
