@@ -6,12 +6,12 @@
 #include <Eigen/SparseCore>
 #include <random>
 
-#include "sparse/block_kernels.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/fe_problem.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/polar_decomposition.hpp"
 #include "sparse/brc_to_eigen.hpp"
+#include "test_support.hpp"
 
 namespace corofem {
 namespace {
@@ -111,18 +111,16 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
   }
   Eigen::SparseMatrix<double> ref(p.num_dofs(), p.num_dofs());
   ref.setFromTriplets(triplets.begin(), triplets.end());
-  const bool vector_before = vector_block_kernels();
-  for (const bool vector : {false, true}) {  // the AVX2 form where the CPU has it
-    set_vector_block_kernels(vector);
+  test::in_each_kernel_form([&] {
     Eigen::VectorXd f0;
     assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
     const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
     // Same sums in a different order: round-off of a few ulps of |K|.
-    EXPECT_LT((ours - ref).norm(), 1e-14 * ref.norm()) << block_kernels_name();
-    EXPECT_LT((f0 - f0_ref).norm(), 1e-14 * f0_ref.norm()) << block_kernels_name();
+    EXPECT_LT((ours - ref).norm(), 1e-14 * ref.norm());
+    EXPECT_LT((f0 - f0_ref).norm(), 1e-14 * f0_ref.norm());
     Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
     const Eigen::VectorXd y_ref = ref * x;
-    EXPECT_LT((p.stiffness * x - y_ref).norm(), 1e-14 * ref.norm() * x.norm()) << block_kernels_name();
+    EXPECT_LT((p.stiffness * x - y_ref).norm(), 1e-14 * ref.norm() * x.norm());
     // Off the diagonal exactly symmetric: block (j, i) is block (i, j) transposed, bit for bit
     // (each element's pair is rotated once). The diagonal blocks Q K_aa Q^T are symmetric only
     // to round-off, in both forms.
@@ -131,10 +129,9 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
         const int j = p.stiffness.col_index[k];
         if (j == i) continue;
         ASSERT_TRUE(p.stiffness.block(k) == p.stiffness.block(p.stiffness.find(j, i)).transpose())
-            << block_kernels_name() << " block (" << i << ", " << j << ")";
+            << "block (" << i << ", " << j << ")";
       }
-  }
-  set_vector_block_kernels(vector_before);
+  });
 }
 
 TEST(CorotatedAssembly, InternalForcesEqualTheDenseElementSum) {

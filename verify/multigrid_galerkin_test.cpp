@@ -8,7 +8,6 @@
 #include "galerkin_oracle.hpp"
 #include "mesh/box_mesh.hpp"
 #include "multigrid/galerkin.hpp"
-#include "sparse/block_kernels.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 #include "multigrid/lattice_level.hpp"
@@ -58,22 +57,19 @@ void check_all_methods(const BrcMatrix& a, const Transfer& t) {
   const Eigen::MatrixXd eigen = Eigen::MatrixXd(reference::eigen_galerkin(r, to_eigen(a)));
   // Sums of a few dozen products in different orders: round-off ~1e-16 relative.
   EXPECT_LT(relative_frobenius(eigen, dense), 1e-13);
-  // The stream in both forms of its scatter (sparse/block_kernels.hpp); the AVX2 one only
-  // where the CPU has it.
-  const bool vector_before = vector_block_kernels();
-  for (const bool vector : {false, true})
+  // The stream in each form of its scatter (sparse/block_kernels.hpp).
+  test::in_each_kernel_form([&] {
     for (auto symmetry : {GalerkinStream::Symmetry::Symmetric, GalerkinStream::Symmetry::Full}) {
-      set_vector_block_kernels(vector);
       GalerkinStream stream(a, t, e, symmetry);
       stream.apply(a, e);
-      EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "stream, " << block_kernels_name();
+      EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "stream";
     }
-  set_vector_block_kernels(vector_before);
+    GalerkinReuse reuse(t.coarse);
+    reuse.apply(a, t, e);
+    EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "reuse";
+  });
   galerkin_naive(a, t, e);
   EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "naive";
-  GalerkinReuse reuse(t.coarse);
-  reuse.apply(a, t, e);
-  EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "reuse";
 }
 
 TEST(Galerkin, AllMethodsEqualOraclesOnBoxHierarchy) {

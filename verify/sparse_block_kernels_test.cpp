@@ -7,12 +7,12 @@
 #include <limits>
 #include <algorithm>
 #include <cstring>
-#include <iostream>
 #include <random>
 
 #include "core/threads.hpp"
 #include "sparse/block_kernels.hpp"
 #include "sparse/brc_matrix.hpp"
+#include "test_support.hpp"
 
 namespace corofem {
 namespace {
@@ -49,7 +49,6 @@ struct RestoreKernels {
 };
 
 TEST(BlockKernels, BothFormsMatchTheDenseProductAtEveryThreadCount) {
-  RestoreKernels restore;
   std::mt19937 rng(7);
   const int n = 3000;  // above the threads' grain, so 2 and 3 threads really split the rows
   const BrcMatrix a = random_brc(n, rng);
@@ -60,29 +59,20 @@ TEST(BlockKernels, BothFormsMatchTheDenseProductAtEveryThreadCount) {
   // 3.1); a row has at most 41 blocks, so m <= 123 terms: 130 u (|A| |x|)_i bounds both forms.
   const Eigen::VectorXd scale = d.cwiseAbs() * x.cwiseAbs();
   const double u = std::numeric_limits<double>::epsilon() / 2;
-  set_vector_block_kernels(true);
-  const bool vector_on = vector_block_kernels();
-  for (const bool vector : {false, true}) {
-    if (vector && !vector_on) {
-      std::cout << "[ note ] this CPU has no AVX2/FMA: only the scalar form is checked\n";
-      continue;
-    }
-    set_vector_block_kernels(vector);
+  test::in_each_kernel_form([&] {
     Eigen::VectorXd one;
     {
       ScopedThreadCount threads(1);
       a.multiply(x, one);
     }
-    for (int i = 0; i < 3 * n; ++i)
-      ASSERT_LE(std::abs(one[i] - expected[i]), 130 * u * scale[i]) << block_kernels_name() << " entry " << i;
+    for (int i = 0; i < 3 * n; ++i) ASSERT_LE(std::abs(one[i] - expected[i]), 130 * u * scale[i]) << "entry " << i;
     for (const int t : {2, 3}) {
       ScopedThreadCount threads(t);
       Eigen::VectorXd y;
       a.multiply(x, y);
-      EXPECT_EQ(0, std::memcmp(y.data(), one.data(), sizeof(double) * y.size())) << block_kernels_name() << ", "
-                                                                                 << t << " threads";
+      EXPECT_EQ(0, std::memcmp(y.data(), one.data(), sizeof(double) * y.size())) << t << " threads";
     }
-  }
+  });
 }
 
 TEST(BlockKernels, TheSwitchReportsTheFormInUse) {

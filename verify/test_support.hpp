@@ -1,9 +1,13 @@
 #pragma once
 // Helpers shared by the gates: temporary folders, running the CLI, small meshes, tolerances.
 #include <filesystem>
+#include <iostream>
 #include <string>
 
+#include <gtest/gtest.h>
+
 #include "mesh/tet_mesh.hpp"
+#include "sparse/block_kernels.hpp"
 
 namespace corofem::test {
 
@@ -43,5 +47,22 @@ std::string cube_stl(int n);
 
 /// Source tree root (for scene files in bench/scenes).
 std::filesystem::path source_dir();
+
+/// Runs `body` once in each form of the block kernels this CPU has (scalar, and AVX2 where it
+/// has it: sparse/block_kernels.hpp), each traced by name; restores the form in use after.
+template <class F>
+void in_each_kernel_form(const F& body) {
+  const bool before = vector_block_kernels();
+  for (const bool vector : {false, true}) {
+    set_vector_block_kernels(vector);
+    if (vector != vector_block_kernels()) {
+      std::cout << "[   NOTE   ] this CPU has no AVX2/FMA: only the scalar block kernels are checked\n";
+      continue;
+    }
+    SCOPED_TRACE(block_kernels_name());
+    body();
+  }
+  set_vector_block_kernels(before);
+}
 
 }  // namespace corofem::test

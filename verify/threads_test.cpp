@@ -302,39 +302,41 @@ TEST_F(ThreadsTest, HybridSmootherIsItsDenseSplittingAtEveryCount) {
       else if (c / 3 <= r / 3)
         m(r, c) += dense(r, c);
     }
-  Eigen::VectorXd one;
-  for (const int n : kThreadCounts) {
-    ScopedThreadCount threads(n);
-    BlockGaussSeidel gs(SmootherOrdering::Hybrid, domain_blocks);
-    gs.set_matrix(a);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
-    double previous = exact.dot(dense * exact);
-    for (int s = 0; s < 3; ++s) {
-      Eigen::VectorXd expected = x + block_triangular_solve(m, b - dense * x, false);
-      gs.forward(a, b, x);
-      EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm()) << "forward sweep " << s;
-      expected = x + block_triangular_solve(m, b - dense * x, true);
-      gs.backward(a, b, x);
-      EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm()) << "backward sweep " << s;
-      // M + M^T - A = D + 2 D_l1 - A_off is positive definite: the A-norm of the error falls.
-      const double energy = error_energy(system, x);
-      EXPECT_LT(energy, previous);
-      previous = energy;
+  test::in_each_kernel_form([&] {
+    Eigen::VectorXd one;
+    for (const int n : kThreadCounts) {
+      ScopedThreadCount threads(n);
+      BlockGaussSeidel gs(SmootherOrdering::Hybrid, domain_blocks);
+      gs.set_matrix(a);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+      double previous = exact.dot(dense * exact);
+      for (int s = 0; s < 3; ++s) {
+        Eigen::VectorXd expected = x + block_triangular_solve(m, b - dense * x, false);
+        gs.forward(a, b, x);
+        EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm()) << "forward sweep " << s;
+        expected = x + block_triangular_solve(m, b - dense * x, true);
+        gs.backward(a, b, x);
+        EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm()) << "backward sweep " << s;
+        // M + M^T - A = D + 2 D_l1 - A_off is positive definite: the A-norm of the error falls.
+        const double energy = error_energy(system, x);
+        EXPECT_LT(energy, previous);
+        previous = energy;
+      }
+      if (n == 1) one = x;
+      EXPECT_TRUE(same_bits(x, one)) << n << " threads";
     }
-    if (n == 1) one = x;
-    EXPECT_TRUE(same_bits(x, one)) << n << " threads";
-  }
-  // One domain: exactly the sequential smoother.
-  BlockGaussSeidel hybrid(SmootherOrdering::Hybrid, static_cast<int>(a.num_blocks()) + 1), sequential;
-  hybrid.set_matrix(a);
-  sequential.set_matrix(a);
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), y = x;
-  hybrid.forward(a, b, x);
-  hybrid.backward(a, b, x);
-  sequential.forward(a, b, y);
-  sequential.backward(a, b, y);
-  EXPECT_EQ(hybrid.num_domains(), 1);
-  EXPECT_TRUE(same_bits(x, y));
+    // One domain: exactly the sequential smoother.
+    BlockGaussSeidel hybrid(SmootherOrdering::Hybrid, static_cast<int>(a.num_blocks()) + 1), sequential;
+    hybrid.set_matrix(a);
+    sequential.set_matrix(a);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), y = x;
+    hybrid.forward(a, b, x);
+    hybrid.backward(a, b, x);
+    sequential.forward(a, b, y);
+    sequential.backward(a, b, y);
+    EXPECT_EQ(hybrid.num_domains(), 1);
+    EXPECT_TRUE(same_bits(x, y));
+  });
 }
 
 TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks) {
@@ -346,42 +348,44 @@ TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks
   const BrcMatrix& a = system.a;
   const Eigen::VectorXd& b = system.b;
   const int domain_blocks = static_cast<int>(a.num_blocks() / 5);
-  for (const SmootherOrdering ordering : {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
-                                          SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
-    SCOPED_TRACE(smoother_ordering_name(ordering));
-    const bool lower_only = ordering == SmootherOrdering::Sequential || ordering == SmootherOrdering::Hybrid;
-    for (const int n : kThreadCounts) {
-      ScopedThreadCount threads(n);
-      BlockGaussSeidel gs(ordering, ordering == SmootherOrdering::Domains ? 200 : domain_blocks);
-      gs.set_matrix(a);
-      Eigen::VectorXd expected = Eigen::VectorXd::Zero(b.size());
-      gs.forward(a, b, expected);
-      Eigen::VectorXd x = Eigen::VectorXd::Constant(b.size(), std::nan(""));
-      gs.forward_from_zero(a, b, x);
-      EXPECT_TRUE(same_bits(x, expected)) << n << " threads";
-      if (!lower_only) continue;
-      // The sequential ordering is one domain of all rows.
-      const bool hybrid = ordering == SmootherOrdering::Hybrid;
-      const int domains = hybrid ? gs.num_domains() : 1;
-      const auto begin = [&](int d) { return hybrid ? gs.domain_rows_begin(d) : d * a.block_rows; };
-      BrcMatrix poisoned = a;
-      int kept = 0;
-      for (int d = 0; d < domains; ++d)
-        for (int i = begin(d); i < begin(d + 1); ++i)
-          for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
-            const int j = a.col_index[k];
-            if (j < i && j >= begin(d)) {
-              ++kept;
-              continue;
+  test::in_each_kernel_form([&] {
+    for (const SmootherOrdering ordering : {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
+                                            SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
+      SCOPED_TRACE(smoother_ordering_name(ordering));
+      const bool lower_only = ordering == SmootherOrdering::Sequential || ordering == SmootherOrdering::Hybrid;
+      for (const int n : kThreadCounts) {
+        ScopedThreadCount threads(n);
+        BlockGaussSeidel gs(ordering, ordering == SmootherOrdering::Domains ? 200 : domain_blocks);
+        gs.set_matrix(a);
+        Eigen::VectorXd expected = Eigen::VectorXd::Zero(b.size());
+        gs.forward(a, b, expected);
+        Eigen::VectorXd x = Eigen::VectorXd::Constant(b.size(), std::nan(""));
+        gs.forward_from_zero(a, b, x);
+        EXPECT_TRUE(same_bits(x, expected)) << n << " threads";
+        if (!lower_only) continue;
+        // The sequential ordering is one domain of all rows.
+        const bool hybrid = ordering == SmootherOrdering::Hybrid;
+        const int domains = hybrid ? gs.num_domains() : 1;
+        const auto begin = [&](int d) { return hybrid ? gs.domain_rows_begin(d) : d * a.block_rows; };
+        BrcMatrix poisoned = a;
+        int kept = 0;
+        for (int d = 0; d < domains; ++d)
+          for (int i = begin(d); i < begin(d + 1); ++i)
+            for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
+              const int j = a.col_index[k];
+              if (j < i && j >= begin(d)) {
+                ++kept;
+                continue;
+              }
+              if (j != i) poisoned.block(k).setConstant(std::nan(""));
             }
-            if (j != i) poisoned.block(k).setConstant(std::nan(""));
-          }
-      EXPECT_LT(2 * kept, a.num_blocks());
-      Eigen::VectorXd y;
-      gs.forward_from_zero(poisoned, b, y);
-      EXPECT_TRUE(same_bits(y, expected)) << n << " threads, upper blocks poisoned";
+        EXPECT_LT(2 * kept, a.num_blocks());
+        Eigen::VectorXd y;
+        gs.forward_from_zero(poisoned, b, y);
+        EXPECT_TRUE(same_bits(y, expected)) << n << " threads, upper blocks poisoned";
+      }
     }
-  }
+  });
 }
 
 TEST_F(ThreadsTest, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
