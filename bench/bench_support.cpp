@@ -103,8 +103,8 @@ const PaperSystem& paper_system(const std::string& model) {
   auto polar = make_rotation_extractor("polar", p.mesh);
   std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
   polar->extract(p.positions(bent_displacement(p)), rotations);
-  Eigen::VectorXd f0;
-  assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
+  Eigen::VectorXd force;
+  assemble_corotated(p.elements, p.mesh, p.assembly, rotations, Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
   DirichletConditions bc = DirichletConditions::none(p.num_dofs());
   const auto box = bounding_box(p.mesh.rest);
   PaperSystem s{p.stiffness, gravity_load(p.mesh, p.materials, Vec3(0, 0, -9.81)),

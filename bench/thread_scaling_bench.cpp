@@ -26,7 +26,7 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
   rotate->extract(x, rotations);  // warm: the step's rotations start from the previous ones
   const std::vector<Mat3> warm = rotations;
-  Eigen::VectorXd f0, force, y;
+  Eigen::VectorXd force, y;
   const PaperSystem& system = paper_system(model);
   MultigridParams params;
   params.hierarchy.levels = hierarchy_levels(model, HierarchyKind::Meshes);
@@ -37,8 +37,8 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   Eigen::VectorXd vx = Eigen::VectorXd::Zero(system.rhs.size());
   const std::vector<std::pair<std::string, std::function<void()>>> kernels = {
       {"rotate", [&] { rotations = warm; rotate->extract(x, rotations); }},
-      {"assemble", [&] { assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0); }},
-      {"forces", [&] { force = internal_forces(p, rotations, u); }},
+      {"assemble", [&] { assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, p.stiffness, force); }},
+      {"forces", [&] { force = internal_forces(p, rotations, u); }},  // Newton's residual pass
       {"spmv", [&] { system.matrix.multiply(system.rhs, y); }},
       {"galerkin", [&] { hierarchy.update(system.matrix, GalerkinMethod::Stream); }},
       {"vcycle", [&] { solver.vcycle(0, system.rhs, vx, true); }}};

@@ -55,12 +55,12 @@ TEST(CorotatedAssembly, RigidMotionGivesZeroForce) {
     const Eigen::VectorXd f = internal_forces(p, rotations, displacement(p, moved));
     // Forces are K (Q^T p - x) with Q^T p - x = O(eps * |x|): relative 1e-12 of |K| |x|.
     EXPECT_LT(f.lpNorm<Eigen::Infinity>(), 1e-12 * scale * 6.0) << "trial " << trial;
-    // Assembled form Ktilde p - f0 agrees.
-    Eigen::VectorXd f0;
-    assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
-    Eigen::VectorXd pos(3 * moved.size());
-    for (std::size_t v = 0; v < moved.size(); ++v) pos.segment<3>(3 * v) = moved[v];
-    EXPECT_LT((p.stiffness * pos - f0).lpNorm<Eigen::Infinity>(), 1e-12 * scale * 6.0);
+    // The assembly's force (from K_e's columns instead of the gradients) too, in both forms.
+    test::in_each_kernel_form([&] {
+      Eigen::VectorXd fused;
+      assemble_corotated(p.elements, p.mesh, p.assembly, rotations, displacement(p, moved), p.stiffness, fused);
+      EXPECT_LT(fused.lpNorm<Eigen::Infinity>(), 1e-12 * scale * 6.0) << "trial " << trial;
+    });
   }
 }
 
@@ -90,18 +90,25 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
   std::mt19937 rng(3);
   std::vector<Mat3> rotations(p.mesh.tets.size());
   for (auto& q : rotations) q = random_rotation(rng);
-  // Oracle: dense 12x12 Q K Q^T per element scattered as triplets.
+  std::uniform_real_distribution<double> d(-0.1, 0.1);
+  Eigen::VectorXd u(p.num_dofs());
+  for (int i = 0; i < u.size(); ++i) u[i] = d(rng);
+  // Oracle: dense 12x12 Q K Q^T per element scattered as triplets, and the force
+  // Ktilde_e p_e - f0_e = Q K_e (Q^T p_e - x_e) as dense products.
   std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd f0_ref = Eigen::VectorXd::Zero(p.num_dofs());
+  Eigen::VectorXd force_ref = Eigen::VectorXd::Zero(p.num_dofs());
   for (int e = 0; e < p.mesh.num_tets(); ++e) {
     Mat12 q = Mat12::Zero();
     for (int a = 0; a < 4; ++a) q.block<3, 3>(3 * a, 3 * a) = rotations[e];
     const Mat12 kt = q * p.elements[e].stiffness * q.transpose();
-    Vec12 x;
-    for (int a = 0; a < 4; ++a) x.segment<3>(3 * a) = p.mesh.rest[p.mesh.tets[e][a]];
-    const Vec12 f0e = q * (p.elements[e].stiffness * x);
+    Vec12 x, pe;
     for (int a = 0; a < 4; ++a) {
-      f0_ref.segment<3>(3 * p.mesh.tets[e][a]) += f0e.segment<3>(3 * a);
+      x.segment<3>(3 * a) = p.mesh.rest[p.mesh.tets[e][a]];
+      pe.segment<3>(3 * a) = x.segment<3>(3 * a) + u.segment<3>(3 * p.mesh.tets[e][a]);
+    }
+    const Vec12 fe = q * (p.elements[e].stiffness * (q.transpose() * pe - x));
+    for (int a = 0; a < 4; ++a) {
+      force_ref.segment<3>(3 * p.mesh.tets[e][a]) += fe.segment<3>(3 * a);
       for (int b = 0; b < 4; ++b)
         for (int r = 0; r < 3; ++r)
           for (int c = 0; c < 3; ++c)
@@ -112,12 +119,14 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
   Eigen::SparseMatrix<double> ref(p.num_dofs(), p.num_dofs());
   ref.setFromTriplets(triplets.begin(), triplets.end());
   test::in_each_kernel_form([&] {
-    Eigen::VectorXd f0;
-    assemble_corotated(p.elements, p.mesh.tets, p.assembly, rotations, p.stiffness, f0);
+    Eigen::VectorXd force;
+    assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, p.stiffness, force);
     const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
     // Same sums in a different order: round-off of a few ulps of |K|.
     EXPECT_LT((ours - ref).norm(), 1e-14 * ref.norm());
-    EXPECT_LT((f0 - f0_ref).norm(), 1e-14 * f0_ref.norm());
+    // The oracle forms Q^T p - x, cancelling terms of |x| ~ 1 to a strain of ~0.1 (random Q):
+    // its round-off, and the kernel's, are some ulps of |K_e| |x|, 1e-13 of |f| here.
+    EXPECT_LT((force - force_ref).norm(), 1e-12 * force_ref.norm());
     Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
     const Eigen::VectorXd y_ref = ref * x;
     EXPECT_LT((p.stiffness * x - y_ref).norm(), 1e-14 * ref.norm() * x.norm());

@@ -19,8 +19,8 @@ TEST(Dirichlet, EliminationEqualsReducedDenseSolve) {
   std::vector<Material> m(mesh.tets.size(), Material{1e3, 0.3, 1});
   FeProblem p = make_fe_problem(std::move(mesh), std::move(m));
   std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
-  Eigen::VectorXd f0;
-  assemble_corotated(p.elements, p.mesh.tets, p.assembly, identity, p.stiffness, f0);
+  Eigen::VectorXd force;
+  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
   const Eigen::MatrixXd k = Eigen::MatrixXd(to_eigen(p.stiffness));
   for (int v = 0; v < p.mesh.num_vertices(); ++v)
     if (p.mesh.rest[v].z() < 1e-12) p.dirichlet.fix_vertex(v, Vec3(0.01 * v, -0.02, 0.003 * v));

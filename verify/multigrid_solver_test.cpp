@@ -98,9 +98,9 @@ AnalysisSpec analysis(const std::string& solver, double tolerance, const std::st
 /// the matching right-hand side.
 BrcMatrix small_strain_system(FeProblem& p, Eigen::VectorXd& b) {
   const std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
-  Eigen::VectorXd f0;
+  Eigen::VectorXd force;
   b = p.external_force;
-  assemble_corotated(p.elements, p.mesh.tets, p.assembly, identity, p.stiffness, f0);
+  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
   BrcMatrix system = p.stiffness;
   apply_dirichlet(p.dirichlet, system, b);
   return system;

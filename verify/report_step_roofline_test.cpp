@@ -40,8 +40,11 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   EXPECT_DOUBLE_EQ(t.at("system").bytes, 144 * blocks + 4 * blocks + 25 * n);
   // rotate: positions built (rest, u in; p out) and gathered, tets, quadrature offsets, rotations in and out.
   EXPECT_DOUBLE_EQ(t.at("rotate").bytes, 72 * v + 16 * e + 24 * v + sizeof(MomentArms) * e + 144 * e);
-  // assemble: K written once, 16 targets and 4 vertex ids per tet, Q, and K_e with K_e x_e (1248 B in 20 lines).
-  EXPECT_DOUBLE_EQ(t.at("assemble").bytes, 72 * blocks + 8 * n + e * (72 + 1280 + 64 + 16));
+  // assemble: K written once, the force written, u and the rest positions read, 16 targets and
+  // 4 vertex ids per tet, Q, and K_e (1152 B in 18 lines).
+  EXPECT_DOUBLE_EQ(t.at("assemble").bytes, 72 * blocks + 8 * n + 8 * n + 24 * v + e * (72 + 1152 + 64 + 16));
+  // forces: b = M v + dt (f_ext - f_int), four vectors read and one written.
+  EXPECT_DOUBLE_EQ(t.at("forces").bytes, 40 * n);
   // update: the fine values copied (read and written), the stream, A read, E written.
   const MultigridHierarchy& h = solver.hierarchy();
   ASSERT_EQ(h.num_levels(), 2);

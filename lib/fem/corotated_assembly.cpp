@@ -17,21 +17,36 @@ struct Owned {
   }
 };
 
+/// s_e = Q^T p_e - x_e up to a translation: s_0 = 0, s_b = (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0).
+Vec12 corotated_strain(const TetMesh& mesh, const Tet& t, const Mat3& q, const Eigen::VectorXd& displacement) {
+  const Mat3 q_minus_i = q.transpose() - Mat3::Identity();
+  const Vec3 u0 = displacement.segment<3>(3 * t[0]);
+  Vec12 s;
+  s.segment<3>(0).setZero();
+  for (int b = 1; b < 4; ++b)
+    s.segment<3>(3 * b) =
+        q_minus_i * (mesh.rest[t[b]] - mesh.rest[t[0]]) + q.transpose() * (displacement.segment<3>(3 * t[b]) - u0);
+  return s;
+}
+
 /// One part of the assembly: the elements touching rows [lo, hi), each block Q K_ab Q^T added
 /// into the rows the part owns (K_ab's transpose block, rotated, is its transpose: K stays
-/// exactly symmetric). Scalar form: Eigen's 3x3 products.
-void assemble_part_scalar(const std::vector<ElementRest>& elements, const std::vector<Tet>& tets,
-                          const AssemblyMap& map, const std::vector<Mat3>& rotations, int part, BrcMatrix& k,
-                          Eigen::VectorXd& f0) {
+/// exactly symmetric), and the element's force Q K_e s_e into the owned vertices' entries.
+/// Scalar form: Eigen's 3x3 products.
+void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
+                          const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, int part,
+                          BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   for (const int e : rows.elements[part]) {
-    const Owned own(tets[e], lo, hi);
+    const Tet& t = mesh.tets[e];
+    const Owned own(t, lo, hi);
     const Mat3& q = rotations[e];
     const Mat12& ke = elements[e].stiffness;
     const auto& blocks = map.block[e];
+    const Vec12 ks = ke.rightCols<9>() * corotated_strain(mesh, t, q, displacement).tail<9>();  // s_0 = 0
     for (int a = 0; a < 4; ++a) {
-      if (own.vertex[a]) f0.segment<3>(3 * tets[e][a]) += q * elements[e].stiffness_times_rest.segment<3>(3 * a);
+      if (own.vertex[a]) force.segment<3>(3 * t[a]) += q * ks.segment<3>(3 * a);
       // K_e is symmetric: K_ba = K_ab^T, so Q K_ba Q^T = (Q K_ab Q^T)^T (one product per pair).
       for (int b = a; b < 4; ++b) {
         if (!own.vertex[a] && !own.vertex[b]) continue;
@@ -61,24 +76,42 @@ __attribute__((target("avx2,fma"))) inline void add_rows_avx2(double* dst, __m25
 /// R = V Q^T (R_j = sum_c V_c Q_jc): 18 FMAs. R's columns are the rows of R^T, the (b, a) block;
 /// a 4x4 transpose gives the rows of R, the (a, b) block.
 __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<ElementRest>& elements,
-                                                            const std::vector<Tet>& tets, const AssemblyMap& map,
-                                                            const std::vector<Mat3>& rotations, int part,
-                                                            BrcMatrix& k, Eigen::VectorXd& f0) {
+                                                            const TetMesh& mesh, const AssemblyMap& map,
+                                                            const std::vector<Mat3>& rotations,
+                                                            const Eigen::VectorXd& displacement, int part,
+                                                            BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
   const __m256d zero = _mm256_setzero_pd();
   double* kv = k.values.data();
   for (const int e : rows.elements[part]) {
-    const Owned own(tets[e], lo, hi);
+    const Tet& t = mesh.tets[e];
+    const Owned own(t, lo, hi);
     const double* q = rotations[e].data();  // column-major: Q_rc = q[r + 3 c]
     const __m256d qc[3] = {_mm256_maskload_pd(q, first3), _mm256_maskload_pd(q + 3, first3),
                            _mm256_maskload_pd(q + 6, first3)};
     const double* ke = elements[e].stiffness.data();  // column-major 12 x 12
     const auto& blocks = map.block[e];
+    // K_e s from K_e's columns 3-11 (s_0 = 0), rows in three 4-wide registers.
+    const Vec12 s = corotated_strain(mesh, t, rotations[e], displacement);
+    __m256d ks[3] = {zero, zero, zero};
+    for (int j = 3; j < 12; ++j) {
+      const __m256d sj = _mm256_broadcast_sd(&s[j]);
+      for (int i = 0; i < 3; ++i) ks[i] = _mm256_fmadd_pd(_mm256_loadu_pd(ke + 12 * j + 4 * i), sj, ks[i]);
+    }
+    alignas(32) double ke_s[12];
+    for (int i = 0; i < 3; ++i) _mm256_store_pd(ke_s + 4 * i, ks[i]);
     for (int a = 0; a < 4; ++a) {
-      if (own.vertex[a])
-        f0.segment<3>(3 * tets[e][a]) += rotations[e] * elements[e].stiffness_times_rest.segment<3>(3 * a);
+      if (own.vertex[a]) {  // f_a += Q (K_e s)_a
+        __m256d fa = _mm256_mul_pd(qc[0], _mm256_broadcast_sd(ke_s + 3 * a));
+        fa = _mm256_fmadd_pd(qc[1], _mm256_broadcast_sd(ke_s + 3 * a + 1), fa);
+        fa = _mm256_fmadd_pd(qc[2], _mm256_broadcast_sd(ke_s + 3 * a + 2), fa);
+        alignas(32) double fa_lanes[4];
+        _mm256_store_pd(fa_lanes, fa);
+        double* dst = force.data() + 3 * static_cast<std::ptrdiff_t>(t[a]);
+        for (int c = 0; c < 3; ++c) dst[c] += fa_lanes[c];
+      }
       for (int b = a; b < 4; ++b) {
         if (!own.vertex[a] && !own.vertex[b]) continue;
         const double* kab = ke + 3 * a + 36 * b;  // (K_ab)_rc = kab[r + 12 c]
@@ -109,38 +142,23 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
 
 }  // namespace
 
-void assemble_corotated(const std::vector<ElementRest>& elements, const std::vector<Tet>& tets,
-                        const AssemblyMap& map, const std::vector<Mat3>& rotations, BrcMatrix& k,
-                        Eigen::VectorXd& f0) {
-  f0.resize(3 * static_cast<Eigen::Index>(k.block_rows));
+void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
+                        const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,
+                        Eigen::VectorXd& force) {
+  force.resize(3 * static_cast<Eigen::Index>(k.block_rows));
   const RowPartition& rows = map.rows;
   for_each_part(rows, [&](int part) {
     const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
     std::fill(k.values.begin() + 9 * static_cast<std::size_t>(k.row_start[lo]),
               k.values.begin() + 9 * static_cast<std::size_t>(k.row_start[hi]), 0.0);
-    f0.segment(3 * lo, 3 * (hi - lo)).setZero();
+    force.segment(3 * lo, 3 * (hi - lo)).setZero();
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-    if (vector_block_kernels()) return assemble_part_avx2(elements, tets, map, rotations, part, k, f0);
+    if (vector_block_kernels())
+      return assemble_part_avx2(elements, mesh, map, rotations, displacement, part, k, force);
 #endif
-    assemble_part_scalar(elements, tets, map, rotations, part, k, f0);
+    assemble_part_scalar(elements, mesh, map, rotations, displacement, part, k, force);
   });
 }
-
-namespace {
-
-/// s_e = Q^T p_e - x_e up to a translation: s_0 = 0, s_b = (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0).
-Vec12 corotated_strain(const TetMesh& mesh, const Tet& t, const Mat3& q, const Eigen::VectorXd& displacement) {
-  const Mat3 q_minus_i = q.transpose() - Mat3::Identity();
-  const Vec3 u0 = displacement.segment<3>(3 * t[0]);
-  Vec12 s;
-  s.segment<3>(0).setZero();
-  for (int b = 1; b < 4; ++b)
-    s.segment<3>(3 * b) =
-        q_minus_i * (mesh.rest[t[b]] - mesh.rest[t[0]]) + q.transpose() * (displacement.segment<3>(3 * t[b]) - u0);
-  return s;
-}
-
-}  // namespace
 
 Eigen::VectorXd internal_forces(const FeProblem& problem, const std::vector<Mat3>& rotations,
                                 const Eigen::VectorXd& displacement) {

@@ -1,6 +1,7 @@
 #pragma once
-// Corotated assembly (paper section 2): Ktilde_e = Q_e K_e Q_e^T and f0_e = Q_e K_e x_e, written
-// into the BRC matrix through the stored block indices. Q_e = I gives the small-strain system.
+// Corotated assembly (paper section 2): Ktilde_e = Q_e K_e Q_e^T written into the BRC matrix
+// through the stored block indices, and in the same pass the elastic force Ktilde_e p_e - f0_e
+// (f0_e = Q_e K_e x_e). Q_e = I gives the small-strain system.
 #include <Eigen/Core>
 #include <vector>
 
@@ -10,12 +11,14 @@
 
 namespace corofem {
 
-/// Overwrites K's values with sum_e Q_e K_e Q_e^T and f0 with sum_e Q_e K_e x_e, each thread of
-/// map.rows writing its own rows (bit-identical at every thread count).
+/// Overwrites K's values with sum_e Q_e K_e Q_e^T and `force` with the elastic internal force at
+/// `displacement` (as internal_forces() defines it, from the K_e read for the blocks anyway: the
+/// step's right-hand side needs no pass of its own), each thread of map.rows writing its own rows
+/// (bit-identical at every thread count).
 /// `rotations` holds Qhat_e per element (the rotation taking the rest element to the deformed one).
-void assemble_corotated(const std::vector<ElementRest>& elements, const std::vector<Tet>& tets,
-                        const AssemblyMap& map, const std::vector<Mat3>& rotations, BrcMatrix& k,
-                        Eigen::VectorXd& f0);
+void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
+                        const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,
+                        Eigen::VectorXd& force);
 
 /// Elastic internal force, element by element: f_int = sum_e Q_e K_e (Q_e^T p_e - x_e), p = x + u.
 /// Equals Ktilde p - f0 of the assembled system, but is evaluated from vertex-0 offsets as

@@ -8,13 +8,13 @@
 
 namespace corofem {
 
-void linearize(FeProblem& problem, RotationExtractor& extractor,
-               const std::vector<Vec3>& positions, std::vector<Mat3>& rotations,
-               Eigen::VectorXd& f0, PhaseClock& clock) {
+void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vector<Vec3>& positions,
+               const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations, Eigen::VectorXd& force,
+               PhaseClock& clock) {
   clock.time("rotate", [&] { extractor.extract(positions, rotations); });
   clock.time("assemble", [&] {
-    assemble_corotated(problem.elements, problem.mesh.tets, problem.assembly, rotations,
-                       problem.stiffness, f0);
+    assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement,
+                       problem.stiffness, force);
   });
 }
 

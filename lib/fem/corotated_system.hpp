@@ -7,11 +7,12 @@
 
 namespace corofem {
 
-/// Extracts rotations at `positions` (warm-started from `rotations`) and assembles Ktilde into
-/// problem.stiffness and f0. Phases "rotate" and "assemble" are timed on `clock`.
-void linearize(FeProblem& problem, RotationExtractor& extractor,
-               const std::vector<Vec3>& positions, std::vector<Mat3>& rotations,
-               Eigen::VectorXd& f0, PhaseClock& clock);
+/// Extracts rotations at `positions` = x + `displacement` (warm-started from `rotations`) and
+/// assembles Ktilde into problem.stiffness and the elastic force there into `force`
+/// (internal_forces' f_int). Phases "rotate" and "assemble" are timed on `clock`.
+void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vector<Vec3>& positions,
+               const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations, Eigen::VectorXd& force,
+               PhaseClock& clock);
 
 /// Number of elements with det F <= 0 at `positions`.
 int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);

@@ -13,9 +13,6 @@ std::vector<ElementRest> precompute_elements(const TetMesh& mesh,
                &x3 = mesh.rest[t[3]];
     ElementRest& el = elements[e];
     el.stiffness = element_stiffness(x0, x1, x2, x3, materials[e]);
-    Vec12 x;
-    x << x0, x1, x2, x3;
-    el.stiffness_times_rest = el.stiffness * x;
     el.rest_edge_inverse = rest_edge_inverse(x0, x1, x2, x3);
     el.volume = signed_volume(x0, x1, x2, x3);
     el.gradient = shape_gradients(el.rest_edge_inverse);

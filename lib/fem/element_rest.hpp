@@ -12,7 +12,6 @@ struct ElementRest {
   std::array<Vec3, 4> gradient;  ///< g_a = grad N_a at rest
   double lambda_volume = 0;      ///< V lambda
   double mu_volume = 0;          ///< V mu
-  Vec12 stiffness_times_rest;  ///< K_e x_e, so that f0_e = Q_e (K_e x_e) costs one rotation
   Mat12 stiffness;             ///< K_e
   Mat3 rest_edge_inverse;      ///< Dm^{-1}
   double volume = 0;

@@ -32,17 +32,14 @@ struct NewtonStepper {
 };
 
 /// One fully implicit Euler step: v' from g(v') = 0 (see the header), starting from the
-/// linearly implicit step's v'.
+/// linearly implicit step's v'. `internal_start` is the elastic force at the step's start.
 SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStepper& newton,
                        const DynamicOptions& options, int step, const DirichletConditions& bc,
-                       SimulationResult& result, Eigen::VectorXd& velocity, PhaseClock& clock) {
+                       const Eigen::VectorXd& internal_start, SimulationResult& result,
+                       Eigen::VectorXd& velocity, PhaseClock& clock) {
   const double dt = options.dt;
   const double mass_factor = 1 + dt * options.rayleigh_alpha, damping = dt * options.rayleigh_beta;
   const Eigen::VectorXd momentum = problem.mass.cwiseProduct(velocity);
-  Eigen::VectorXd internal_start;
-  clock.time("forces", [&] {
-    internal_start = internal_forces(problem, result.rotations, result.displacement);
-  });
   std::vector<Mat3> rotations = result.rotations;
   std::vector<Vec3> positions;
   const auto residual = [&](const Eigen::VectorXd& v1) {
@@ -114,7 +111,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   const double dt = options.dt;
   result.displacement = Eigen::VectorXd::Zero(n);
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
-  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), f0, b;
+  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), elastic, b;
   BrcMatrix system = problem.stiffness;  // the step's matrix; its pattern is allocated once
   std::unique_ptr<NewtonStepper> newton;
   if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.name());
@@ -129,22 +126,19 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     });
     std::vector<Vec3> p;  // the rotations' input
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
-    linearize(problem, rotate, p, result.rotations, f0, clock);
+    linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock);
     clock.time("checks", [&] {  // counted by the rotations' pass where it can, else a pass of its own
       const int counted = rotate.stats().inverted;
       result.inverted_max = std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, p));
     });
     SolveStats stats;
     if (options.newton) {
-      stats = newton_step(problem, rotate, *newton, options, step, bc, result, velocity, clock);
+      stats = newton_step(problem, rotate, *newton, options, step, bc, elastic, result, velocity, clock);
     } else {
-      // Every pass of the step is in a named phase: "forces" (the right-hand side) and "system"
-      // (A and its supports) besides rotate, assemble, update and solve.
-      clock.time("forces", [&] {
-        b = problem.mass.cwiseProduct(velocity) +
-            dt * (problem.external_force -
-                  internal_forces(problem, result.rotations, result.displacement));
-      });
+      // Every pass of the step is in a named phase: "forces" (the right-hand side; the elastic
+      // force came out of the assembly) and "system" (A and its supports) besides rotate,
+      // assemble, update and solve.
+      clock.time("forces", [&] { b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic); });
       clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
       clock.time("system", [&] {
         // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks; the

@@ -19,7 +19,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   Eigen::VectorXd& u = result.displacement;
   u = Eigen::VectorXd::Zero(problem.num_dofs());
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
-  Eigen::VectorXd f0, du = Eigen::VectorXd::Zero(problem.num_dofs());
+  Eigen::VectorXd elastic, du = Eigen::VectorXd::Zero(problem.num_dofs());
   const int increments = options.corotational ? options.load_steps : 1;
   result.converged = true;
   std::unique_ptr<RotationTangent> tangent;
@@ -61,9 +61,8 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
     for (int it = 0; !tangent && it <= options.max_iterations; ++it) {
       const auto p = problem.positions(u);
       result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
-      linearize(problem, rotate, p, result.rotations, f0, clock);
-      const Eigen::VectorXd r =
-          f - internal_forces(problem, result.rotations, u);
+      linearize(problem, rotate, p, u, result.rotations, elastic, clock);
+      const Eigen::VectorXd r = f - elastic;
       check_finite(problem, r, "force", "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it));
       result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
       // A linear solve is exact after one step; corotated steps iterate the lagged rotations.

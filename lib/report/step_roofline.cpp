@@ -123,17 +123,16 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // the rotation matrix (35), det S (14); the previous rotation read, the new one written.
   t["rotate"] = {3 * kVec3 * v + tets + kVec3 * v + sizeof(MomentArms) * e + 2 * rotations,
                  3 * v + (311 + 250 * newton_iterations) * e};
-  // Ktilde_e = Q K_e Q^T for the 10 blocks b >= a (2 x 45 flops each), 16 block += (9), f0
-  // (4 x 18); K_e and K_e x_e read out of ElementRest, the 16 target blocks of the assembly map,
-  // K written once (zeroing fused), f0 written.
-  t["assemble"] = {rotations + lines(sizeof(Mat12) + sizeof(Vec12)) * e + sizeof(std::array<int, 16>) * e + tets +
-                       kBlock * blocks + 8 * n,
-                   1116 * e};
-  // f_int = sum Q K_e (Q^T p - x) (strain 117; K_e s from the shape gradients and V lambda,
-  // V mu: G = sum s_b g_b^T 45, tr G and G + G^T 21, per vertex 18; rotate back 72 per tet) and
-  // b = M v + dt (f - f_int): mass, velocity, external force and f_int read, b written.
-  t["forces"] = {tets + rotations + lines(4 * kVec3 + 16) * e + kVec3 * v + 8 * n + 8 * n + 4 * 8 * n + 8 * n,
-                 327 * e + 5 * n};
+  // Ktilde_e = Q K_e Q^T for the 10 blocks b >= a (2 x 45 flops each), 16 block += (9), and
+  // the elastic force Q K_e s_e (strain 117, K_e s from 9 columns 216, rotate back 4 x 18);
+  // K_e read out of ElementRest, the 16 target blocks of the assembly map, rest positions and
+  // displacements, K written once (zeroing fused), the force written.
+  t["assemble"] = {rotations + lines(sizeof(Mat12)) * e + sizeof(std::array<int, 16>) * e + tets + kVec3 * v +
+                       8 * n + kBlock * blocks + 8 * n,
+                   1449 * e};
+  // b = M v + dt (f_ext - f_int), f_int from the assembly: mass, velocity, external force and
+  // f_int read, b written.
+  t["forces"] = {4 * 8 * n + 8 * n, 5 * n};
   // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde and its supports: K read, A written, the
   // column indices (for the supported columns), the mass, the fixed flags, b read and written.
   t["system"] = {2 * kBlock * blocks + kIndex * blocks + 8 * n + n + 16 * n, 9 * blocks + 3 * n};
