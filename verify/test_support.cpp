@@ -92,4 +92,10 @@ std::string cube_stl(int n) {
   return s + "endsolid cube\n";
 }
 
+Mat12 dense_element_stiffness(const FeProblem& p, int e) {
+  const Tet& t = p.mesh.tets[e];
+  return element_stiffness(p.mesh.rest[t[0]], p.mesh.rest[t[1]], p.mesh.rest[t[2]], p.mesh.rest[t[3]],
+                           p.materials[e]);
+}
+
 }  // namespace corofem::test

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "fem/fe_problem.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "sparse/block_kernels.hpp"
 
@@ -34,6 +35,10 @@ CliResult run_cli(const std::string& args, const std::string& launcher = "");
 
 void write_text(const std::filesystem::path& file, const std::string& text);
 std::string read_text(const std::filesystem::path& file);
+
+/// Element e's dense 12x12 K_e from its rest vertices and material (element_stiffness), the
+/// oracle the assembly kernels are held to.
+Mat12 dense_element_stiffness(const FeProblem& p, int e);
 
 /// The models folder (COROFEM_MODELS, else ../shared/models beside the source tree), or empty.
 std::filesystem::path models_dir();

@@ -29,10 +29,29 @@ Vec12 corotated_strain(const TetMesh& mesh, const Tet& t, const Mat3& q, const E
   return s;
 }
 
+/// K_e s from the shape gradients (K_ab of element_stiffness.hpp): with G = sum_b s_b g_b^T,
+/// (K_e s)_a = V lambda tr(G) g_a + V mu (G + G^T) g_a; s_0 = 0. 14 numbers read, not K_e's 144.
+Vec12 stiffness_times(const ElementRest& el, const Vec12& s) {
+  Mat3 g = s.segment<3>(3) * el.gradient[1].transpose();
+  g.noalias() += s.segment<3>(6) * el.gradient[2].transpose();
+  g.noalias() += s.segment<3>(9) * el.gradient[3].transpose();
+  const double volumetric = el.lambda_volume * g.trace();
+  const Mat3 shear = el.mu_volume * (g + g.transpose());
+  Vec12 ks;
+  for (int a = 0; a < 4; ++a) ks.segment<3>(3 * a) = volumetric * el.gradient[a] + shear * el.gradient[a];
+  return ks;
+}
+
+// The rotated blocks come from the gradients too: with h_a = Q g_a and Q Q^T = I,
+//   Q K_ab Q^T = V lambda h_a h_b^T + V mu h_b h_a^T + V mu (g_a . g_b) I,
+// so an element needs Q times its 4 gradients, not 2 x 27 multiply-adds per block and K_e's
+// 1152 bytes. Every extractor returns Q orthogonal to 1e-13 (rotation_extractors_test), so this
+// is Q K_e Q^T to round-off. The (b, a) block is written as the exact transpose of the (a, b)
+// one: K stays exactly symmetric off the diagonal.
+
 /// One part of the assembly: the elements touching rows [lo, hi), each block Q K_ab Q^T added
-/// into the rows the part owns (K_ab's transpose block, rotated, is its transpose: K stays
-/// exactly symmetric), and the element's force Q K_e s_e into the owned vertices' entries.
-/// Scalar form: Eigen's 3x3 products.
+/// into the rows the part owns, and the element's force Q K_e s_e into the owned vertices'
+/// entries. Scalar form: Eigen's 3-vector products.
 void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
                           const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, int part,
                           BrcMatrix& k, Eigen::VectorXd& force) {
@@ -42,15 +61,18 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
     const Tet& t = mesh.tets[e];
     const Owned own(t, lo, hi);
     const Mat3& q = rotations[e];
-    const Mat12& ke = elements[e].stiffness;
+    const ElementRest& el = elements[e];
     const auto& blocks = map.block[e];
-    const Vec12 ks = ke.rightCols<9>() * corotated_strain(mesh, t, q, displacement).tail<9>();  // s_0 = 0
+    const Vec12 ks = stiffness_times(el, corotated_strain(mesh, t, q, displacement));
+    Vec3 h[4];
+    for (int a = 0; a < 4; ++a) h[a] = q * el.gradient[a];
     for (int a = 0; a < 4; ++a) {
       if (own.vertex[a]) force.segment<3>(3 * t[a]) += q * ks.segment<3>(3 * a);
-      // K_e is symmetric: K_ba = K_ab^T, so Q K_ba Q^T = (Q K_ab Q^T)^T (one product per pair).
       for (int b = a; b < 4; ++b) {
         if (!own.vertex[a] && !own.vertex[b]) continue;
-        const Mat3 rotated = q * ke.block<3, 3>(3 * a, 3 * b) * q.transpose();
+        Mat3 rotated = el.lambda_volume * h[a] * h[b].transpose();
+        rotated.noalias() += el.mu_volume * h[b] * h[a].transpose();
+        rotated.diagonal().array() += el.mu_volume * el.gradient[a].dot(el.gradient[b]);
         if (own.vertex[a]) k.block(blocks[4 * a + b]) += rotated;
         if (b != a && own.vertex[b]) k.block(blocks[4 * b + a]) += rotated.transpose();
       }
@@ -70,11 +92,9 @@ __attribute__((target("avx2,fma"))) inline void add_rows_avx2(double* dst, __m25
   dst[8] += _mm_cvtsd_f64(_mm256_extractf128_pd(r2, 1));
 }
 
-/// The same part in AVX2: the assembly is bound by its 3x3 products, not by its scattered
-/// writes (writing every block into one measured the same 14.6 ms on the dragon). Q's columns
-/// are 4-wide registers (lane 3 zero); V = Q K_ab column by column (V_c = sum_r Q_r K_rc), then
-/// R = V Q^T (R_j = sum_c V_c Q_jc): 18 FMAs. R's columns are the rows of R^T, the (b, a) block;
-/// a 4x4 transpose gives the rows of R, the (a, b) block.
+/// The same part in AVX2. h_a = Q g_a and the force Q (K_e s)_a are 4-wide (lane 3 zero); row r
+/// of a block is V lambda h_a[r] h_b + V mu h_b[r] h_a plus the diagonal term in lane r (one
+/// multiply, one FMA); a 4x4 transpose of the rows gives the (b, a) block.
 __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<ElementRest>& elements,
                                                             const TetMesh& mesh, const AssemblyMap& map,
                                                             const std::vector<Mat3>& rotations,
@@ -84,29 +104,33 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
   const __m256d zero = _mm256_setzero_pd();
+  const __m256d lane[3] = {_mm256_castsi256_pd(_mm256_set_epi64x(0, 0, 0, -1)),
+                           _mm256_castsi256_pd(_mm256_set_epi64x(0, 0, -1, 0)),
+                           _mm256_castsi256_pd(_mm256_set_epi64x(0, -1, 0, 0))};
   double* kv = k.values.data();
   for (const int e : rows.elements[part]) {
     const Tet& t = mesh.tets[e];
     const Owned own(t, lo, hi);
+    const ElementRest& el = elements[e];
     const double* q = rotations[e].data();  // column-major: Q_rc = q[r + 3 c]
     const __m256d qc[3] = {_mm256_maskload_pd(q, first3), _mm256_maskload_pd(q + 3, first3),
                            _mm256_maskload_pd(q + 6, first3)};
-    const double* ke = elements[e].stiffness.data();  // column-major 12 x 12
     const auto& blocks = map.block[e];
-    // K_e s from K_e's columns 3-11 (s_0 = 0), rows in three 4-wide registers.
-    const Vec12 s = corotated_strain(mesh, t, rotations[e], displacement);
-    __m256d ks[3] = {zero, zero, zero};
-    for (int j = 3; j < 12; ++j) {
-      const __m256d sj = _mm256_broadcast_sd(&s[j]);
-      for (int i = 0; i < 3; ++i) ks[i] = _mm256_fmadd_pd(_mm256_loadu_pd(ke + 12 * j + 4 * i), sj, ks[i]);
+    const Vec12 ks = stiffness_times(el, corotated_strain(mesh, t, rotations[e], displacement));
+    __m256d h[4];
+    alignas(32) double lambda_h[4][4], mu_h[4][4];  // V lambda h_a and V mu h_a
+    for (int a = 0; a < 4; ++a) {
+      const Vec3& g = el.gradient[a];
+      h[a] = _mm256_fmadd_pd(qc[2], _mm256_set1_pd(g[2]),
+                             _mm256_fmadd_pd(qc[1], _mm256_set1_pd(g[1]), _mm256_mul_pd(qc[0], _mm256_set1_pd(g[0]))));
+      _mm256_store_pd(lambda_h[a], _mm256_mul_pd(_mm256_set1_pd(el.lambda_volume), h[a]));
+      _mm256_store_pd(mu_h[a], _mm256_mul_pd(_mm256_set1_pd(el.mu_volume), h[a]));
     }
-    alignas(32) double ke_s[12];
-    for (int i = 0; i < 3; ++i) _mm256_store_pd(ke_s + 4 * i, ks[i]);
     for (int a = 0; a < 4; ++a) {
       if (own.vertex[a]) {  // f_a += Q (K_e s)_a
-        __m256d fa = _mm256_mul_pd(qc[0], _mm256_broadcast_sd(ke_s + 3 * a));
-        fa = _mm256_fmadd_pd(qc[1], _mm256_broadcast_sd(ke_s + 3 * a + 1), fa);
-        fa = _mm256_fmadd_pd(qc[2], _mm256_broadcast_sd(ke_s + 3 * a + 2), fa);
+        __m256d fa = _mm256_mul_pd(qc[0], _mm256_set1_pd(ks[3 * a]));
+        fa = _mm256_fmadd_pd(qc[1], _mm256_set1_pd(ks[3 * a + 1]), fa);
+        fa = _mm256_fmadd_pd(qc[2], _mm256_set1_pd(ks[3 * a + 2]), fa);
         alignas(32) double fa_lanes[4];
         _mm256_store_pd(fa_lanes, fa);
         double* dst = force.data() + 3 * static_cast<std::ptrdiff_t>(t[a]);
@@ -114,26 +138,19 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
       }
       for (int b = a; b < 4; ++b) {
         if (!own.vertex[a] && !own.vertex[b]) continue;
-        const double* kab = ke + 3 * a + 36 * b;  // (K_ab)_rc = kab[r + 12 c]
-        __m256d v[3], r[3];
-        for (int c = 0; c < 3; ++c) {
-          const double* kc = kab + 12 * c;
-          v[c] = _mm256_mul_pd(qc[0], _mm256_broadcast_sd(kc));
-          v[c] = _mm256_fmadd_pd(qc[1], _mm256_broadcast_sd(kc + 1), v[c]);
-          v[c] = _mm256_fmadd_pd(qc[2], _mm256_broadcast_sd(kc + 2), v[c]);
-        }
-        for (int j = 0; j < 3; ++j) {
-          r[j] = _mm256_mul_pd(v[0], _mm256_broadcast_sd(q + j));
-          r[j] = _mm256_fmadd_pd(v[1], _mm256_broadcast_sd(q + j + 3), r[j]);
-          r[j] = _mm256_fmadd_pd(v[2], _mm256_broadcast_sd(q + j + 6), r[j]);
-        }
-        if (own.vertex[a]) {
+        const __m256d diagonal = _mm256_set1_pd(el.mu_volume * el.gradient[a].dot(el.gradient[b]));
+        __m256d r[3];
+        for (int j = 0; j < 3; ++j)
+          r[j] = _mm256_add_pd(_mm256_fmadd_pd(_mm256_broadcast_sd(&lambda_h[a][j]), h[b],
+                                               _mm256_mul_pd(_mm256_broadcast_sd(&mu_h[b][j]), h[a])),
+                               _mm256_and_pd(diagonal, lane[j]));
+        if (own.vertex[a]) add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), r[0], r[1], r[2]);
+        if (b != a && own.vertex[b]) {
           const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
           const __m256d t2 = _mm256_unpacklo_pd(r[2], zero), t3 = _mm256_unpackhi_pd(r[2], zero);
-          add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), _mm256_permute2f128_pd(t0, t2, 0x20),
+          add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]), _mm256_permute2f128_pd(t0, t2, 0x20),
                         _mm256_permute2f128_pd(t1, t3, 0x20), _mm256_permute2f128_pd(t0, t2, 0x31));
         }
-        if (b != a && own.vertex[b]) add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]), r[0], r[1], r[2]);
       }
     }
   }
@@ -172,17 +189,9 @@ Eigen::VectorXd internal_forces(const FeProblem& problem, const std::vector<Mat3
       const Tet& t = mesh.tets[e];
       const Owned own(t, lo, hi);
       const Mat3& q = rotations[e];
-      // K_e s from the gradients (K_ab of element_stiffness.hpp): with G = sum_b s_b g_b^T,
-      // (K_e s)_a = V lambda tr(G) g_a + V mu (G + G^T) g_a; s_0 = 0.
-      const ElementRest& el = problem.elements[e];
-      const Vec12 s = corotated_strain(mesh, t, q, displacement);
-      Mat3 g = s.segment<3>(3) * el.gradient[1].transpose();
-      g.noalias() += s.segment<3>(6) * el.gradient[2].transpose();
-      g.noalias() += s.segment<3>(9) * el.gradient[3].transpose();
-      const double volumetric = el.lambda_volume * g.trace();
-      const Mat3 shear = el.mu_volume * (g + g.transpose());
+      const Vec12 ks = stiffness_times(problem.elements[e], corotated_strain(mesh, t, q, displacement));
       for (int a = 0; a < 4; ++a)
-        if (own.vertex[a]) f.segment<3>(3 * t[a]) += q * (volumetric * el.gradient[a] + shear * el.gradient[a]);
+        if (own.vertex[a]) f.segment<3>(3 * t[a]) += q * ks.segment<3>(3 * a);
     }
   });
   return f;
@@ -193,7 +202,7 @@ double elastic_energy(const std::vector<ElementRest>& elements, const TetMesh& m
   double energy = 0;
   for (std::size_t e = 0; e < elements.size(); ++e) {
     const Vec12 s = corotated_strain(mesh, mesh.tets[e], rotations[e], displacement);
-    energy += 0.5 * s.dot(elements[e].stiffness * s);
+    energy += 0.5 * s.dot(stiffness_times(elements[e], s));
   }
   return energy;
 }

@@ -12,7 +12,6 @@ std::vector<ElementRest> precompute_elements(const TetMesh& mesh,
     const Vec3 &x0 = mesh.rest[t[0]], &x1 = mesh.rest[t[1]], &x2 = mesh.rest[t[2]],
                &x3 = mesh.rest[t[3]];
     ElementRest& el = elements[e];
-    el.stiffness = element_stiffness(x0, x1, x2, x3, materials[e]);
     el.rest_edge_inverse = rest_edge_inverse(x0, x1, x2, x3);
     el.volume = signed_volume(x0, x1, x2, x3);
     el.gradient = shape_gradients(el.rest_edge_inverse);

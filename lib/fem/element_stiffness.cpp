@@ -23,13 +23,15 @@ Mat12 element_stiffness(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Ve
                         const Material& material) {
   const std::array<Vec3, 4> g = shape_gradients(rest_edge_inverse(x0, x1, x2, x3));
   const double volume = std::abs(signed_volume(x0, x1, x2, x3));
-  const double lambda = material.lame_lambda(), mu = material.lame_mu();
+  return gradient_stiffness(g, volume * material.lame_lambda(), volume * material.lame_mu());
+}
+
+Mat12 gradient_stiffness(const std::array<Vec3, 4>& g, double lambda_volume, double mu_volume) {
   Mat12 k;
   for (int a = 0; a < 4; ++a)
     for (int b = 0; b < 4; ++b)
-      k.block<3, 3>(3 * a, 3 * b) =
-          volume * (lambda * g[a] * g[b].transpose() + mu * g[b] * g[a].transpose() +
-                    mu * g[a].dot(g[b]) * Mat3::Identity());
+      k.block<3, 3>(3 * a, 3 * b) = lambda_volume * g[a] * g[b].transpose() + mu_volume * g[b] * g[a].transpose() +
+                                    mu_volume * g[a].dot(g[b]) * Mat3::Identity();
   return k;
 }
 

@@ -22,5 +22,7 @@ std::array<Vec3, 4> shape_gradients(const Mat3& rest_edge_inverse);
 /// DOF order (vertex a, component i) -> 3a+i. Symmetric PSD with the 6 rigid modes as null space.
 Mat12 element_stiffness(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
                         const Material& material);
+/// The same K_e from the gradients and V lambda, V mu.
+Mat12 gradient_stiffness(const std::array<Vec3, 4>& g, double lambda_volume, double mu_volume);
 
 }  // namespace corofem

@@ -116,7 +116,7 @@ void RotationTangent::rotation_jacobian(int e, const std::vector<Vec3>& position
 
 Mat12 RotationTangent::element_jacobian(int e, const std::vector<Vec3>& positions, const Mat3& q) const {
   const Tet& t = problem_.mesh.tets[e];
-  const Mat12& k = problem_.elements[e].stiffness;
+  const Mat12 k = problem_.elements[e].stiffness();
   // The force as internal_forces() computes it: s_0 = 0, s_b = Q^T (x_b - x_0) - (X_b - X_0).
   Vec12 s = Vec12::Zero();
   for (int b = 1; b < 4; ++b)

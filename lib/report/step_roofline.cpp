@@ -123,13 +123,15 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // the rotation matrix (35), det S (14); the previous rotation read, the new one written.
   t["rotate"] = {3 * kVec3 * v + tets + kVec3 * v + sizeof(MomentArms) * e + 2 * rotations,
                  3 * v + (311 + 250 * newton_iterations) * e};
-  // Ktilde_e = Q K_e Q^T for the 10 blocks b >= a (2 x 45 flops each), 16 block += (9), and
-  // the elastic force Q K_e s_e (strain 117, K_e s from 9 columns 216, rotate back 4 x 18);
-  // K_e read out of ElementRest, the 16 target blocks of the assembly map, rest positions and
-  // displacements, K written once (zeroing fused), the force written.
-  t["assemble"] = {rotations + lines(sizeof(Mat12)) * e + sizeof(std::array<int, 16>) * e + tets + kVec3 * v +
+  // Ktilde_e from the rotated gradients h_a = Q g_a (4 x 15 flops; per block b >= a,
+  // V lambda h_a h_b^T + V mu h_b h_a^T + V mu (g_a . g_b) I: 35), 16 block += (9), and the
+  // elastic force Q K_e s_e (strain 117, K_e s from the gradients 138, rotate back 4 x 18);
+  // the gradients and V lambda, V mu read out of ElementRest, the 16 target blocks of the
+  // assembly map, rest positions and displacements, K written once (zeroing fused), the force
+  // written.
+  t["assemble"] = {rotations + lines(4 * kVec3 + 16) * e + sizeof(std::array<int, 16>) * e + tets + kVec3 * v +
                        8 * n + kBlock * blocks + 8 * n,
-                   1449 * e};
+                   (60 + 10 * 35 + 16 * 9 + 117 + 138 + 72) * e};
   // b = M v + dt (f_ext - f_int), f_int from the assembly: mass, velocity, external force and
   // f_int read, b written.
   t["forces"] = {4 * 8 * n + 8 * n, 5 * n};
