@@ -66,6 +66,11 @@ TEST(BlockKernels, BothFormsMatchTheDenseProductAtEveryThreadCount) {
       Eigen::VectorXd y;
       a.multiply(x, y);
       EXPECT_EQ(0, std::memcmp(y.data(), one.data(), sizeof(double) * y.size())) << t << " threads";
+      // The fused residual is b minus this product, rounded once more: the same bits.
+      const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * n, -1, 1), r_expected = b - one;
+      Eigen::VectorXd r;
+      a.residual(b, x, r);
+      EXPECT_EQ(0, std::memcmp(r.data(), r_expected.data(), sizeof(double) * r.size())) << t << " threads";
     }
   });
 }

@@ -174,10 +174,7 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
     }
     for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
   });
-  timed(solve_ms_, residual, [&] {
-    a.multiply(x, residual_[h]);
-    residual_[h] = b - residual_[h];
-  });
+  timed(solve_ms_, residual, [&] { a.residual(b, x, residual_[h]); });
   timed(solve_ms_, transfer, [&] {
     hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]);
   });

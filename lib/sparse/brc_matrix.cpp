@@ -25,6 +25,18 @@ void BrcMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
     block_row_sum(col_index.data(), values.data(), row_start[i], row_start[i + 1], source, y.data() + 3 * i);
 }
 
+void BrcMatrix::residual(const Eigen::VectorXd& b, const Eigen::VectorXd& x, Eigen::VectorXd& r) const {
+  r.resize(3 * block_rows);
+  const double* xs = x.data();
+  auto source = [xs](int j) { return xs + 3 * j; };
+#pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks()))
+  for (int i = 0; i < block_rows; ++i) {
+    double s[3];
+    block_row_sum(col_index.data(), values.data(), row_start[i], row_start[i + 1], source, s);
+    for (int c = 0; c < 3; ++c) r[3 * i + c] = b[3 * i + c] - s[c];
+  }
+}
+
 Eigen::VectorXd BrcMatrix::operator*(const Eigen::VectorXd& x) const {
   Eigen::VectorXd y;
   multiply(x, y);

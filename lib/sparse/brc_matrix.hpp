@@ -24,6 +24,8 @@ struct BrcMatrix {
   void set_zero();
   /// y = A x (sizes 3*block_cols and 3*block_rows).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// r = b - A x in the product's pass (threaded as multiply(): the same bits at every count).
+  void residual(const Eigen::VectorXd& b, const Eigen::VectorXd& x, Eigen::VectorXd& r) const;
   Eigen::VectorXd operator*(const Eigen::VectorXd& x) const;
 };
 
