@@ -10,7 +10,7 @@ namespace corofem {
 struct ElementRest {
   // K_e's blocks are V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I) (element_stiffness.hpp):
   // the assembly and the internal forces apply K_e from these 14 numbers instead of reading its
-  // 144 (an element is 200 bytes, not 1350: the assembly streams them).
+  // 144 (an element is 192 bytes, not 1440: the assembly streams them).
   std::array<Vec3, 4> gradient;  ///< g_a = grad N_a at rest
   double lambda_volume = 0;      ///< V lambda
   double mu_volume = 0;          ///< V mu
