@@ -12,9 +12,9 @@
 namespace corofem {
 
 /// Overwrites K's values with sum_e Q_e K_e Q_e^T and `force` with the elastic internal force at
-/// `displacement` (as internal_forces() defines it, from the K_e read for the blocks anyway: the
-/// step's right-hand side needs no pass of its own), each thread of map.rows writing its own rows
-/// (bit-identical at every thread count).
+/// `displacement` (as internal_forces() defines it, from the gradients the blocks are built from:
+/// the step's right-hand side needs no pass of its own), each thread of map.rows writing its own
+/// rows (bit-identical at every thread count).
 /// `rotations` holds Qhat_e per element (the rotation taking the rest element to the deformed one).
 void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
                         const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,

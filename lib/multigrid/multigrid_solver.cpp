@@ -201,13 +201,16 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
   if (b_norm == 0) return stats;
-  const double r0 = (b - a * x).norm();
+  Eigen::VectorXd r;
+  a.residual(b, x, r);
+  const double r0 = r.norm();
   const int cap = params_.vcycles > 0 ? params_.vcycles : params_.max_iterations;
   double rk = r0;
   for (int k = 0; k < cap; ++k) {
     if (params_.vcycles == 0 && rk <= params_.tolerance * b_norm) break;
     vcycle(0, b, x, false);
-    rk = (b - a * x).norm();
+    a.residual(b, x, r);
+    rk = r.norm();
     ++stats.iterations;
     if (!std::isfinite(rk)) throw NumericalFault("multigrid: residual became non-finite");
   }

@@ -45,7 +45,8 @@ SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
   if (b_norm == 0) return stats;
-  Eigen::VectorXd r = b - a * x, z = Eigen::VectorXd::Zero(b.size()), q;
+  Eigen::VectorXd r, z = Eigen::VectorXd::Zero(b.size()), q;
+  a.residual(b, x, r);
   const double r0 = r.norm();
   double rk = r0;
   if (rk > tolerance * b_norm) {
