@@ -11,6 +11,8 @@
 #include "rotation/quaternion.hpp"
 #include "rotation/energy_newton_batch.hpp"
 #include "rotation/energy_rotation.hpp"
+#include "mesh/box_mesh.hpp"
+#include "sparse/block_kernels.hpp"
 
 namespace corofem {
 namespace {
@@ -211,6 +213,85 @@ TEST(RotationEnergy, BatchedNewtonIsTheElementwiseNewtonInEveryLane) {
   // A lane may take one step more or less only where the test sits at round-off of the tolerance.
   EXPECT_LE(steps_differ, 2);
   EXPECT_GT(unstepped, 0);
+}
+
+TEST(RotationEnergy, QuaternionOfRotationRoundTrips) {
+  // quaternion_of_rotation against Eigen's (up to sign) and rotation_of_quaternion back to the
+  // matrix, on random rotations and on the four branches' extremes (angle pi about each axis,
+  // the identity), where a formula that divides by the wrong component loses every digit.
+  std::mt19937 rng(5);
+  std::vector<Mat3> rotations{Mat3::Identity()};
+  for (int axis = 0; axis < 3; ++axis) rotations.push_back(Eigen::AngleAxisd(M_PI, Vec3::Unit(axis)).toRotationMatrix());
+  for (int i = 0; i < 1000; ++i) rotations.push_back(random_rotation(rng));
+  double worst_q = 0, worst_m = 0;
+  for (const Mat3& r : rotations) {
+    double m[9], q[4], back[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[3 * i + j] = r(i, j);
+    quaternion_of_rotation(m, q);
+    const Eigen::Quaterniond e(r);
+    const double sign = q[0] * e.w() + q[1] * e.x() + q[2] * e.y() + q[3] * e.z() < 0 ? -1 : 1;
+    worst_q = std::max({worst_q, std::abs(sign * q[0] - e.w()), std::abs(sign * q[1] - e.x()),
+                        std::abs(sign * q[2] - e.y()), std::abs(sign * q[3] - e.z())});
+    const double scaled[4] = {3 * q[0], 3 * q[1], 3 * q[2], 3 * q[3]};  // not unit: the 2 / |q|^2 form
+    rotation_of_quaternion(scaled, back);
+    for (int k = 0; k < 9; ++k) worst_m = std::max(worst_m, std::abs(back[k] - m[k]));
+  }
+  EXPECT_LT(worst_q, 1e-15 * 8);  // a few roundings of O(1) numbers
+  EXPECT_LT(worst_m, 1e-15 * 8);
+}
+
+TEST(RotationEnergy, ExtractorMatchesTheExactMinimizerInBothKernelForms) {
+  // The extractor's batches (moments, start, Newton and the rotation out, across lanes) in the
+  // portable and the AVX2 form, against the exact minimizer per element (energy-exact), from a
+  // cold start (identity) and warm (the previous frame's answer). 162 tets: the last batch is
+  // partial. Large but not inverting deformations, so every minimizer is unique and Newton's
+  // answer (tolerance 1e-13) must be the exact one to 1e-10 (the error in Q is about the
+  // tolerance over the gap between N's top eigenvalues, of order 1 here).
+  const TetMesh mesh = make_box_mesh({1, 0.8, 0.6}, {3, 3, 3});
+  ASSERT_EQ(mesh.num_tets() % kNewtonLanes, 2);
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  const Mat3 spin = Eigen::AngleAxisd(0.9, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<std::vector<Vec3>> frames(2);
+  for (int f = 0; f < 2; ++f)
+    for (const Vec3& x : mesh.rest)
+      frames[f].push_back((f + 1) * 0.5 * spin * Vec3(1.4 * x.x(), x.y() + 0.5 * x.x() * x.x(), 0.8 * x.z()) +
+                          (1 - (f + 1) * 0.5) * x + Vec3(u(rng), u(rng), u(rng)));
+  RotationParams params;
+  params.newton_tolerance = 1e-13;
+  auto exact = make_rotation_extractor("energy-exact", mesh);
+  const bool had_vector = set_vector_block_kernels(false);
+  std::vector<std::vector<Mat3>> forms;
+  std::vector<std::vector<std::uint8_t>> iterations;
+  for (bool vector : {false, true}) {
+    set_vector_block_kernels(vector);
+    auto newton = make_rotation_extractor("energy-newton", mesh, params);
+    std::vector<Mat3> rotations(mesh.tets.size(), Mat3::Identity());
+    for (const auto& positions : frames) {
+      newton->extract(positions, rotations);
+      std::vector<Mat3> oracle(mesh.tets.size(), Mat3::Identity());
+      exact->extract(positions, oracle);
+      EXPECT_EQ(newton->stats().fallbacks, 0);
+      EXPECT_EQ(newton->stats().inverted, 0);
+      double worst = 0;
+      for (int e = 0; e < mesh.num_tets(); ++e) worst = std::max(worst, (rotations[e] - oracle[e]).norm());
+      EXPECT_LT(worst, 1e-10) << (vector ? "vector" : "portable") << " form";
+      EXPECT_GT(*std::max_element(newton->stats().iterations.begin(), newton->stats().iterations.end()), 0);
+    }
+    forms.push_back(rotations);
+    iterations.push_back(newton->stats().iterations);
+  }
+  set_vector_block_kernels(had_vector);
+  double apart = 0;
+  int steps_differ = 0;
+  for (int e = 0; e < mesh.num_tets(); ++e) {
+    apart = std::max(apart, (forms[0][e] - forms[1][e]).norm());
+    steps_differ += iterations[0][e] != iterations[1][e];
+  }
+  if (vector_block_kernels()) std::cout << "[ energy ] extractor, AVX2 against portable form: |dQ| " << apart << "\n";
+  EXPECT_LT(apart, 1e-13);  // FMA against two roundings, a few Newton steps of O(1) numbers
+  EXPECT_LE(steps_differ, 2);
 }
 
 TEST(RotationEnergy, NewtonDetectsSingularHessianAndFallsBack) {

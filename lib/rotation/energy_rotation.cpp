@@ -186,25 +186,15 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
   const int tets = mesh_.num_tets();
   const int batches = (tets + kNewtonLanes - 1) / kNewtonLanes;  // fixed by the mesh, not the threads
   int fallbacks = 0, inverted = 0;
+  const NewtonBatchInput in{mesh_.tets.data(), rest_.data(), positions.data(), params_.newton_tolerance,
+                            params_.newton_max_iterations};
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks, inverted) num_threads(threads_for(tets))
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kNewtonLanes;
-    const int lanes = std::min(kNewtonLanes, tets - first);  // the last batch repeats its last element
-    Mat3 s[kNewtonLanes], warm[kNewtonLanes];
-    double a[kNewtonLanes];
-    NewtonOutcome r[kNewtonLanes];
-    for (int l = 0; l < kNewtonLanes; ++l) {
-      const int e = first + std::min(l, lanes - 1);
-      s[l] = deformed_moment(rest_[e], mesh_.tets[e], positions, a[l]);
-      warm[l] = rotations[e];
-    }
-    energy_newton_rotations(s, a, warm, params_.newton_tolerance, params_.newton_max_iterations, r);
-    for (int l = 0; l < lanes; ++l) {
-      rotations[first + l] = r[l].rotation;
-      stats_.iterations[first + l] = static_cast<std::uint8_t>(r[l].iterations);
-      fallbacks += r[l].fell_back;
-      inverted += s[l].determinant() <= 0;
-    }
+    const NewtonBatchCounts counts = energy_newton_batch(in, first, std::min(kNewtonLanes, tets - first), rotations,
+                                                         stats_.iterations.data());
+    fallbacks += counts.fallbacks;
+    inverted += counts.inverted;
   }
   stats_.fallbacks = fallbacks;
   stats_.inverted = inverted;

@@ -5,6 +5,7 @@
 // N = horn_matrix(S^T); its minimizer over unit q is N's top eigenvector (Horn 1987).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "rotation/element_quadrature.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -29,15 +30,69 @@ struct NewtonOutcome {
   bool fell_back = false;  ///< singular or indefinite Hessian, or no convergence: exact minimizer used
 };
 
-/// The paper's q describes Q^T: Newton starts from the conjugate of the warm rotation's
-/// quaternion, and its unit q gives back Q = R(q)^T.
+/// The quaternion (w, x, y, z) of a rotation matrix m (row-major), up to sign: the row of
+/// 4 q q^T (its entries are sums and differences of m's) with the largest diagonal entry 4 q_k^2,
+/// divided by 2 |2 q_k| (Shepperd 1978). Branch-free (the row is chosen by selects), so the lanes of
+/// the batched Newton vectorize it; the largest diagonal keeps the division well conditioned.
+inline void quaternion_of_rotation(const double (&m)[9], double (&q)[4]) {
+  const double t[4] = {1 + m[0] + m[4] + m[8], 1 + m[0] - m[4] - m[8], 1 - m[0] + m[4] - m[8],
+                       1 - m[0] - m[4] + m[8]};
+  const double wx = m[7] - m[5], wy = m[2] - m[6], wz = m[3] - m[1];
+  const double xy = m[1] + m[3], xz = m[2] + m[6], yz = m[5] + m[7];
+  const bool x_over_w = t[1] > t[0];
+  double best = x_over_w ? t[1] : t[0];
+  double r0 = x_over_w ? wx : t[0], r1 = x_over_w ? t[1] : wx, r2 = x_over_w ? xy : wy, r3 = x_over_w ? xz : wz;
+  const bool y_best = t[2] > best;
+  best = y_best ? t[2] : best;
+  r0 = y_best ? wy : r0;
+  r1 = y_best ? xy : r1;
+  r2 = y_best ? t[2] : r2;
+  r3 = y_best ? yz : r3;
+  const bool z_best = t[3] > best;
+  best = z_best ? t[3] : best;
+  r0 = z_best ? wz : r0;
+  r1 = z_best ? xz : r1;
+  r2 = z_best ? yz : r2;
+  r3 = z_best ? t[3] : r3;
+  const double scale = 0.5 / std::sqrt(best);
+  q[0] = r0 * scale;
+  q[1] = r1 * scale;
+  q[2] = r2 * scale;
+  q[3] = r3 * scale;
+}
+
+/// The rotation matrix (row-major) of q / |q|, q (w, x, y, z) not necessarily of unit length:
+/// the rotation matrix of a unit quaternion with 2 replaced by 2 / |q|^2 (no square root).
+inline void rotation_of_quaternion(const double (&q)[4], double (&m)[9]) {
+  const double s = 2 / (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  const double xx = s * q[1] * q[1], yy = s * q[2] * q[2], zz = s * q[3] * q[3];
+  const double xy = s * q[1] * q[2], xz = s * q[1] * q[3], yz = s * q[2] * q[3];
+  const double wx = s * q[0] * q[1], wy = s * q[0] * q[2], wz = s * q[0] * q[3];
+  m[0] = 1 - (yy + zz);
+  m[1] = xy - wz;
+  m[2] = xz + wy;
+  m[3] = xy + wz;
+  m[4] = 1 - (xx + zz);
+  m[5] = yz - wx;
+  m[6] = xz - wy;
+  m[7] = yz + wx;
+  m[8] = 1 - (xx + yy);
+}
+
+/// The paper's q describes Q^T: Newton starts from the quaternion of the warm rotation's
+/// transpose, and its q gives back Q = R(q / |q|)^T.
 inline Eigen::Vector4d newton_start(const Mat3& warm) {
-  const Eigen::Quaterniond start(warm);
-  return {start.w(), -start.x(), -start.y(), -start.z()};
+  const double m[9] = {warm(0, 0), warm(1, 0), warm(2, 0), warm(0, 1), warm(1, 1),
+                       warm(2, 1), warm(0, 2), warm(1, 2), warm(2, 2)};  // warm^T, row-major
+  double q[4];
+  quaternion_of_rotation(m, q);
+  return {q[0], q[1], q[2], q[3]};
 }
 inline Mat3 newton_rotation(const Eigen::Vector4d& q) {
-  const Eigen::Vector4d unit = q.normalized();
-  return Eigen::Quaterniond(unit[0], unit[1], unit[2], unit[3]).toRotationMatrix().transpose();
+  const double v[4] = {q[0], q[1], q[2], q[3]};
+  double m[9];
+  rotation_of_quaternion(v, m);  // R(q), row-major: read as column-major it is R^T = Q
+  return Eigen::Map<const Mat3>(m);
 }
 
 /// Newton on (q, lambda) for eqs. (5)-(8): gradient 4a|q|^2 q - 4Nq + 2 lambda q, Hessian
