@@ -18,7 +18,7 @@
 int main(int argc, char** argv) {
   using namespace corofem;
   if (argc < 4) {
-    std::cerr << "usage: corofem_profile naive|stream|stream-full|reuse|step bunny|horse|dragon N [--models DIR]\n";
+    std::cerr << "usage: corofem_profile naive|stream|stream-full|reuse|gather|step bunny|horse|dragon N [--models DIR]\n";
     return 2;
   }
   if (argc == 6 && std::strcmp(argv[4], "--models") == 0) bench::set_models_dir(argv[5]);

@@ -77,7 +77,7 @@ void BM_GalerkinUpdate(benchmark::State& state, const std::string& method, const
   }
   state.counters["levels"] = h.num_levels();
   state.counters["fine_blocks"] = a.num_blocks();
-  if (method == "stream" || method == "stream-full") {
+  if (method == "stream" || method == "stream-full" || method == "gather") {
     const double bytes = stream_update_bytes(h, galerkin_method(method));
     state.counters["stream_MB"] = h.stream_bytes(galerkin_method(method)) / 1e6;
     state.counters["bytes_per_update"] = bytes;
@@ -91,7 +91,7 @@ void BM_GalerkinRatio(benchmark::State& state, const std::string& model) {
   const BrcMatrix& a = paper_system(model).matrix;
   std::vector<Eigen::SparseMatrix<double>> r;
   for (int l = 0; l + 1 < h.num_levels(); ++l) r.push_back(restriction_matrix(h.transfer(l)));
-  double t[8] = {0, 0, 0, 0, 0, 0, 0, 0};  // ms
+  double t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // ms
   std::unique_ptr<PetscPtapHierarchy> petsc;  // PETSc's MatPtAP in numeric-reuse mode
   if (have_petsc()) {
     petsc = std::make_unique<PetscPtapHierarchy>(a, paper_transfers(model, HierarchyKind::Meshes).transfers);
@@ -103,6 +103,7 @@ void BM_GalerkinRatio(benchmark::State& state, const std::string& model) {
     t[2] += time_ms([&] { h.update(a, GalerkinMethod::Reuse); });
     t[3] += time_ms([&] { eigen_update(h, r); });
     t[4] += time_ms([&] { h.update(a, GalerkinMethod::StreamFull); });
+    t[8] += time_ms([&] { h.update(a, GalerkinMethod::Gather); });
     if (petsc) t[5] += time_ms([&] { petsc->update(a); });
     // Stream and reuse share their scatter kernel; again in its scalar form (the portable one,
     // sparse/block_kernels.hpp): the ratio of the algorithms in both.
@@ -122,6 +123,10 @@ void BM_GalerkinRatio(benchmark::State& state, const std::string& model) {
   state.counters["stream_full_ms"] = t[4] / n;
   state.counters["naive_over_stream_full"] = t[0] / t[4];
   state.counters["reuse_over_stream_full"] = t[2] / t[4];
+  // The stream's pairs by destination (the default), against the stream and reuse.
+  state.counters["gather_ms"] = t[8] / n;
+  state.counters["stream_over_gather"] = t[1] / t[8];
+  state.counters["reuse_over_gather"] = t[2] / t[8];
   state.counters["stream_scalar_ms"] = t[6] / n;
   state.counters["reuse_scalar_ms"] = t[7] / n;
   state.counters["reuse_over_stream_scalar"] = t[7] / t[6];
@@ -351,6 +356,8 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   BENCHMARK_CAPTURE(BM_GalerkinUpdate, stream_full/model, std::string("stream-full"),          \
                     std::string(#model))->Unit(benchmark::kMillisecond);                         \
   BENCHMARK_CAPTURE(BM_GalerkinUpdate, reuse/model, std::string("reuse"), std::string(#model))   \
+      ->Unit(benchmark::kMillisecond);                                                           \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, gather/model, std::string("gather"), std::string(#model)) \
       ->Unit(benchmark::kMillisecond);                                                           \
   BENCHMARK_CAPTURE(BM_GalerkinUpdate, eigen/model, std::string("eigen"), std::string(#model))   \
       ->Unit(benchmark::kMillisecond);                                                           \

@@ -1,13 +1,15 @@
-// Galerkin products: stream = naive = reuse = Eigen = dense on random small hierarchies and a box
+// Galerkin products: stream = gather = naive = reuse = Eigen = dense on random small hierarchies and a box
 // hierarchy, again after A's values change, and with an entry of A scattered more than 127 times
 // (continuation control bytes).
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "galerkin_oracle.hpp"
 #include "mesh/box_mesh.hpp"
 #include "multigrid/galerkin.hpp"
+#include "multigrid/galerkin_gather.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 #include "multigrid/lattice_level.hpp"
@@ -67,6 +69,20 @@ void check_all_methods(const BrcMatrix& a, const Transfer& t) {
     GalerkinReuse reuse(t.coarse);
     reuse.apply(a, t, e);
     EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "reuse";
+    // The gather stream adds the symmetric stream's pairs in the same order with the same
+    // operations: the same bits, for any number of parts (threads' row ranges). E is filled with
+    // garbage first: the gather writes every block.
+    GalerkinStream stream(a, t, e, GalerkinStream::Symmetry::Symmetric);
+    stream.apply(a, e);
+    const std::vector<double> streamed = e.values;
+    for (int parts : {1, 2, 3}) {
+      std::fill(e.values.begin(), e.values.end(), std::numeric_limits<double>::quiet_NaN());
+      GalerkinGather gather(a, t, e, parts);
+      EXPECT_EQ(gather.num_pairs(), stream.num_pairs());
+      gather.apply(a, e);
+      EXPECT_TRUE(e.values == streamed) << "gather, " << parts << " parts";
+      EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "gather";
+    }
   });
   galerkin_naive(a, t, e);
   EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), dense), 1e-13) << "naive";
@@ -133,7 +149,7 @@ void check_hierarchy(const BrcMatrix& a, std::vector<Transfer> transfers, int le
   MultigridHierarchy hierarchy(a, std::move(transfers));
   ASSERT_EQ(hierarchy.num_levels(), levels);
   for (GalerkinMethod m : {GalerkinMethod::Naive, GalerkinMethod::Stream, GalerkinMethod::StreamFull,
-                           GalerkinMethod::Reuse}) {
+                           GalerkinMethod::Reuse, GalerkinMethod::Gather}) {
     hierarchy.update(a, m);
     for (int h = 0; h + 1 < hierarchy.num_levels(); ++h) {
       const Eigen::SparseMatrix<double> r = restriction_matrix(hierarchy.transfer(h));

@@ -148,17 +148,7 @@ void append_control(std::vector<std::uint8_t>& control, std::size_t count) {
 GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
                                Symmetry symmetry, int parts) {
   const bool upper_only = symmetry == Symmetry::Symmetric;
-  // Visits the pairs of every block of A in storage order: f(block, i, j, R_il R_jk).
-  const auto for_each_pair = [&](const auto& f) {
-    for (int l = 0; l < a.block_rows; ++l)
-      for (int b = a.row_start[l]; b < a.row_start[l + 1]; ++b) {
-        const int k = a.col_index[b];
-        for (int m = t.p_start[l]; m < t.p_start[l + 1]; ++m)
-          for (int n = t.p_start[k]; n < t.p_start[k + 1]; ++n)
-            if (!upper_only || t.p_col[n] >= t.p_col[m])
-              f(b, t.p_col[m], t.p_col[n], t.p_weight[m] * t.p_weight[n]);
-      }
-  };
+  const auto for_each_pair = [&](const auto& f) { for_each_galerkin_pair(a, t, upper_only, f); };
   // Rows of E split by their pair counts (the numeric phase's work).
   std::vector<long long> prefix(e.block_rows + 1, 0);
   for_each_pair([&](int, int i, int, double) { ++prefix[i + 1]; });
@@ -186,12 +176,25 @@ GalerkinStream::GalerkinStream(const BrcMatrix& a, const Transfer& t, const BrcM
     ++count[p];
   });
   while (closed < a.num_blocks()) close_block();
-  if (upper_only)
-    for (int i = 0; i < e.block_rows; ++i)
-      for (int b = e.row_start[i]; b < e.row_start[i + 1]; ++b)
-        if (e.col_index[b] > i)
-          mirror_.emplace_back(static_cast<std::uint32_t>(b),
-                               static_cast<std::uint32_t>(e.find(e.col_index[b], i)));
+  if (upper_only) mirror_ = galerkin_mirror_pairs(e);
+}
+
+MirrorPairs galerkin_mirror_pairs(const BrcMatrix& e) {
+  MirrorPairs mirror;
+  for (int i = 0; i < e.block_rows; ++i)
+    for (int b = e.row_start[i]; b < e.row_start[i + 1]; ++b)
+      if (e.col_index[b] > i)
+        mirror.emplace_back(static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(e.find(e.col_index[b], i)));
+  return mirror;
+}
+
+void mirror_blocks(const MirrorPairs& mirror, std::ptrdiff_t begin, std::ptrdiff_t end, double* ev) {
+  for (std::ptrdiff_t m = begin; m < end; ++m) {  // E_ji = E_ij^T
+    const double* u = ev + 9 * static_cast<std::size_t>(mirror[m].first);
+    double* l = ev + 9 * static_cast<std::size_t>(mirror[m].second);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) l[3 * r + c] = u[3 * c + r];
+  }
 }
 
 std::size_t GalerkinStream::num_pairs() const {
@@ -227,12 +230,7 @@ void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
     }
     const std::ptrdiff_t mirrored = static_cast<std::ptrdiff_t>(mirror_.size());
 #pragma omp for schedule(static)
-    for (std::ptrdiff_t m = 0; m < mirrored; ++m) {  // E_ji = E_ij^T
-      const double* u = ev + 9 * static_cast<std::size_t>(mirror_[m].first);
-      double* l = ev + 9 * static_cast<std::size_t>(mirror_[m].second);
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) l[3 * r + c] = u[3 * c + r];
-    }
+    for (std::ptrdiff_t m = 0; m < mirrored; ++m) mirror_blocks(mirror_, m, m + 1, ev);
   }
 }
 
@@ -241,7 +239,8 @@ GalerkinMethod galerkin_method(const std::string& name) {
   if (name == "stream") return GalerkinMethod::Stream;
   if (name == "stream-full") return GalerkinMethod::StreamFull;
   if (name == "reuse") return GalerkinMethod::Reuse;
-  throw InputError("analysis.galerkin: unknown method '" + name + "' (known: naive, stream, stream-full, reuse)");
+  if (name == "gather") return GalerkinMethod::Gather;
+  throw InputError("analysis.galerkin: unknown method '" + name + "' (known: naive, stream, stream-full, reuse, gather)");
 }
 
 }  // namespace corofem

@@ -8,6 +8,7 @@
 //    through a marker array (the stronger baseline).
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "multigrid/transfer.hpp"
@@ -30,6 +31,22 @@ class GalerkinReuse {
  private:
   std::vector<int> slot_;
 };
+
+/// Visits the pairs of Algorithm 1 in A's storage order: f(b, i, j, R_il R_jk) for every block
+/// b = A_lk and coarse vertices i of l and j of k (upper_only: those with i <= j).
+template <class F>
+void for_each_galerkin_pair(const BrcMatrix& a, const Transfer& t, bool upper_only, const F& f) {
+  for (int l = 0; l < a.block_rows; ++l)
+    for (int b = a.row_start[l]; b < a.row_start[l + 1]; ++b) {
+      const int k = a.col_index[b];
+      for (int m = t.p_start[l]; m < t.p_start[l + 1]; ++m)
+        for (int n = t.p_start[k]; n < t.p_start[k + 1]; ++n)
+          if (!upper_only || t.p_col[n] >= t.p_col[m]) f(b, t.p_col[m], t.p_col[n], t.p_weight[m] * t.p_weight[n]);
+    }
+}
+
+/// The (E_ij, E_ji) block pairs, i < j, of a symmetric pattern (see galerkin_mirror_pairs).
+using MirrorPairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 /// Algorithm 1. Built once per hierarchy (R does not change). Control stream: one byte per block
 /// of A in storage order, top bit 1 = advance to the next block of A, low 7 bits = number p
@@ -74,12 +91,18 @@ class GalerkinStream {
     std::vector<Pair> data;
   };
   std::vector<Part> parts_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> mirror_;  ///< (E_ij, E_ji) blocks, i < j
+  MirrorPairs mirror_;
 };
 
+/// The (E_ij, E_ji) block pairs, i < j, of a symmetric pattern: the blocks a symmetric product
+/// writes by mirroring.
+MirrorPairs galerkin_mirror_pairs(const BrcMatrix& e);
+/// E_ji = E_ij^T for pairs [begin, end) of `mirror` (a loop body for the caller's threads).
+void mirror_blocks(const MirrorPairs& mirror, std::ptrdiff_t begin, std::ptrdiff_t end, double* ev);
+
 /// Method names for scenes and benchmarks: "naive", "stream" (symmetric), "stream-full" (the
-/// paper's format), "reuse".
-enum class GalerkinMethod { Naive, Stream, StreamFull, Reuse };
+/// paper's format), "reuse", "gather" (the stream's pairs by destination: galerkin_gather.hpp).
+enum class GalerkinMethod { Naive, Stream, StreamFull, Reuse, Gather };
 GalerkinMethod galerkin_method(const std::string& name);
 
 }  // namespace corofem

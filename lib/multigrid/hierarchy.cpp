@@ -1,5 +1,9 @@
 #include "multigrid/hierarchy.hpp"
 
+#include <algorithm>
+
+#include "core/threads.hpp"
+
 namespace corofem {
 
 MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern, std::vector<Transfer> transfers)
@@ -9,11 +13,19 @@ MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern, std::vecto
     matrices_.push_back(galerkin_pattern(matrices_[h], transfers_[h]));
     streams_.emplace_back(matrices_[h], transfers_[h], matrices_[h + 1]);
     reuse_.push_back(std::make_unique<GalerkinReuse>(transfers_[h].coarse));
+    gathers_.emplace_back(matrices_[h], transfers_[h], matrices_[h + 1]);
   }
 }
 
 void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
-  matrices_[0].values = fine.values;
+  // The fine values copied in, on the threads (a pass at memory speed: 14 MB on the dragon).
+  const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(fine.values.size());
+  matrices_[0].values.resize(fine.values.size());
+  const double* from = fine.values.data();
+  double* to = matrices_[0].values.data();
+  constexpr std::ptrdiff_t kChunk = 1 << 15;
+#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
+  for (std::ptrdiff_t c = 0; c < values; c += kChunk) std::copy(from + c, from + std::min(values, c + kChunk), to + c);
   for (std::size_t h = 0; h < transfers_.size(); ++h) {
     switch (method) {
       case GalerkinMethod::Naive:
@@ -28,6 +40,9 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
                                      GalerkinStream::Symmetry::Full);
         full_streams_[h].apply(matrices_[h], matrices_[h + 1]);
         break;
+      case GalerkinMethod::Gather:
+        gathers_[h].apply(matrices_[h], matrices_[h + 1]);
+        break;
       case GalerkinMethod::Reuse:
         reuse_[h]->apply(matrices_[h], transfers_[h], matrices_[h + 1]);
         break;
@@ -37,6 +52,10 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
 
 std::size_t MultigridHierarchy::stream_bytes(GalerkinMethod format) const {
   std::size_t bytes = 0;
+  if (format == GalerkinMethod::Gather) {
+    for (const auto& g : gathers_) bytes += g.bytes();
+    return bytes;
+  }
   for (const auto& s : format == GalerkinMethod::StreamFull ? full_streams_ : streams_) bytes += s.bytes();
   return bytes;
 }

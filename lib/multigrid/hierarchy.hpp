@@ -1,10 +1,12 @@
 #pragma once
 // A multigrid hierarchy over a fine BRC matrix: given the transfers of every level
-// (hierarchy_builder.hpp), the coarse patterns and Galerkin streams are built once;
+// (hierarchy_builder.hpp), the coarse patterns and Galerkin streams (the symmetric stream and the
+// gather) are built once;
 // update() rebuilds every coarse operator E_{h+1} = R_h A_h R_h^T from new fine values.
 #include <memory>
 
 #include "multigrid/galerkin.hpp"
+#include "multigrid/galerkin_gather.hpp"
 
 namespace corofem {
 
@@ -14,7 +16,7 @@ class MultigridHierarchy {
   MultigridHierarchy(const BrcMatrix& fine_pattern, std::vector<Transfer> transfers);
 
   /// Copies the fine values and recomputes every coarse level with the given method.
-  void update(const BrcMatrix& fine, GalerkinMethod method = GalerkinMethod::Stream);
+  void update(const BrcMatrix& fine, GalerkinMethod method = GalerkinMethod::Gather);
 
   int num_levels() const { return static_cast<int>(matrices_.size()); }
   const BrcMatrix& matrix(int h) const { return matrices_[h]; }
@@ -22,7 +24,8 @@ class MultigridHierarchy {
   /// Transfer from level h to h + 1.
   const Transfer& transfer(int h) const { return transfers_[h]; }
   const GalerkinStream& stream(int h) const { return streams_[h]; }
-  /// Bytes of all control and data streams of the given format.
+  const GalerkinGather& gather(int h) const { return gathers_[h]; }
+  /// Bytes of all control and data streams of the given format (Gather: the gather streams).
   std::size_t stream_bytes(GalerkinMethod format = GalerkinMethod::Stream) const;
 
  private:
@@ -31,6 +34,7 @@ class MultigridHierarchy {
   std::vector<GalerkinStream> streams_;       ///< symmetric format
   std::vector<GalerkinStream> full_streams_;  ///< the paper's format, built on first use
   std::vector<std::unique_ptr<GalerkinReuse>> reuse_;
+  std::vector<GalerkinGather> gathers_;
 };
 
 }  // namespace corofem

@@ -42,7 +42,7 @@ nlohmann::json MultigridParams::smoother_json() const {
 }
 
 nlohmann::json MultigridParams::to_json() const {
-  const char* names[] = {"naive", "stream", "stream-full", "reuse"};
+  const char* names[] = {"naive", "stream", "stream-full", "reuse", "gather"};
   return {{"hierarchy", hierarchy.to_json()},
           {"transfer", "barycentric in the containing or nearest coarse tet"},
           {"galerkin", names[static_cast<int>(galerkin)]},

@@ -20,7 +20,7 @@ struct MultigridParams {
   int vcycles = 0;                 ///< multigrid: fixed count; 0 = iterate to the tolerance
   int max_iterations = 500;        ///< cap on V-cycles / CG iterations
   double tolerance = 1e-8;         ///< relative residual |b - A x| / |b|
-  GalerkinMethod galerkin = GalerkinMethod::Stream;
+  GalerkinMethod galerkin = GalerkinMethod::Gather;
   SmootherOrdering smoother = SmootherOrdering::Sequential;  ///< the Gauss-Seidel sweeps' order
 
   nlohmann::json to_json() const;

@@ -75,20 +75,26 @@ Traffic vcycle(const MultigridSolver& solver, int h) {
 }  // namespace
 
 std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
-  // Galerkin: the fine values copied in, then per coarse level the stream (control and data) and
-  // A_{h-1} read sequentially, E_h written (18 flops per pair: a 3x3 block scaled and added), its
-  // mirror pairs.
+  // Galerkin: the fine values copied in, then per coarse level the stream (control and data, or
+  // the gather's pairs and block lists) and A_{h-1} read once, E_h written (18 flops per pair: a
+  // 3x3 block scaled and added), its mirror pairs.
   const MultigridHierarchy& h = solver.hierarchy();
+  const bool gather = solver.params().galerkin == GalerkinMethod::Gather;
+  const auto stream_bytes = [&](int level) {
+    return static_cast<double>(gather ? h.gather(level).bytes() : h.stream(level).bytes());
+  };
+  const auto pairs = [&](int level) {
+    return static_cast<double>(gather ? h.gather(level).num_pairs() : h.stream(level).num_pairs());
+  };
   const double blocks = static_cast<double>(h.matrix(0).col_index.size());
   std::map<std::string, Traffic> parts;
   Traffic galerkin = {2 * kBlock * blocks, 0};
   for (int level = 1; level < h.num_levels(); ++level) {
     const BrcMatrix& coarse = h.matrix(level);
     const double coarse_blocks = static_cast<double>(coarse.col_index.size());
-    galerkin += {static_cast<double>(h.stream(level - 1).bytes()) +
-                   kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) + kBlock * coarse_blocks +
-                   8 * (coarse_blocks - coarse.block_rows) / 2,
-               18.0 * static_cast<double>(h.stream(level - 1).num_pairs())};
+    galerkin += {stream_bytes(level - 1) + kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) +
+                   kBlock * coarse_blocks + 8 * (coarse_blocks - coarse.block_rows) / 2,
+               18.0 * pairs(level - 1)};
   }
   parts["galerkin"] = galerkin;
   // The smoothers' inverse diagonal blocks (about 50 flops each).

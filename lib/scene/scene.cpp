@@ -172,7 +172,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.integrator = one_of(f, "integrator", a.integrator, {"linear-implicit", "newton"});
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
-  a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse"});
+  a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse", "gather"});
   a.hierarchy = one_of(f, "hierarchy", a.hierarchy, {"meshes", "lattice"});
   const bool multigrid = is_multigrid_solver(a.solver);
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);

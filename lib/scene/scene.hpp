@@ -79,7 +79,7 @@ struct AnalysisSpec {
   std::string rotation = "polar";           ///< an extractor name (rotation_method_names())
   RotationParams rotation_params;
   std::string solver = "cholmod";           ///< cholmod | multigrid | mgpcg
-  std::string galerkin = "stream";          ///< naive | stream | reuse (multigrid coarse operators)
+  std::string galerkin = "gather";          ///< naive | stream | stream-full | reuse | gather (multigrid coarse operators)
   /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
   /// `mesh.levels` gives them) | lattice (covering Kuhn lattices)
   std::string hierarchy = "lattice";
