@@ -164,14 +164,42 @@ void check_hierarchy(const BrcMatrix& a, std::vector<Transfer> transfers, int le
   }
 }
 
+/// The transfers of a lattice hierarchy over the mesh, level-1 cells of the given size.
+std::vector<Transfer> lattice_transfers(const TetMesh& mesh, double cell) {
+  HierarchyParams params;
+  params.kind = HierarchyKind::Lattice;
+  params.first_cell_factor = cell / mean_edge_length(mesh);
+  return build_hierarchy(mesh, {}, params).transfers;
+}
+
 TEST(Galerkin, LatticeHierarchyUpdateMatchesOraclesOnEveryLevel) {
   const TetMesh mesh = make_box_mesh({1, 1, 1}, {6, 6, 6});
   std::mt19937 rng(4);
   BrcMatrix a = random_symmetric(mesh, rng);
-  HierarchyParams params;
-  params.kind = HierarchyKind::Lattice;
-  params.first_cell_factor = 0.25 / mean_edge_length(mesh);  // cell 0.25
-  check_hierarchy(a, build_hierarchy(mesh, {}, params).transfers, 3);
+  check_hierarchy(a, lattice_transfers(mesh, 0.25), 3);
+}
+
+TEST(Galerkin, TakenFineValuesGiveTheCopiedUpdateBits) {
+  // take_update swaps the fine values in instead of copying them: every level the same bits as
+  // update's, the caller left with a matrix of the same pattern, and another pattern refused.
+  const TetMesh mesh = make_box_mesh({1, 1, 1}, {5, 5, 5});
+  std::mt19937 rng(6);
+  BrcMatrix a = random_symmetric(mesh, rng);
+  const std::vector<Transfer> transfers = lattice_transfers(mesh, 0.3);
+  MultigridHierarchy copied(a, transfers), taken(a, transfers);
+  for (int round = 0; round < 2; ++round) {
+    randomize(a, rng);
+    copied.update(a);
+    BrcMatrix handed = a;
+    taken.take_update(handed);
+    EXPECT_EQ(handed.values.size(), a.values.size());
+    EXPECT_EQ(handed.col_index, a.col_index);
+    ASSERT_EQ(taken.num_levels(), copied.num_levels());
+    for (int h = 0; h < copied.num_levels(); ++h)
+      EXPECT_TRUE(taken.matrix(h).values == copied.matrix(h).values) << "level " << h << ", round " << round;
+  }
+  BrcMatrix other = random_symmetric(make_box_mesh({1, 1, 1}, {2, 2, 2}), rng);
+  EXPECT_THROW(taken.take_update(other), std::logic_error);
 }
 
 TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {

@@ -45,13 +45,13 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   EXPECT_DOUBLE_EQ(t.at("assemble").bytes, 72 * blocks + 8 * n + 8 * n + 24 * v + e * (72 + 128 + 64 + 16));
   // forces: b = M v + dt (f_ext - f_int), four vectors read and one written.
   EXPECT_DOUBLE_EQ(t.at("forces").bytes, 40 * n);
-  // update: the fine values copied (read and written), the gather stream (the default method), A
-  // read, E written.
+  // update: the gather stream (the default method), A read, E written (the fine values are swapped
+  // in, not copied).
   const MultigridHierarchy& h = solver.hierarchy();
   ASSERT_EQ(h.num_levels(), 2);
   const double coarse_blocks = static_cast<double>(h.matrix(1).col_index.size());
   EXPECT_GE(t.at("update").bytes,
-            2 * 72 * blocks + static_cast<double>(h.gather(0).bytes()) + 72 * blocks + 72 * coarse_blocks);
+            static_cast<double>(h.gather(0).bytes()) + 72 * blocks + 72 * coarse_blocks);
   ASSERT_EQ(solver.params().galerkin, GalerkinMethod::Gather);
   EXPECT_GT(solver.coarsest_factorization_flops(), 0);
   EXPECT_DOUBLE_EQ(t.at("update").flops, 18.0 * static_cast<double>(h.gather(0).num_pairs()) + 50 * v +

@@ -153,7 +153,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
         apply_dirichlet(bc, system, b);
       });
       // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
-      clock.time("update", [&] { solver.set_matrix(system); });
+      clock.time("update", [&] { solver.take_matrix(system); });  // A is rebuilt in every step
       stats = clock.time("solve", [&] {
         // The iterative solvers start from 2 v_n - v_{n-1}, the velocity extrapolated linearly
         // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only

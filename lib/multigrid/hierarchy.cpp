@@ -1,6 +1,7 @@
 #include "multigrid/hierarchy.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/threads.hpp"
 
@@ -26,6 +27,17 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
   constexpr std::ptrdiff_t kChunk = 1 << 15;
 #pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
   for (std::ptrdiff_t c = 0; c < values; c += kChunk) std::copy(from + c, from + std::min(values, c + kChunk), to + c);
+  update_coarse(method);
+}
+
+void MultigridHierarchy::take_update(BrcMatrix& fine, GalerkinMethod method) {
+  if (fine.values.size() != matrices_[0].values.size() || fine.block_rows != matrices_[0].block_rows)
+    throw std::logic_error("MultigridHierarchy::take_update: the matrix has another pattern");
+  std::swap(fine.values, matrices_[0].values);
+  update_coarse(method);
+}
+
+void MultigridHierarchy::update_coarse(GalerkinMethod method) {
   for (std::size_t h = 0; h < transfers_.size(); ++h) {
     switch (method) {
       case GalerkinMethod::Naive:

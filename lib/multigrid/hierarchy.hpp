@@ -17,6 +17,9 @@ class MultigridHierarchy {
 
   /// Copies the fine values and recomputes every coarse level with the given method.
   void update(const BrcMatrix& fine, GalerkinMethod method = GalerkinMethod::Gather);
+  /// The same, the fine values swapped in instead of copied (fine gets the previous ones; its
+  /// pattern must be the hierarchy's).
+  void take_update(BrcMatrix& fine, GalerkinMethod method = GalerkinMethod::Gather);
 
   int num_levels() const { return static_cast<int>(matrices_.size()); }
   const BrcMatrix& matrix(int h) const { return matrices_[h]; }
@@ -29,6 +32,8 @@ class MultigridHierarchy {
   std::size_t stream_bytes(GalerkinMethod format = GalerkinMethod::Stream) const;
 
  private:
+  void update_coarse(GalerkinMethod method);  ///< every E_{h+1} from the current level h
+
   std::vector<BrcMatrix> matrices_;
   std::vector<Transfer> transfers_;
   std::vector<GalerkinStream> streams_;       ///< symmetric format

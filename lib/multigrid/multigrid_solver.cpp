@@ -115,6 +115,16 @@ double MultigridSolver::coarsest_factorization_flops() const { return coarsest_-
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
   ++updates_;
   timed(update_ms_, "galerkin", [&] { hierarchy_.update(a, params_.galerkin); });
+  update_levels();
+}
+
+void MultigridSolver::take_matrix(BrcMatrix& a) {
+  ++updates_;
+  timed(update_ms_, "galerkin", [&] { hierarchy_.take_update(a, params_.galerkin); });
+  update_levels();
+}
+
+void MultigridSolver::update_levels() {
   const int last = hierarchy_.num_levels() - 1;
   timed(update_ms_, "smoothers", [&] {
     for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));

@@ -37,6 +37,7 @@ class MultigridSolver : public LinearSolver {
 
   std::string name() const override { return preconditioner_ ? "mgpcg" : "multigrid"; }
   void set_matrix(const BrcMatrix& a) override;
+  void take_matrix(BrcMatrix& a) override;  ///< the fine values swapped in, not copied
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
 
   /// One V-cycle from level h for A_h x = b, x the initial guess on entry; `zero_guess`: x starts
@@ -65,6 +66,7 @@ class MultigridSolver : public LinearSolver {
 
  private:
   SolveStats run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  void update_levels();  ///< after the Galerkin products: the smoothers and the coarsest factor
   void update_coarsest();
   MultigridParams params_;
   bool preconditioner_;

@@ -30,10 +30,12 @@ class OracleCheckedSolver : public LinearSolver {
   std::string name() const override { return inner_->name(); }
   LinearSolver& inner() { return *inner_; }
   void set_matrix(const BrcMatrix& a) override {
-    ++call_;
+    if (next_is_checked()) matrix_ = to_eigen(a);
     inner_->set_matrix(a);
-    checking_ = std::find(check_steps_.begin(), check_steps_.end(), call_) != check_steps_.end();
-    if (checking_) matrix_ = to_eigen(a);
+  }
+  void take_matrix(BrcMatrix& a) override {
+    if (next_is_checked()) matrix_ = to_eigen(a);  // before the solver takes the values
+    inner_->take_matrix(a);
   }
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     const SolveStats stats = inner_->solve(b, x);
@@ -51,6 +53,12 @@ class OracleCheckedSolver : public LinearSolver {
   }
 
  private:
+  bool next_is_checked() {
+    ++call_;
+    checking_ = std::find(check_steps_.begin(), check_steps_.end(), call_) != check_steps_.end();
+    return checking_;
+  }
+
   std::unique_ptr<LinearSolver> inner_;
   std::vector<int> check_steps_;
   TimedRun& out_;

@@ -31,6 +31,10 @@ class LinearSolver {
   virtual std::string name() const = 0;
   /// Takes new values of A (the pattern stays that of the first call).
   virtual void set_matrix(const BrcMatrix& a) = 0;
+  /// set_matrix for a caller that rewrites all of a's values before its next call anyway: the
+  /// solver may take the values by swapping them with its own storage (a keeps its pattern; its
+  /// values are then unspecified). The multigrid solver saves its copy of the fine matrix so.
+  virtual void take_matrix(BrcMatrix& a) { set_matrix(a); }
   /// x holds the initial guess on entry (ignored by direct solvers).
   virtual SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
 };
