@@ -6,7 +6,7 @@
 #include "sparse/block_kernels.hpp"
 
 // Every helper is forced inline so that it is compiled into each of the two forms below, the
-// portable one and the AVX2/FMA one (a 4-lane loop is then one vector instruction); a helper
+// portable one and the AVX2/FMA one (a lane operation is then one vector instruction); a helper
 // compiled once for the baseline ISA would run 2-wide in the AVX2 form.
 #define COROFEM_LANES_INLINE __attribute__((always_inline)) inline
 
@@ -25,164 +25,168 @@ struct NewtonLanes {
   bool solved[W];
 };
 
+/// One number per lane: GCC's vector extension, so that every operation below is one 4-wide
+/// instruction in the AVX2 form (two 2-wide ones in the portable form) whatever the compiler's
+/// loop vectorizer makes of it; comparisons give lane masks, ?: selects lane by lane.
+// Every function taking or returning Lanes is forced inline: no call crosses an ABI boundary, so
+// GCC's note that the portable form passes 32-byte vectors differently does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+using Lanes = double __attribute__((vector_size(8 * W)));
+using Mask = long long __attribute__((vector_size(8 * W)));
+static_assert(sizeof(Lanes) == sizeof(double[W]));
+
+COROFEM_LANES_INLINE Lanes load(const double (&x)[W]) {
+  Lanes v;
+  __builtin_memcpy(&v, x, sizeof v);
+  return v;
+}
+COROFEM_LANES_INLINE Lanes splat(double s) { return Lanes{} + s; }
+COROFEM_LANES_INLINE Lanes sqrt_lanes(Lanes x) {
+  for (int l = 0; l < W; ++l) x[l] = std::sqrt(x[l]);
+  return x;
+}
+COROFEM_LANES_INLINE bool any_lane(Mask m) {
+  long long any = 0;
+  for (int l = 0; l < W; ++l) any |= m[l];
+  return any != 0;
+}
+
 /// A symmetric 4x4 matrix per lane: its 10 entries (00 11 22 33 01 02 03 12 13 23).
 struct Sym4 {
-  double m[10][W];
+  Lanes m[10];
 };
 constexpr int kOff[4][4] = {{0, 4, 5, 6}, {4, 1, 7, 8}, {5, 7, 2, 9}, {6, 8, 9, 3}};
 
-COROFEM_LANES_INLINE double dot(const double (&x)[4][W], const double (&y)[4][W], int l) {
-  return x[0][l] * y[0][l] + x[1][l] * y[1][l] + x[2][l] * y[2][l] + x[3][l] * y[3][l];
+COROFEM_LANES_INLINE Lanes dot(const Lanes (&x)[4], const Lanes (&y)[4]) {
+  return x[0] * y[0] + x[1] * y[1] + x[2] * y[2] + x[3] * y[3];
 }
 
 /// y = M x per lane.
-COROFEM_LANES_INLINE void multiply(const Sym4& m, const double (&x)[4][W], double (&y)[4][W]) {
+COROFEM_LANES_INLINE void multiply(const Sym4& m, const Lanes (&x)[4], Lanes (&y)[4]) {
   for (int r = 0; r < 4; ++r)
-    for (int l = 0; l < W; ++l)
-      y[r][l] = m.m[kOff[r][0]][l] * x[0][l] + m.m[kOff[r][1]][l] * x[1][l] + m.m[kOff[r][2]][l] * x[2][l] +
-                m.m[kOff[r][3]][l] * x[3][l];
+    y[r] = m.m[kOff[r][0]] * x[0] + m.m[kOff[r][1]] * x[1] + m.m[kOff[r][2]] * x[2] + m.m[kOff[r][3]] * x[3];
 }
 
 /// N = horn_matrix(S^T) per lane: q^T N q = tr(R(q)^T S^T).
 COROFEM_LANES_INLINE void horn_lanes(const double (&s)[9][W], Sym4& n) {
-  for (int l = 0; l < W; ++l) {
-    const double s00 = s[0][l], s01 = s[1][l], s02 = s[2][l], s10 = s[3][l], s11 = s[4][l], s12 = s[5][l],
-                 s20 = s[6][l], s21 = s[7][l], s22 = s[8][l];
-    n.m[0][l] = s00 + s11 + s22;
-    n.m[1][l] = s00 - s11 - s22;
-    n.m[2][l] = -s00 + s11 - s22;
-    n.m[3][l] = -s00 - s11 + s22;
-    n.m[4][l] = s12 - s21;
-    n.m[5][l] = s20 - s02;
-    n.m[6][l] = s01 - s10;
-    n.m[7][l] = s10 + s01;
-    n.m[8][l] = s20 + s02;
-    n.m[9][l] = s21 + s12;
-  }
+  const Lanes s00 = load(s[0]), s01 = load(s[1]), s02 = load(s[2]), s10 = load(s[3]), s11 = load(s[4]),
+              s12 = load(s[5]), s20 = load(s[6]), s21 = load(s[7]), s22 = load(s[8]);
+  n.m[0] = s00 + s11 + s22;
+  n.m[1] = s00 - s11 - s22;
+  n.m[2] = -s00 + s11 - s22;
+  n.m[3] = -s00 - s11 + s22;
+  n.m[4] = s12 - s21;
+  n.m[5] = s20 - s02;
+  n.m[6] = s01 - s10;
+  n.m[7] = s10 + s01;
+  n.m[8] = s20 + s02;
+  n.m[9] = s21 + s12;
 }
 
-/// Cholesky factor L (lower, with the inverse of its diagonal) per lane; ok[l] is 0 where a pivot
-/// is not positive (that lane's factor is then meaningless), 1 elsewhere.
+/// Cholesky factor L (lower, with the inverse of its diagonal) per lane; ok is false in a lane
+/// where a pivot is not positive (that lane's factor is then meaningless).
 struct Cholesky4Lanes {
-  double l[4][4][W];
-  double inverse_diagonal[4][W];
-  double ok[W];
+  Lanes l[4][4];
+  Lanes inverse_diagonal[4];
+  Mask ok;
 };
 
 COROFEM_LANES_INLINE void factor(const Sym4& h, Cholesky4Lanes& f) {
-  for (int lane = 0; lane < W; ++lane) f.ok[lane] = 1;
+  f.ok = Mask{} - 1;
   for (int j = 0; j < 4; ++j) {
-    for (int lane = 0; lane < W; ++lane) {
-      double d = h.m[kOff[j][j]][lane];
-      for (int k = 0; k < j; ++k) d -= f.l[j][k][lane] * f.l[j][k][lane];
-      f.ok[lane] = d > 0 ? f.ok[lane] : 0;
-      const double ljj = std::sqrt(d > 0 ? d : 1.0);
-      f.l[j][j][lane] = ljj;
-      f.inverse_diagonal[j][lane] = 1 / ljj;
+    Lanes d = h.m[kOff[j][j]];
+    for (int k = 0; k < j; ++k) d -= f.l[j][k] * f.l[j][k];
+    const Mask positive = d > 0;
+    f.ok &= positive;
+    f.l[j][j] = sqrt_lanes(positive ? d : splat(1.0));
+    f.inverse_diagonal[j] = 1 / f.l[j][j];
+    for (int i = j + 1; i < 4; ++i) {
+      Lanes v = h.m[kOff[i][j]];
+      for (int k = 0; k < j; ++k) v -= f.l[i][k] * f.l[j][k];
+      f.l[i][j] = v * f.inverse_diagonal[j];
     }
-    for (int i = j + 1; i < 4; ++i)
-      for (int lane = 0; lane < W; ++lane) {
-        double v = h.m[kOff[i][j]][lane];
-        for (int k = 0; k < j; ++k) v -= f.l[i][k][lane] * f.l[j][k][lane];
-        f.l[i][j][lane] = v * f.inverse_diagonal[j][lane];
-      }
   }
 }
 
 /// x = H^-1 b per lane: L y = b, L^T x = y.
-COROFEM_LANES_INLINE void solve(const Cholesky4Lanes& f, const double (&b)[4][W], double (&x)[4][W]) {
-  double y[4][W];
-  for (int i = 0; i < 4; ++i)
-    for (int lane = 0; lane < W; ++lane) {
-      double v = b[i][lane];
-      for (int k = 0; k < i; ++k) v -= f.l[i][k][lane] * y[k][lane];
-      y[i][lane] = v * f.inverse_diagonal[i][lane];
-    }
-  for (int i = 3; i >= 0; --i)
-    for (int lane = 0; lane < W; ++lane) {
-      double v = y[i][lane];
-      for (int k = i + 1; k < 4; ++k) v -= f.l[k][i][lane] * x[k][lane];
-      x[i][lane] = v * f.inverse_diagonal[i][lane];
-    }
+COROFEM_LANES_INLINE void solve(const Cholesky4Lanes& f, const Lanes (&b)[4], Lanes (&x)[4]) {
+  Lanes y[4];
+  for (int i = 0; i < 4; ++i) {
+    Lanes v = b[i];
+    for (int k = 0; k < i; ++k) v -= f.l[i][k] * y[k];
+    y[i] = v * f.inverse_diagonal[i];
+  }
+  for (int i = 3; i >= 0; --i) {
+    Lanes v = y[i];
+    for (int k = i + 1; k < 4; ++k) v -= f.l[k][i] * x[k];
+    x[i] = v * f.inverse_diagonal[i];
+  }
 }
 
 /// The Hessian 4a(|q|^2 I + 2 q q^T) - 4N + 2 lambda I per lane (eq. 7).
-COROFEM_LANES_INLINE void hessian(const Sym4& n, const double (&q)[4][W], const double (&q2)[W],
-                                  const double (&a)[W], const double (&lambda)[W], Sym4& h) {
+COROFEM_LANES_INLINE void hessian(const Sym4& n, const Lanes (&q)[4], Lanes q2, Lanes a, Lanes lambda, Sym4& h) {
   for (int r = 0; r < 4; ++r)
-    for (int c = r; c < 4; ++c)
-      for (int l = 0; l < W; ++l) {
-        const double outer = 4 * a[l] * (2 * q[r][l] * q[c][l]) - 4 * n.m[kOff[r][c]][l];
-        h.m[kOff[r][c]][l] = r == c ? 4 * a[l] * q2[l] + outer + 2 * lambda[l] : outer;
-      }
+    for (int c = r; c < 4; ++c) {
+      const Lanes outer = 4 * a * (2 * q[r] * q[c]) - 4 * n.m[kOff[r][c]];
+      h.m[kOff[r][c]] = r == c ? 4 * a * q2 + outer + 2 * lambda : outer;
+    }
 }
 
 /// Newton on (q, lambda) in every lane, the contract of energy_newton_rotation for its definite
-/// case. Lane state is kept as 0/1 numbers and every update is a select, so the lane loops have
-/// no branches (they vectorize); a lane that stops keeps its q from then on.
+/// case. Lane states are masks and every update a select; a lane that stops keeps its q.
 COROFEM_LANES_INLINE void newton_lanes(NewtonLanes& p, double tolerance, int max_iterations) {
   Sym4 n, h;
   Cholesky4Lanes llt;
-  double nq[4][W], grad[4][W], hg[4][W], hq[4][W];
-  double q2[W], lambda[W], constraint[W], active[W], converged[W], handed_over[W], iterations[W];
+  Lanes q[4], nq[4], grad[4], hg[4], hq[4];
+  for (int r = 0; r < 4; ++r) q[r] = load(p.q[r]);
+  const Lanes a = load(p.a);
   horn_lanes(p.s, n);
-  multiply(n, p.q, nq);
-  for (int l = 0; l < W; ++l) {
-    lambda[l] = 2 * dot(p.q, nq, l) - 2 * p.a[l] * dot(p.q, p.q, l);
-    active[l] = 1;
-    converged[l] = handed_over[l] = iterations[l] = 0;
-  }
+  multiply(n, q, nq);
+  Lanes lambda = 2 * dot(q, nq) - 2 * a * dot(q, q), q2 = {}, iterations = {};
+  Mask active = Mask{} - 1, converged = {}, handed_over = {};
   for (int it = 0;; ++it) {
     // Gradient of eq. (5) and constraint of eq. (6); lanes within the tolerance stop.
-    if (it > 0) multiply(n, p.q, nq);
-    double any = 0;
-    for (int l = 0; l < W; ++l) {
-      q2[l] = dot(p.q, p.q, l);
-      double g2 = 0;
-      for (int r = 0; r < 4; ++r) {
-        grad[r][l] = 4 * p.a[l] * q2[l] * p.q[r][l] - 4 * nq[r][l] + 2 * lambda[l] * p.q[r][l];
-        g2 += grad[r][l] * grad[r][l];
-      }
-      constraint[l] = q2[l] - 1;
-      const bool within = std::sqrt(g2) / (4 * p.a[l]) + std::abs(constraint[l]) < tolerance;
-      converged[l] = (active[l] > 0) & within ? 1 : converged[l];  // & and |, not && and ||: no branches
-      active[l] = within | (it == max_iterations) ? 0 : active[l];
-      any += active[l];
+    if (it > 0) multiply(n, q, nq);
+    q2 = dot(q, q);
+    Lanes g2 = {};
+    for (int r = 0; r < 4; ++r) {
+      grad[r] = 4 * a * q2 * q[r] - 4 * nq[r] + 2 * lambda * q[r];
+      g2 += grad[r] * grad[r];
     }
-    if (any == 0) break;
+    const Lanes constraint = q2 - 1;
+    const Mask within = sqrt_lanes(g2) / (4 * a) + (constraint < 0 ? -constraint : constraint) < tolerance;
+    converged |= active & within;
+    active &= ~within;
+    if (it == max_iterations) active = Mask{};
+    if (!any_lane(active)) break;
     // The bordered Newton step of eqs. (7), (8) by the Schur complement in dl.
-    hessian(n, p.q, q2, p.a, lambda, h);
+    hessian(n, q, q2, a, lambda, h);
     factor(h, llt);
     solve(llt, grad, hg);
-    solve(llt, p.q, hq);
-    double dl[W], dq[4][W], check[W];
-    for (int l = 0; l < W; ++l) check[l] = dl[l] = (constraint[l] - 2 * dot(p.q, hg, l)) / (4 * dot(p.q, hq, l));
-    for (int r = 0; r < 4; ++r)
-      for (int l = 0; l < W; ++l) {
-        dq[r][l] = -(hg[r][l] + 2 * dl[l] * hq[r][l]);
-        check[l] += dq[r][l];  // the sum of the step's entries: not finite if any entry is not
-      }
-    for (int l = 0; l < W; ++l) {
-      const bool step = (active[l] > 0) & (llt.ok[l] > 0) & (check[l] - check[l] == 0);
-      // Not the definite case (or no finite step): the scalar routine decides.
-      handed_over[l] = (active[l] > 0) & !step ? 1 : handed_over[l];
-      for (int r = 0; r < 4; ++r) p.q[r][l] += step ? dq[r][l] : 0.0;
-      lambda[l] += step ? dl[l] : 0.0;
-      iterations[l] = step ? it + 1 : iterations[l];
-      active[l] = step ? 1 : 0;
+    solve(llt, q, hq);
+    const Lanes dl = (constraint - 2 * dot(q, hg)) / (4 * dot(q, hq));
+    Lanes dq[4], check = dl;  // the sum of the step's entries: not finite if any entry is not
+    for (int r = 0; r < 4; ++r) {
+      dq[r] = -(hg[r] + 2 * dl * hq[r]);
+      check += dq[r];
     }
+    const Mask step = active & llt.ok & (check - check == 0);
+    handed_over |= active & ~step;  // not the definite case, or no finite step: the scalar routine decides
+    for (int r = 0; r < 4; ++r) q[r] = step ? q[r] + dq[r] : q[r];
+    lambda = step ? lambda + dl : lambda;
+    iterations = step ? splat(it + 1) : iterations;
+    active = step;
   }
   // A lane that converged without a step has not shown a definite Hessian yet: a minimizer has
   // one, a saddle does not (energy_rotation.hpp).
-  double unchecked = 0;
-  for (int l = 0; l < W; ++l) unchecked += (converged[l] > 0) & (iterations[l] == 0) ? 1 : 0;
-  if (unchecked > 0) {
-    hessian(n, p.q, q2, p.a, lambda, h);  // q2 is the last gradient's, of the final q
+  if (any_lane(converged & (iterations == 0))) {
+    hessian(n, q, q2, a, lambda, h);  // q2 is the last gradient's, of the final q
     factor(h, llt);
-    for (int l = 0; l < W; ++l) converged[l] = (iterations[l] > 0) | (llt.ok[l] > 0) ? converged[l] : 0;
+    converged &= (iterations > 0) | llt.ok;
   }
   for (int l = 0; l < W; ++l) {
-    p.solved[l] = converged[l] > 0 && handed_over[l] == 0;
+    for (int r = 0; r < 4; ++r) p.q[r][l] = q[r][l];
+    p.solved[l] = converged[l] != 0 && handed_over[l] == 0;
     p.iterations[l] = static_cast<int>(iterations[l]);
   }
 }
