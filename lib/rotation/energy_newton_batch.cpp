@@ -1,3 +1,8 @@
+// Every function taking or returning Lanes (below) is forced inline, and so is the header's
+// quaternion_of_rotation on them: no call crosses an ABI boundary, so GCC's note that the portable
+// form passes 32-byte vectors differently does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "rotation/energy_newton_batch.hpp"
 
 #include <algorithm>
@@ -15,31 +20,24 @@ namespace {
 
 constexpr int W = kNewtonLanes;
 
-/// One batch of elements in structure-of-arrays form: S (row-major), a, and q, which holds the
-/// start and, where `solved`, the result; lanes not solved go to energy_newton_rotation.
-struct NewtonLanes {
-  double s[9][W];
-  double a[W];
-  double q[4][W];
-  int iterations[W];
-  bool solved[W];
-};
-
 /// One number per lane: GCC's vector extension, so that every operation below is one 4-wide
 /// instruction in the AVX2 form (two 2-wide ones in the portable form) whatever the compiler's
 /// loop vectorizer makes of it; comparisons give lane masks, ?: selects lane by lane.
-// Every function taking or returning Lanes is forced inline: no call crosses an ABI boundary, so
-// GCC's note that the portable form passes 32-byte vectors differently does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
 using Lanes = double __attribute__((vector_size(8 * W)));
 using Mask = long long __attribute__((vector_size(8 * W)));
 static_assert(sizeof(Lanes) == sizeof(double[W]));
+static_assert(W == 4, "extract_lanes puts its lanes together four at a time");
 
-COROFEM_LANES_INLINE Lanes load(const double (&x)[W]) {
-  Lanes v;
-  __builtin_memcpy(&v, x, sizeof v);
-  return v;
-}
+/// One batch of elements in structure-of-arrays form: S (row-major), a, and q, which holds the
+/// start and, where `solved`, the result; lanes not solved go to energy_newton_rotation.
+struct NewtonLanes {
+  Lanes s[9];
+  Lanes a;
+  Lanes q[4];
+  Lanes iterations;
+  Mask solved;
+};
+
 COROFEM_LANES_INLINE Lanes splat(double s) { return Lanes{} + s; }
 COROFEM_LANES_INLINE Lanes sqrt_lanes(Lanes x) {
   for (int l = 0; l < W; ++l) x[l] = std::sqrt(x[l]);
@@ -68,9 +66,9 @@ COROFEM_LANES_INLINE void multiply(const Sym4& m, const Lanes (&x)[4], Lanes (&y
 }
 
 /// N = horn_matrix(S^T) per lane: q^T N q = tr(R(q)^T S^T).
-COROFEM_LANES_INLINE void horn_lanes(const double (&s)[9][W], Sym4& n) {
-  const Lanes s00 = load(s[0]), s01 = load(s[1]), s02 = load(s[2]), s10 = load(s[3]), s11 = load(s[4]),
-              s12 = load(s[5]), s20 = load(s[6]), s21 = load(s[7]), s22 = load(s[8]);
+COROFEM_LANES_INLINE void horn_lanes(const Lanes (&s)[9], Sym4& n) {
+  const Lanes s00 = s[0], s01 = s[1], s02 = s[2], s10 = s[3], s11 = s[4], s12 = s[5], s20 = s[6], s21 = s[7],
+              s22 = s[8];
   n.m[0] = s00 + s11 + s22;
   n.m[1] = s00 - s11 - s22;
   n.m[2] = -s00 + s11 - s22;
@@ -137,9 +135,8 @@ COROFEM_LANES_INLINE void hessian(const Sym4& n, const Lanes (&q)[4], Lanes q2, 
 COROFEM_LANES_INLINE void newton_lanes(NewtonLanes& p, double tolerance, int max_iterations) {
   Sym4 n, h;
   Cholesky4Lanes llt;
-  Lanes q[4], nq[4], grad[4], hg[4], hq[4];
-  for (int r = 0; r < 4; ++r) q[r] = load(p.q[r]);
-  const Lanes a = load(p.a);
+  Lanes q[4] = {p.q[0], p.q[1], p.q[2], p.q[3]}, nq[4], grad[4], hg[4], hq[4];
+  const Lanes a = p.a;
   horn_lanes(p.s, n);
   multiply(n, q, nq);
   Lanes lambda = 2 * dot(q, nq) - 2 * a * dot(q, q), q2 = {}, iterations = {};
@@ -184,11 +181,9 @@ COROFEM_LANES_INLINE void newton_lanes(NewtonLanes& p, double tolerance, int max
     factor(h, llt);
     converged &= (iterations > 0) | llt.ok;
   }
-  for (int l = 0; l < W; ++l) {
-    for (int r = 0; r < 4; ++r) p.q[r][l] = q[r][l];
-    p.solved[l] = converged[l] != 0 && handed_over[l] == 0;
-    p.iterations[l] = static_cast<int>(iterations[l]);
-  }
+  for (int r = 0; r < 4; ++r) p.q[r] = q[r];
+  p.solved = converged & ~handed_over;
+  p.iterations = iterations;
 }
 
 /// Lanes from separate (S, a, warm) triples: the batched Newton and its outcomes.
@@ -204,12 +199,12 @@ COROFEM_LANES_INLINE void rotations_of_triples(const Mat3 (&s)[W], const double 
   }
   newton_lanes(p, tolerance, max_iterations);
   for (int l = 0; l < W; ++l) {
-    if (!p.solved[l]) {
+    if (p.solved[l] == 0) {
       out[l] = energy_newton_rotation(s[l], a[l], warm[l], tolerance, max_iterations);
       continue;
     }
     out[l].rotation = newton_rotation({p.q[0][l], p.q[1][l], p.q[2][l], p.q[3][l]});
-    out[l].iterations = p.iterations[l];
+    out[l].iterations = static_cast<int>(p.iterations[l]);
     out[l].fell_back = false;
   }
 }
@@ -219,55 +214,48 @@ COROFEM_LANES_INLINE void rotations_of_triples(const Mat3 (&s)[W], const double 
 /// rotation and inversion sign out, all across lanes.
 COROFEM_LANES_INLINE NewtonBatchCounts extract_lanes(const NewtonBatchInput& in, int first, int lanes,
                                                      std::vector<Mat3>& rotations, std::uint8_t* iterations) {
-  double pos[4][3][W], arm[4][3][W], c[W], warm[9][W];
+  // Lane l is element first + l (the last batch repeats its last element). The lanes are put
+  // together from the elements' numbers directly, in registers.
+  const Tet* tet[W];
+  const MomentArms* rest[W];
+  const double* warm_of[W];  // column-major Q: Q^T row by row
   for (int l = 0; l < W; ++l) {
-    const int e = first + std::min(l, lanes - 1);  // the last batch repeats its last element
-    const Tet& t = in.tets[e];
-    const MomentArms& rest = in.rest[e];
-    for (int v = 0; v < 4; ++v)
-      for (int k = 0; k < 3; ++k) {
-        pos[v][k][l] = in.positions[t[v]][k];
-        arm[v][k][l] = rest.h[v][k];
-      }
-    c[l] = rest.c;
-    const double* m = rotations[e].data();  // column-major Q: Q^T row by row
-    for (int k = 0; k < 9; ++k) warm[k][l] = m[k];
+    const int e = first + std::min(l, lanes - 1);
+    tet[l] = &in.tets[e];
+    rest[l] = &in.rest[e];
+    warm_of[l] = rotations[e].data();
   }
   NewtonLanes p;
-  double det[W];
-  for (int l = 0; l < W; ++l) {
-    double mean[3], spread = 0;
-    for (int k = 0; k < 3; ++k) mean[k] = 0.25 * (pos[0][k][l] + pos[1][k][l] + pos[2][k][l] + pos[3][k][l]);
-    for (int k = 0; k < 9; ++k) p.s[k][l] = 0;
-    for (int v = 0; v < 4; ++v) {
-      double z[3];
-      for (int k = 0; k < 3; ++k) z[k] = pos[v][k][l] - mean[k];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) p.s[3 * i + j][l] += z[i] * arm[v][j][l];
-      spread += z[0] * z[0] + z[1] * z[1] + z[2] * z[2];
+  Lanes pos[4][3], arm[4][3], warm[9];
+  for (int v = 0; v < 4; ++v)
+    for (int k = 0; k < 3; ++k) {
+      pos[v][k] = Lanes{in.positions[(*tet[0])[v]][k], in.positions[(*tet[1])[v]][k], in.positions[(*tet[2])[v]][k],
+                        in.positions[(*tet[3])[v]][k]};
+      arm[v][k] = Lanes{rest[0]->h[v][k], rest[1]->h[v][k], rest[2]->h[v][k], rest[3]->h[v][k]};
     }
-    p.a[l] = c[l] * spread;
-    det[l] = p.s[0][l] * (p.s[4][l] * p.s[8][l] - p.s[5][l] * p.s[7][l]) -
-             p.s[1][l] * (p.s[3][l] * p.s[8][l] - p.s[5][l] * p.s[6][l]) +
-             p.s[2][l] * (p.s[3][l] * p.s[7][l] - p.s[4][l] * p.s[6][l]);
-    double m[9], q[4];
-    for (int k = 0; k < 9; ++k) m[k] = warm[k][l];
-    quaternion_of_rotation(m, q);
-    for (int r = 0; r < 4; ++r) p.q[r][l] = q[r];
+  for (int k = 0; k < 9; ++k) warm[k] = Lanes{warm_of[0][k], warm_of[1][k], warm_of[2][k], warm_of[3][k]};
+  // deformed_moment across lanes: S = sum_v z_v h_v^T, a = c sum_v |z_v|^2, z from the centroid.
+  Lanes mean[3], spread = {};
+  for (int k = 0; k < 3; ++k) mean[k] = 0.25 * (pos[0][k] + pos[1][k] + pos[2][k] + pos[3][k]);
+  for (int k = 0; k < 9; ++k) p.s[k] = Lanes{};
+  for (int v = 0; v < 4; ++v) {
+    const Lanes z[3] = {pos[v][0] - mean[0], pos[v][1] - mean[1], pos[v][2] - mean[2]};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) p.s[3 * i + j] += z[i] * arm[v][j];
+    spread += z[0] * z[0] + z[1] * z[1] + z[2] * z[2];
   }
+  p.a = Lanes{rest[0]->c, rest[1]->c, rest[2]->c, rest[3]->c} * spread;
+  const Lanes det = p.s[0] * (p.s[4] * p.s[8] - p.s[5] * p.s[7]) - p.s[1] * (p.s[3] * p.s[8] - p.s[5] * p.s[6]) +
+                    p.s[2] * (p.s[3] * p.s[7] - p.s[4] * p.s[6]);
+  quaternion_of_rotation(warm, p.q, sqrt_lanes);
   newton_lanes(p, in.tolerance, in.max_iterations);
-  double out[9][W];
-  for (int l = 0; l < W; ++l) {
-    double q[4], m[9];
-    for (int r = 0; r < 4; ++r) q[r] = p.q[r][l];
-    rotation_of_quaternion(q, m);  // R(q) row-major: Q = R^T column-major
-    for (int k = 0; k < 9; ++k) out[k][l] = m[k];
-  }
+  Lanes out[9];
+  rotation_of_quaternion(p.q, out);  // R(q) row-major: Q = R^T column-major
   NewtonBatchCounts counts;
   for (int l = 0; l < lanes; ++l) {
     const int e = first + l;
     counts.inverted += det[l] <= 0;
-    if (!p.solved[l]) {
+    if (p.solved[l] == 0) {
       Mat3 s, w;
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) s(i, j) = p.s[3 * i + j][l];

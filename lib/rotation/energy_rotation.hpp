@@ -32,42 +32,49 @@ struct NewtonOutcome {
 
 /// The quaternion (w, x, y, z) of a rotation matrix m (row-major), up to sign: the row of
 /// 4 q q^T (its entries are sums and differences of m's) with the largest diagonal entry 4 q_k^2,
-/// divided by 2 |2 q_k| (Shepperd 1978). Branch-free (the row is chosen by selects), so the lanes of
-/// the batched Newton vectorize it; the largest diagonal keeps the division well conditioned.
-inline void quaternion_of_rotation(const double (&m)[9], double (&q)[4]) {
-  const double t[4] = {1 + m[0] + m[4] + m[8], 1 + m[0] - m[4] - m[8], 1 - m[0] + m[4] - m[8],
-                       1 - m[0] - m[4] + m[8]};
-  const double wx = m[7] - m[5], wy = m[2] - m[6], wz = m[3] - m[1];
-  const double xy = m[1] + m[3], xz = m[2] + m[6], yz = m[5] + m[7];
-  const bool x_over_w = t[1] > t[0];
-  double best = x_over_w ? t[1] : t[0];
-  double r0 = x_over_w ? wx : t[0], r1 = x_over_w ? t[1] : wx, r2 = x_over_w ? xy : wy, r3 = x_over_w ? xz : wz;
-  const bool y_best = t[2] > best;
+/// divided by 2 |2 q_k| (Shepperd 1978). Branch-free (the row is chosen by selects), so that it
+/// also runs on the batched Newton's lanes: T is double, or a vector of lanes (whose comparisons
+/// give masks) with its own square root `root`; the largest diagonal keeps the division well
+/// conditioned.
+template <class T, class Root>
+inline void quaternion_of_rotation(const T (&m)[9], T (&q)[4], const Root& root) {
+  const T t[4] = {1 + m[0] + m[4] + m[8], 1 + m[0] - m[4] - m[8], 1 - m[0] + m[4] - m[8], 1 - m[0] - m[4] + m[8]};
+  const T wx = m[7] - m[5], wy = m[2] - m[6], wz = m[3] - m[1];
+  const T xy = m[1] + m[3], xz = m[2] + m[6], yz = m[5] + m[7];
+  const auto x_over_w = t[1] > t[0];
+  T best = x_over_w ? t[1] : t[0];
+  T r0 = x_over_w ? wx : t[0], r1 = x_over_w ? t[1] : wx, r2 = x_over_w ? xy : wy, r3 = x_over_w ? xz : wz;
+  const auto y_best = t[2] > best;
   best = y_best ? t[2] : best;
   r0 = y_best ? wy : r0;
   r1 = y_best ? xy : r1;
   r2 = y_best ? t[2] : r2;
   r3 = y_best ? yz : r3;
-  const bool z_best = t[3] > best;
+  const auto z_best = t[3] > best;
   best = z_best ? t[3] : best;
   r0 = z_best ? wz : r0;
   r1 = z_best ? xz : r1;
   r2 = z_best ? yz : r2;
   r3 = z_best ? t[3] : r3;
-  const double scale = 0.5 / std::sqrt(best);
+  const T scale = 0.5 / root(best);
   q[0] = r0 * scale;
   q[1] = r1 * scale;
   q[2] = r2 * scale;
   q[3] = r3 * scale;
 }
+inline void quaternion_of_rotation(const double (&m)[9], double (&q)[4]) {
+  quaternion_of_rotation(m, q, [](double x) { return std::sqrt(x); });
+}
 
 /// The rotation matrix (row-major) of q / |q|, q (w, x, y, z) not necessarily of unit length:
-/// the rotation matrix of a unit quaternion with 2 replaced by 2 / |q|^2 (no square root).
-inline void rotation_of_quaternion(const double (&q)[4], double (&m)[9]) {
-  const double s = 2 / (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  const double xx = s * q[1] * q[1], yy = s * q[2] * q[2], zz = s * q[3] * q[3];
-  const double xy = s * q[1] * q[2], xz = s * q[1] * q[3], yz = s * q[2] * q[3];
-  const double wx = s * q[0] * q[1], wy = s * q[0] * q[2], wz = s * q[0] * q[3];
+/// the rotation matrix of a unit quaternion with 2 replaced by 2 / |q|^2 (no square root). T as
+/// for quaternion_of_rotation.
+template <class T>
+inline void rotation_of_quaternion(const T (&q)[4], T (&m)[9]) {
+  const T s = 2 / (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  const T xx = s * q[1] * q[1], yy = s * q[2] * q[2], zz = s * q[3] * q[3];
+  const T xy = s * q[1] * q[2], xz = s * q[1] * q[3], yz = s * q[2] * q[3];
+  const T wx = s * q[0] * q[1], wy = s * q[0] * q[2], wz = s * q[0] * q[3];
   m[0] = 1 - (yy + zz);
   m[1] = xy - wz;
   m[2] = xz + wy;
