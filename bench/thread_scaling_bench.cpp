@@ -40,7 +40,7 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
       {"assemble", [&] { assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, p.stiffness, force); }},
       {"forces", [&] { force = internal_forces(p, rotations, u); }},  // Newton's residual pass
       {"spmv", [&] { system.matrix.multiply(system.rhs, y); }},
-      {"galerkin", [&] { hierarchy.update(system.matrix, GalerkinMethod::Stream); }},
+      {"galerkin", [&] { hierarchy.update(system.matrix, GalerkinMethod::Gather); }},
       {"vcycle", [&] { solver.vcycle(0, system.rhs, vx, true); }}};
   const int threads = thread_count();
   std::map<std::string, std::vector<double>> one, all;
