@@ -2,6 +2,8 @@
 // assembly against an Eigen matrix built from triplets.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <random>
@@ -120,6 +122,9 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
   ref.setFromTriplets(triplets.begin(), triplets.end());
   test::in_each_kernel_form([&] {
     Eigen::VectorXd force;
+    // K is not zeroed first: each block's lowest-numbered element stores, the others add. NaN
+    // in every entry beforehand shows a block no element wrote, or one added to a stale value.
+    std::fill(p.stiffness.values.begin(), p.stiffness.values.end(), std::numeric_limits<double>::quiet_NaN());
     assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, p.stiffness, force);
     const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
     // Same sums in a different order: round-off of a few ulps of |K|.

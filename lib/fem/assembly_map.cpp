@@ -20,6 +20,14 @@ BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map) {
   for (int e = 0; e < mesh.num_tets(); ++e)
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b) map.block[e][4 * a + b] = k.find(mesh.tets[e][a], mesh.tets[e][b]);
+  map.first.assign(mesh.tets.size(), 0);
+  std::vector<char> seen(k.num_blocks(), 0);
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    for (int ab = 0; ab < 16; ++ab)
+      if (!seen[map.block[e][ab]]) {
+        seen[map.block[e][ab]] = 1;
+        map.first[e] |= static_cast<std::uint16_t>(1u << ab);
+      }
   map.diagonal.resize(mesh.num_vertices());
   for (int v = 0; v < mesh.num_vertices(); ++v) map.diagonal[v] = k.find(v, v);
   map.rows = partition_rows(mesh.tets, mesh.num_vertices(), thread_count());

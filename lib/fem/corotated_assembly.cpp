@@ -63,6 +63,7 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
     const Mat3& q = rotations[e];
     const ElementRest& el = elements[e];
     const auto& blocks = map.block[e];
+    const unsigned first = map.first[e];
     const Vec12 ks = stiffness_times(el, corotated_strain(mesh, t, q, displacement));
     Vec3 h[4];
     for (int a = 0; a < 4; ++a) h[a] = q * el.gradient[a];
@@ -73,23 +74,42 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
         Mat3 rotated = el.lambda_volume * h[a] * h[b].transpose();
         rotated.noalias() += el.mu_volume * h[b] * h[a].transpose();
         rotated.diagonal().array() += el.mu_volume * el.gradient[a].dot(el.gradient[b]);
-        if (own.vertex[a]) k.block(blocks[4 * a + b]) += rotated;
-        if (b != a && own.vertex[b]) k.block(blocks[4 * b + a]) += rotated.transpose();
+        if (own.vertex[a]) {
+          if (first >> (4 * a + b) & 1)
+            k.block(blocks[4 * a + b]) = rotated;
+          else
+            k.block(blocks[4 * a + b]) += rotated;
+        }
+        if (b != a && own.vertex[b]) {
+          if (first >> (4 * b + a) & 1)
+            k.block(blocks[4 * b + a]) = rotated.transpose();
+          else
+            k.block(blocks[4 * b + a]) += rotated.transpose();
+        }
       }
     }
   }
 }
 
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-/// dst, a row-major 3x3 block, += the matrix whose rows are lanes 0-2 of r0, r1, r2 (lane 3
-/// zero): repacked into the block's 4 + 4 + 1 layout, two 4-wide adds and one scalar.
-__attribute__((target("avx2,fma"))) inline void add_rows_avx2(double* dst, __m256d r0, __m256d r1, __m256d r2) {
+/// dst, a row-major 3x3 block, += (or, for the block's first element, =) the matrix whose rows
+/// are lanes 0-2 of r0, r1, r2 (lane 3 zero): repacked into the block's 4 + 4 + 1 layout, two
+/// 4-wide adds and one scalar.
+__attribute__((target("avx2,fma"))) inline void add_rows_avx2(double* dst, bool first, __m256d r0, __m256d r1,
+                                                              __m256d r2) {
   const __m256d v0 = _mm256_blend_pd(r0, _mm256_permute4x64_pd(r1, 0x00), 0b1000);  // r0[0..2], r1[0]
   const __m256d v1 = _mm256_blend_pd(_mm256_permute4x64_pd(r1, 0x09), _mm256_permute4x64_pd(r2, 0x40),
                                      0b1100);  // r1[1], r1[2], r2[0], r2[1]
+  const double v2 = _mm_cvtsd_f64(_mm256_extractf128_pd(r2, 1));
+  if (first) {
+    _mm256_storeu_pd(dst, v0);
+    _mm256_storeu_pd(dst + 4, v1);
+    dst[8] = v2;
+    return;
+  }
   _mm256_storeu_pd(dst, _mm256_add_pd(_mm256_loadu_pd(dst), v0));
   _mm256_storeu_pd(dst + 4, _mm256_add_pd(_mm256_loadu_pd(dst + 4), v1));
-  dst[8] += _mm_cvtsd_f64(_mm256_extractf128_pd(r2, 1));
+  dst[8] += v2;
 }
 
 /// The same part in AVX2. h_a = Q g_a and the force Q (K_e s)_a are 4-wide (lane 3 zero); row r
@@ -116,6 +136,7 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
     const __m256d qc[3] = {_mm256_maskload_pd(q, first3), _mm256_maskload_pd(q + 3, first3),
                            _mm256_maskload_pd(q + 6, first3)};
     const auto& blocks = map.block[e];
+    const unsigned first = map.first[e];
     const Vec12 ks = stiffness_times(el, corotated_strain(mesh, t, rotations[e], displacement));
     __m256d h[4];
     alignas(32) double lambda_h[4][4], mu_h[4][4];  // V lambda h_a and V mu h_a
@@ -144,11 +165,13 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
           r[j] = _mm256_add_pd(_mm256_fmadd_pd(_mm256_broadcast_sd(&lambda_h[a][j]), h[b],
                                                _mm256_mul_pd(_mm256_broadcast_sd(&mu_h[b][j]), h[a])),
                                _mm256_and_pd(diagonal, lane[j]));
-        if (own.vertex[a]) add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), r[0], r[1], r[2]);
+        if (own.vertex[a])
+          add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), first >> (4 * a + b) & 1, r[0], r[1], r[2]);
         if (b != a && own.vertex[b]) {
           const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
           const __m256d t2 = _mm256_unpacklo_pd(r[2], zero), t3 = _mm256_unpackhi_pd(r[2], zero);
-          add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]), _mm256_permute2f128_pd(t0, t2, 0x20),
+          add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]), first >> (4 * b + a) & 1,
+                        _mm256_permute2f128_pd(t0, t2, 0x20),
                         _mm256_permute2f128_pd(t1, t3, 0x20), _mm256_permute2f128_pd(t0, t2, 0x31));
         }
       }
@@ -166,8 +189,6 @@ void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh&
   const RowPartition& rows = map.rows;
   for_each_part(rows, [&](int part) {
     const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
-    std::fill(k.values.begin() + 9 * static_cast<std::size_t>(k.row_start[lo]),
-              k.values.begin() + 9 * static_cast<std::size_t>(k.row_start[hi]), 0.0);
     force.segment(3 * lo, 3 * (hi - lo)).setZero();
 #ifdef COROFEM_HAVE_AVX2_KERNELS
     if (vector_block_kernels())
