@@ -34,6 +34,7 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   MultigridSolver solver(system.matrix, paper_transfers(model, HierarchyKind::Meshes), params, true);
   solver.set_matrix(system.matrix);
   MultigridHierarchy hierarchy(system.matrix, paper_transfers(model, HierarchyKind::Meshes).transfers);
+  hierarchy.prepare(GalerkinMethod::Gather);
   Eigen::VectorXd vx = Eigen::VectorXd::Zero(system.rhs.size());
   const std::vector<std::pair<std::string, std::function<void()>>> kernels = {
       {"rotate", [&] { rotations = warm; rotate->extract(x, rotations); }},

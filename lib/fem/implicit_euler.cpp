@@ -159,9 +159,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
         // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only
         // their iteration count changes (the dragon's report scene: 258 -> 230 MG-PCG
         // iterations over 25 steps).
-        const Eigen::VectorXd current = velocity;
-        velocity = 2 * current - previous_velocity;
-        previous_velocity = current;
+        previous_velocity = 2 * velocity - previous_velocity;  // coefficient-wise: no aliasing
+        velocity.swap(previous_velocity);                      // the start, and v_n kept
         return solver.solve(b, velocity);
       });
     }

@@ -188,8 +188,10 @@ MirrorPairs galerkin_mirror_pairs(const BrcMatrix& e) {
   return mirror;
 }
 
-void mirror_blocks(const MirrorPairs& mirror, std::ptrdiff_t begin, std::ptrdiff_t end, double* ev) {
-  for (std::ptrdiff_t m = begin; m < end; ++m) {  // E_ji = E_ij^T
+void mirror_blocks(const MirrorPairs& mirror, double* ev) {
+  const std::ptrdiff_t pairs = static_cast<std::ptrdiff_t>(mirror.size());
+#pragma omp for schedule(static)
+  for (std::ptrdiff_t m = 0; m < pairs; ++m) {  // E_ji = E_ij^T
     const double* u = ev + 9 * static_cast<std::size_t>(mirror[m].first);
     double* l = ev + 9 * static_cast<std::size_t>(mirror[m].second);
     for (int r = 0; r < 3; ++r)
@@ -228,9 +230,7 @@ void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
 #endif
       run_stream_scalar(part.control, part.data.data(), a.values.data(), ev);
     }
-    const std::ptrdiff_t mirrored = static_cast<std::ptrdiff_t>(mirror_.size());
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t m = 0; m < mirrored; ++m) mirror_blocks(mirror_, m, m + 1, ev);
+    mirror_blocks(mirror_, ev);
   }
 }
 

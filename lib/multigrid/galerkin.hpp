@@ -97,8 +97,9 @@ class GalerkinStream {
 /// The (E_ij, E_ji) block pairs, i < j, of a symmetric pattern: the blocks a symmetric product
 /// writes by mirroring.
 MirrorPairs galerkin_mirror_pairs(const BrcMatrix& e);
-/// E_ji = E_ij^T for pairs [begin, end) of `mirror` (a loop body for the caller's threads).
-void mirror_blocks(const MirrorPairs& mirror, std::ptrdiff_t begin, std::ptrdiff_t end, double* ev);
+/// E_ji = E_ij^T for every pair of `mirror`. Called inside the caller's parallel region, whose
+/// threads share the pairs (an orphaned omp for, with its barrier); outside one, on one thread.
+void mirror_blocks(const MirrorPairs& mirror, double* ev);
 
 /// Method names for scenes and benchmarks: "naive", "stream" (symmetric), "stream-full" (the
 /// paper's format), "reuse", "gather" (the stream's pairs by destination: galerkin_gather.hpp).

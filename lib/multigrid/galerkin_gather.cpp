@@ -106,9 +106,7 @@ void GalerkinGather::apply(const BrcMatrix& a, BrcMatrix& e) const {
 #endif
       gather_scalar(blocks_.data(), start_.data(), part_start_[p], part_start_[p + 1], pairs_.data(), av, ev);
     }
-    const std::ptrdiff_t mirrored = static_cast<std::ptrdiff_t>(mirror_.size());
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t m = 0; m < mirrored; ++m) mirror_blocks(mirror_, m, m + 1, ev);
+    mirror_blocks(mirror_, ev);
   }
 }
 

@@ -2,9 +2,10 @@
 // The Galerkin product E = R A R^T by a gather stream: the pairs of Algorithm 1 (paper section
 // 4.3), ordered by their destination block of E instead of by A's blocks. Each block of E sums its
 // pairs (R_il R_jk, index of A_lk) in registers and is written once, in storage order. The
-// paper's order (GalerkinStream) adds into E's blocks pair by pair: consecutive blocks of an A row
-// share most destinations, so each add waits for the store of the one before (a chain through
-// memory, not through the FMA units).
+// paper's order (GalerkinStream) adds into E's blocks pair by pair, and consecutive blocks of an
+// A row share most destinations. Our reading of why that is slower, inferred from the timings
+// (these machines have no counters to confirm it): each add reads a block the one before has
+// just stored, a chain through memory rather than through the FMA units.
 // Within a block the pairs keep A's storage order, the order in which the stream adds them: both
 // compute the same sums in the same order, so E is the same bits as the symmetric stream's in the
 // same kernel form, at any thread count.

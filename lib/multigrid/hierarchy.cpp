@@ -12,10 +12,28 @@ MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern, std::vecto
   matrices_.push_back(fine_pattern);
   for (std::size_t h = 0; h < transfers_.size(); ++h) {
     matrices_.push_back(galerkin_pattern(matrices_[h], transfers_[h]));
-    streams_.emplace_back(matrices_[h], transfers_[h], matrices_[h + 1]);
     reuse_.push_back(std::make_unique<GalerkinReuse>(transfers_[h].coarse));
-    gathers_.emplace_back(matrices_[h], transfers_[h], matrices_[h + 1]);
   }
+  streams_.resize(transfers_.size());
+  full_streams_.resize(transfers_.size());
+  gathers_.resize(transfers_.size());
+}
+
+const GalerkinStream& MultigridHierarchy::stream(int h) const {
+  if (!streams_[h]) streams_[h] = std::make_unique<GalerkinStream>(matrices_[h], transfers_[h], matrices_[h + 1]);
+  return *streams_[h];
+}
+
+const GalerkinStream& MultigridHierarchy::full_stream(int h) const {
+  if (!full_streams_[h])
+    full_streams_[h] = std::make_unique<GalerkinStream>(matrices_[h], transfers_[h], matrices_[h + 1],
+                                                        GalerkinStream::Symmetry::Full);
+  return *full_streams_[h];
+}
+
+const GalerkinGather& MultigridHierarchy::gather(int h) const {
+  if (!gathers_[h]) gathers_[h] = std::make_unique<GalerkinGather>(matrices_[h], transfers_[h], matrices_[h + 1]);
+  return *gathers_[h];
 }
 
 void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
@@ -44,16 +62,13 @@ void MultigridHierarchy::update_coarse(GalerkinMethod method) {
         galerkin_naive(matrices_[h], transfers_[h], matrices_[h + 1]);
         break;
       case GalerkinMethod::Stream:
-        streams_[h].apply(matrices_[h], matrices_[h + 1]);
+        stream(static_cast<int>(h)).apply(matrices_[h], matrices_[h + 1]);
         break;
       case GalerkinMethod::StreamFull:
-        if (full_streams_.size() <= h)
-          full_streams_.emplace_back(matrices_[h], transfers_[h], matrices_[h + 1],
-                                     GalerkinStream::Symmetry::Full);
-        full_streams_[h].apply(matrices_[h], matrices_[h + 1]);
+        full_stream(static_cast<int>(h)).apply(matrices_[h], matrices_[h + 1]);
         break;
       case GalerkinMethod::Gather:
-        gathers_[h].apply(matrices_[h], matrices_[h + 1]);
+        gather(static_cast<int>(h)).apply(matrices_[h], matrices_[h + 1]);
         break;
       case GalerkinMethod::Reuse:
         reuse_[h]->apply(matrices_[h], transfers_[h], matrices_[h + 1]);
@@ -62,13 +77,15 @@ void MultigridHierarchy::update_coarse(GalerkinMethod method) {
   }
 }
 
-std::size_t MultigridHierarchy::stream_bytes(GalerkinMethod format) const {
+void MultigridHierarchy::prepare(GalerkinMethod method) { stream_bytes(method); }
+
+std::size_t MultigridHierarchy::stream_bytes(GalerkinMethod method) const {
   std::size_t bytes = 0;
-  if (format == GalerkinMethod::Gather) {
-    for (const auto& g : gathers_) bytes += g.bytes();
-    return bytes;
+  for (int h = 0; h + 1 < num_levels(); ++h) {
+    if (method == GalerkinMethod::Gather) bytes += gather(h).bytes();
+    if (method == GalerkinMethod::Stream) bytes += stream(h).bytes();
+    if (method == GalerkinMethod::StreamFull) bytes += full_stream(h).bytes();
   }
-  for (const auto& s : format == GalerkinMethod::StreamFull ? full_streams_ : streams_) bytes += s.bytes();
   return bytes;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // A multigrid hierarchy over a fine BRC matrix: given the transfers of every level
-// (hierarchy_builder.hpp), the coarse patterns and Galerkin streams (the symmetric stream and the
-// gather) are built once;
-// update() rebuilds every coarse operator E_{h+1} = R_h A_h R_h^T from new fine values.
+// (hierarchy_builder.hpp), the coarse patterns are built once, and each Galerkin method's
+// precomputed streams on its first use (a run uses one method; building them all would double
+// the set-up's time and memory); update() rebuilds every coarse operator E_{h+1} = R_h A_h R_h^T
+// from new fine values.
 #include <memory>
 
 #include "multigrid/galerkin.hpp"
@@ -26,20 +27,26 @@ class MultigridHierarchy {
   BrcMatrix& matrix(int h) { return matrices_[h]; }
   /// Transfer from level h to h + 1.
   const Transfer& transfer(int h) const { return transfers_[h]; }
-  const GalerkinStream& stream(int h) const { return streams_[h]; }
-  const GalerkinGather& gather(int h) const { return gathers_[h]; }
-  /// Bytes of all control and data streams of the given format (Gather: the gather streams).
-  std::size_t stream_bytes(GalerkinMethod format = GalerkinMethod::Stream) const;
+  /// Builds what `method` precomputes on every level (its streams), so that no update pays for it.
+  void prepare(GalerkinMethod method);
+  /// Level h's symmetric stream, gather and the paper's full stream, each built on first use.
+  const GalerkinStream& stream(int h) const;
+  const GalerkinGather& gather(int h) const;
+  const GalerkinStream& full_stream(int h) const;
+  /// Bytes of all control and data streams of the given method (Gather: the gather's pairs and
+  /// block lists; Naive and Reuse precompute none: 0).
+  std::size_t stream_bytes(GalerkinMethod method) const;
 
  private:
   void update_coarse(GalerkinMethod method);  ///< every E_{h+1} from the current level h
 
   std::vector<BrcMatrix> matrices_;
   std::vector<Transfer> transfers_;
-  std::vector<GalerkinStream> streams_;       ///< symmetric format
-  std::vector<GalerkinStream> full_streams_;  ///< the paper's format, built on first use
+  // Built on first use (hence mutable: the const accessors build them too), one per level.
+  mutable std::vector<std::unique_ptr<GalerkinStream>> streams_;       ///< symmetric format
+  mutable std::vector<std::unique_ptr<GalerkinStream>> full_streams_;  ///< the paper's format
+  mutable std::vector<std::unique_ptr<GalerkinGather>> gathers_;
   std::vector<std::unique_ptr<GalerkinReuse>> reuse_;
-  std::vector<GalerkinGather> gathers_;
 };
 
 }  // namespace corofem

@@ -70,7 +70,10 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       coarse_b_(hierarchy_.num_levels()),
       coarse_x_(hierarchy_.num_levels()),
       level_info_(std::move(built.levels)),
-      setup_ms_(std::move(built.setup_ms)) {}
+      setup_ms_(std::move(built.setup_ms)) {
+  // The method's streams now, in the set-up, not in the first step's update.
+  timed(setup_ms_, "galerkin_streams", [&] { hierarchy_.prepare(params_.galerkin); });
+}
 
 nlohmann::json MultigridSolver::describe() const {
   nlohmann::json levels = nlohmann::json::array();

@@ -79,21 +79,22 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
   // lists) and A_{h-1} read once, E_h written (18 flops per pair: a 3x3 block scaled and added),
   // its mirror pairs. The step hands the fine values over (take_matrix): no copy.
   const MultigridHierarchy& h = solver.hierarchy();
-  const bool gather = solver.params().galerkin == GalerkinMethod::Gather;
-  const auto stream_bytes = [&](int level) {
-    return static_cast<double>(gather ? h.gather(level).bytes() : h.stream(level).bytes());
-  };
-  const auto pairs = [&](int level) {
-    return static_cast<double>(gather ? h.gather(level).num_pairs() : h.stream(level).num_pairs());
+  // The stream of the method in use (the symmetric one stands in for the methods without one).
+  const GalerkinMethod method = solver.params().galerkin;
+  const auto stream = [&](int level) -> std::pair<std::size_t, std::size_t> {  // {bytes, pairs}
+    if (method == GalerkinMethod::Gather) return {h.gather(level).bytes(), h.gather(level).num_pairs()};
+    const GalerkinStream& s = method == GalerkinMethod::StreamFull ? h.full_stream(level) : h.stream(level);
+    return {s.bytes(), s.num_pairs()};
   };
   std::map<std::string, Traffic> parts;
   Traffic galerkin;
   for (int level = 1; level < h.num_levels(); ++level) {
     const BrcMatrix& coarse = h.matrix(level);
     const double coarse_blocks = static_cast<double>(coarse.col_index.size());
-    galerkin += {stream_bytes(level - 1) + kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) +
-                   kBlock * coarse_blocks + 8 * (coarse_blocks - coarse.block_rows) / 2,
-               18.0 * pairs(level - 1)};
+    const auto [bytes, pairs] = stream(level - 1);
+    galerkin += {static_cast<double>(bytes) + kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) +
+                     kBlock * coarse_blocks + 8 * (coarse_blocks - coarse.block_rows) / 2,
+                 18.0 * static_cast<double>(pairs)};
   }
   parts["galerkin"] = galerkin;
   // The smoothers' inverse diagonal blocks (about 50 flops each).

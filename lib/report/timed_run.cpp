@@ -162,7 +162,7 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     out.update_traffic = update_traffic(*mg);
     const MultigridHierarchy& h = mg->hierarchy();
     out.working_set_bytes = static_cast<double>(sizeof(ElementRest) * problem.elements.size()) +
-                            static_cast<double>(h.stream_bytes());
+                            static_cast<double>(h.stream_bytes(mg->params().galerkin));
     for (int level = 0; level < h.num_levels(); ++level)
       out.working_set_bytes += 76.0 * static_cast<double>(h.matrix(level).col_index.size());
   }
