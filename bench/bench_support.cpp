@@ -25,6 +25,12 @@ double time_ms(const std::function<void()>& f) {
   f();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
+double warm_time_ms(const std::function<void()>& f) {
+  f();
+  f();
+  return time_ms(f);
+}
+
 namespace {
 std::filesystem::path g_models;
 

@@ -47,11 +47,11 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   std::map<std::string, std::vector<double>> one, all;
   for (auto _ : state) {
     for (const auto& [name, run] : kernels) {
-      {
+      {  // each warm from its own runs, not from the kernel before it (warm_time_ms)
         const ScopedThreadCount single(1);
-        one[name].push_back(time_ms(run));
+        one[name].push_back(warm_time_ms(run));
       }
-      all[name].push_back(time_ms(run));
+      all[name].push_back(warm_time_ms(run));
     }
   }
   for (const auto& [name, run] : kernels) {
