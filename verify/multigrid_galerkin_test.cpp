@@ -179,6 +179,35 @@ TEST(Galerkin, LatticeHierarchyUpdateMatchesOraclesOnEveryLevel) {
   check_hierarchy(a, lattice_transfers(mesh, 0.25), 3);
 }
 
+TEST(Galerkin, StreamsBuiltOnFirstUseGiveThePreparedBits) {
+  // A method's streams are built on first use, from the patterns only: built in the set-up
+  // (prepare) or lazily after other methods have filled the levels, every level gets the same
+  // bits; the methods that precompute nothing report no stream bytes.
+  const TetMesh mesh = make_box_mesh({1, 1, 1}, {5, 5, 5});
+  std::mt19937 rng(8);
+  BrcMatrix a = random_symmetric(mesh, rng);
+  const std::vector<Transfer> transfers = lattice_transfers(mesh, 0.3);
+  for (const GalerkinMethod m : {GalerkinMethod::Stream, GalerkinMethod::StreamFull, GalerkinMethod::Gather}) {
+    MultigridHierarchy prepared(a, transfers), lazy(a, transfers);
+    prepared.prepare(m);
+    prepared.update(a, m);
+    lazy.update(a, GalerkinMethod::Naive);
+    lazy.update(a, m);
+    for (int h = 0; h < prepared.num_levels(); ++h)
+      EXPECT_TRUE(lazy.matrix(h).values == prepared.matrix(h).values) << "level " << h;
+    std::size_t bytes = 0;
+    for (int h = 0; h + 1 < prepared.num_levels(); ++h)
+      bytes += m == GalerkinMethod::Gather       ? prepared.gather(h).bytes()
+               : m == GalerkinMethod::StreamFull ? prepared.full_stream(h).bytes()
+                                                 : prepared.stream(h).bytes();
+    EXPECT_GT(bytes, 0u);
+    EXPECT_EQ(prepared.stream_bytes(m), bytes);
+  }
+  MultigridHierarchy h(a, transfers);
+  EXPECT_EQ(h.stream_bytes(GalerkinMethod::Naive), 0u);
+  EXPECT_EQ(h.stream_bytes(GalerkinMethod::Reuse), 0u);
+}
+
 TEST(Galerkin, TakenFineValuesGiveTheCopiedUpdateBits) {
   // take_update swaps the fine values in instead of copying them: every level the same bits as
   // update's, the caller left with a matrix of the same pattern, and another pattern refused.
