@@ -107,8 +107,12 @@ void BlockGaussSeidel::order_rows(const BrcMatrix& a) {
 }
 
 void BlockGaussSeidel::order_hybrid(const BrcMatrix& a) {
-  // An even count (when more than one) balances two threads; never the thread count itself.
-  int domains = std::max(1, static_cast<int>(a.col_index.size() / domain_size_));
+  // Domains of at most domain_size_ blocks, as few as that allows (rounding the count down left
+  // the bunny's fine level and the horse's first coarse one, 33501 and 43744 blocks, one domain,
+  // so one thread); an even count (when more than one) balances two threads; never the thread
+  // count itself.
+  const long long blocks = static_cast<long long>(a.col_index.size());
+  int domains = std::max(1, static_cast<int>((blocks + domain_size_ - 1) / domain_size_));
   if (domains > 1 && domains % 2 == 1) ++domains;
   std::vector<long long> prefix(a.row_start.begin(), a.row_start.end());
   domain_start_ = balanced_ranges(prefix, domains);

@@ -12,8 +12,8 @@
 //    interior, so this is nearly the sequential smoother, with its locality, on every thread.
 //  - hybrid: l1 hybrid Gauss-Seidel (Baker, Falgout, Kolev and Yang 2011, "Multigrid smoothers
 //    for ultraparallel computing", the l1-GS of hypre's BoomerAMG): the rows split into an even
-//    number of contiguous domains of about 24576 blocks (a count set by the level's size: some
-//    2000 fine vertices, fewer on the denser Galerkin levels); each
+//    number of contiguous domains of at most 24576 blocks, as few as that allows (a count set by
+//    the level's size: some 2000 fine vertices or more, fewer on the denser Galerkin levels); each
 //    domain relaxes its rows in order, Gauss-Seidel inside it and Jacobi across its boundary (the
 //    other domains' values from before the sweep), its boundary rows' diagonal blocks increased
 //    by the l1 norm of their off-domain entries, row by row. That makes the smoother M = D + D_l1
