@@ -77,9 +77,8 @@ void MultigridHierarchy::update_coarse(GalerkinMethod method) {
   }
 }
 
-void MultigridHierarchy::prepare(GalerkinMethod method) { stream_bytes(method); }
-
 std::size_t MultigridHierarchy::stream_bytes(GalerkinMethod method) const {
+  // Asking for a level's stream builds it: prepare() is this sum with the result unused.
   std::size_t bytes = 0;
   for (int h = 0; h + 1 < num_levels(); ++h) {
     if (method == GalerkinMethod::Gather) bytes += gather(h).bytes();
@@ -88,5 +87,7 @@ std::size_t MultigridHierarchy::stream_bytes(GalerkinMethod method) const {
   }
   return bytes;
 }
+
+void MultigridHierarchy::prepare(GalerkinMethod method) { static_cast<void>(stream_bytes(method)); }
 
 }  // namespace corofem

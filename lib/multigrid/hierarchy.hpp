@@ -30,6 +30,8 @@ class MultigridHierarchy {
   /// Builds what `method` precomputes on every level (its streams), so that no update pays for it.
   void prepare(GalerkinMethod method);
   /// Level h's symmetric stream, gather and the paper's full stream, each built on first use.
+  /// Not safe to call from two threads at once for a level not yet built: every caller (the
+  /// solver's set-up, the update, the roofline, the benchmarks) calls them from one thread.
   const GalerkinStream& stream(int h) const;
   const GalerkinGather& gather(int h) const;
   const GalerkinStream& full_stream(int h) const;
