@@ -64,6 +64,12 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
     const ElementRest& el = elements[e];
     const auto& blocks = map.block[e];
     const unsigned first = map.first[e];
+    const auto store_or_add = [&](int ab, const Mat3& value) {  // the block's first element stores
+      if (first >> ab & 1)
+        k.block(blocks[ab]) = value;
+      else
+        k.block(blocks[ab]) += value;
+    };
     const Vec12 ks = stiffness_times(el, corotated_strain(mesh, t, q, displacement));
     Vec3 h[4];
     for (int a = 0; a < 4; ++a) h[a] = q * el.gradient[a];
@@ -74,18 +80,8 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
         Mat3 rotated = el.lambda_volume * h[a] * h[b].transpose();
         rotated.noalias() += el.mu_volume * h[b] * h[a].transpose();
         rotated.diagonal().array() += el.mu_volume * el.gradient[a].dot(el.gradient[b]);
-        if (own.vertex[a]) {
-          if (first >> (4 * a + b) & 1)
-            k.block(blocks[4 * a + b]) = rotated;
-          else
-            k.block(blocks[4 * a + b]) += rotated;
-        }
-        if (b != a && own.vertex[b]) {
-          if (first >> (4 * b + a) & 1)
-            k.block(blocks[4 * b + a]) = rotated.transpose();
-          else
-            k.block(blocks[4 * b + a]) += rotated.transpose();
-        }
+        if (own.vertex[a]) store_or_add(4 * a + b, rotated);
+        if (b != a && own.vertex[b]) store_or_add(4 * b + a, rotated.transpose());
       }
     }
   }

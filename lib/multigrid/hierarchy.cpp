@@ -19,21 +19,28 @@ MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern, std::vecto
   gathers_.resize(transfers_.size());
 }
 
+namespace {
+
+/// slot's object, made from (A_h, R_h, E_{h+1}, extra...) the first time it is asked for.
+template <class T, class... Extra>
+const T& built(std::unique_ptr<T>& slot, const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
+               Extra... extra) {
+  if (!slot) slot = std::make_unique<T>(a, t, e, extra...);
+  return *slot;
+}
+
+}  // namespace
+
 const GalerkinStream& MultigridHierarchy::stream(int h) const {
-  if (!streams_[h]) streams_[h] = std::make_unique<GalerkinStream>(matrices_[h], transfers_[h], matrices_[h + 1]);
-  return *streams_[h];
+  return built(streams_[h], matrices_[h], transfers_[h], matrices_[h + 1]);
 }
 
 const GalerkinStream& MultigridHierarchy::full_stream(int h) const {
-  if (!full_streams_[h])
-    full_streams_[h] = std::make_unique<GalerkinStream>(matrices_[h], transfers_[h], matrices_[h + 1],
-                                                        GalerkinStream::Symmetry::Full);
-  return *full_streams_[h];
+  return built(full_streams_[h], matrices_[h], transfers_[h], matrices_[h + 1], GalerkinStream::Symmetry::Full);
 }
 
 const GalerkinGather& MultigridHierarchy::gather(int h) const {
-  if (!gathers_[h]) gathers_[h] = std::make_unique<GalerkinGather>(matrices_[h], transfers_[h], matrices_[h + 1]);
-  return *gathers_[h];
+  return built(gathers_[h], matrices_[h], transfers_[h], matrices_[h + 1]);
 }
 
 void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
