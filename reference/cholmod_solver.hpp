@@ -16,7 +16,7 @@ class CholmodSolver {
   /// Symbolic analysis (fill-reducing ordering); needed once per pattern.
   void analyze(const Eigen::SparseMatrix<double>& a);
   /// Numeric factorization of a symmetric positive definite A with the analyzed pattern; only the
-  /// lower triangle is read. Throws std::runtime_error if A is not positive definite.
+  /// upper triangle is read. Throws std::runtime_error if A is not positive definite.
   void factorize(const Eigen::SparseMatrix<double>& a);
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Entries of the factor L and flops of one numeric factorization, as CHOLMOD's analysis

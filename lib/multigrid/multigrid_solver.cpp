@@ -138,7 +138,7 @@ void MultigridSolver::update_levels() {
 void MultigridSolver::update_coarsest() {
   const int last = hierarchy_.num_levels() - 1;
   if (!coarsest_->converter) {
-    coarsest_->converter.emplace(hierarchy_.matrix(last));
+    coarsest_->converter.emplace(hierarchy_.matrix(last), BrcToEigen::Part::SymmetricUpper);
     coarsest_->cholmod.analyze(coarsest_->converter->matrix());
   } else {
     coarsest_->converter->update(hierarchy_.matrix(last));
