@@ -36,19 +36,12 @@ BrcMatrix random_brc(int n, std::mt19937& rng) {
   return a;
 }
 
-Eigen::MatrixXd dense(const BrcMatrix& a) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * a.block_rows, 3 * a.block_cols);
-  for (int i = 0; i < a.block_rows; ++i)
-    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) d.block<3, 3>(3 * i, 3 * a.col_index[k]) = a.block(k);
-  return d;
-}
-
 TEST(BlockKernels, BothFormsMatchTheDenseProductAtEveryThreadCount) {
   std::mt19937 rng(7);
   const int n = 3000;  // above the threads' grain, so 2 and 3 threads really split the rows
   const BrcMatrix a = random_brc(n, rng);
   Eigen::VectorXd x = Eigen::VectorXd::Random(3 * n);
-  const Eigen::MatrixXd d = dense(a);
+  const Eigen::MatrixXd d = test::dense_copy(a);
   const Eigen::VectorXd expected = d * x;
   // Forward error bound of a sum of m products: m u sum |terms| (Higham, Accuracy and Stability,
   // 3.1); a row has at most 41 blocks, so m <= 123 terms: 130 u (|A| |x|)_i bounds both forms.

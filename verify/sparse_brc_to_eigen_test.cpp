@@ -9,6 +9,7 @@
 #include "cholmod_solver.hpp"
 #include "sparse/brc_matrix.hpp"
 #include "sparse/brc_to_eigen.hpp"
+#include "test_support.hpp"
 
 namespace corofem {
 namespace {
@@ -47,20 +48,12 @@ BrcMatrix random_spd_brc(int n, std::mt19937& rng) {
   return a;
 }
 
-Eigen::MatrixXd dense(const BrcMatrix& a) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * a.block_rows, 3 * a.block_cols);
-  for (int i = 0; i < a.block_rows; ++i)
-    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
-      d.block<3, 3>(3 * i, 3 * a.col_index[k]) = a.block(k);
-  return d;
-}
-
 TEST(BrcToEigen, FullAndUpperCopyEveryValueAndUpdateFollowsNewValues) {
   std::mt19937 rng(7);
   BrcMatrix a = random_spd_brc(60, rng);
   BrcToEigen full(a), upper(a, BrcToEigen::Part::SymmetricUpper);
   for (int round = 0; round < 2; ++round) {
-    const Eigen::MatrixXd d = dense(a);
+    const Eigen::MatrixXd d = test::dense_copy(a);
     // Exact: copies, no arithmetic.
     EXPECT_EQ((Eigen::MatrixXd(full.matrix()) - d).cwiseAbs().maxCoeff(), 0.0);
     const Eigen::MatrixXd upper_of_d = d.triangularView<Eigen::Upper>();
@@ -80,7 +73,7 @@ TEST(BrcToEigen, CholmodOnTheUpperTriangleSolvesLikeADenseCholesky) {
   reference::CholmodSolver cholmod;
   cholmod.factorize(upper.matrix());
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * a.block_rows, -1, 2);
-  const Eigen::MatrixXd d = dense(a);
+  const Eigen::MatrixXd d = test::dense_copy(a);
   const Eigen::VectorXd expected = d.llt().solve(b);
   // Both are backward stable: they agree to about cond(A) eps; this A is diagonally dominant
   // (cond < 10), so 1e-12 leaves a margin of 100 over double rounding.

@@ -12,6 +12,13 @@
 namespace corofem::test {
 namespace fs = std::filesystem;
 
+Eigen::MatrixXd dense_copy(const BrcMatrix& a) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * a.block_rows, 3 * a.block_cols);
+  for (int i = 0; i < a.block_rows; ++i)
+    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) d.block<3, 3>(3 * i, 3 * a.col_index[k]) = a.block(k);
+  return d;
+}
+
 TempDir::TempDir() {
   std::random_device rd;
   path_ = fs::temp_directory_path() /

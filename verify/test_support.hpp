@@ -9,6 +9,7 @@
 #include "fem/fe_problem.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "sparse/block_kernels.hpp"
+#include "sparse/brc_matrix.hpp"
 
 namespace corofem::test {
 
@@ -23,6 +24,9 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// A BRC matrix as a dense one, block by block: the oracle of the sparse passes and conversions.
+Eigen::MatrixXd dense_copy(const BrcMatrix& a);
 
 struct CliResult {
   int exit_code;
