@@ -14,43 +14,9 @@
 namespace corofem {
 namespace {
 
-/// Symmetric pattern (block (j, i) wherever (i, j)) with the diagonal and up to 12 random blocks
-/// per row; values of an SPD matrix: a random symmetric one plus a dominant diagonal.
-BrcMatrix random_spd_brc(int n, std::mt19937& rng) {
-  std::uniform_int_distribution<int> column(0, n - 1), count(0, 12);
-  std::vector<std::vector<int>> columns(n);
-  for (int i = 0; i < n; ++i) {
-    columns[i].push_back(i);
-    for (int k = count(rng); k > 0; --k) {
-      const int j = column(rng);
-      columns[i].push_back(j);
-      columns[j].push_back(i);
-    }
-  }
-  for (std::vector<int>& c : columns) {
-    std::sort(c.begin(), c.end());
-    c.erase(std::unique(c.begin(), c.end()), c.end());
-  }
-  BrcMatrix a = make_brc_pattern(n, columns);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int i = 0; i < n; ++i)
-    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
-      const int j = a.col_index[k];
-      if (j > i) continue;
-      Eigen::Matrix3d b =
-          Eigen::Matrix3d::NullaryExpr([&](Eigen::Index, Eigen::Index) { return u(rng); });
-      if (j == i)
-        b = (b + b.transpose()).eval() +
-            3.0 * (a.row_start[i + 1] - a.row_start[i]) * Eigen::Matrix3d::Identity();
-      a.block(k) = b;
-      a.block(a.find(j, i)) = b.transpose();
-    }
-  return a;
-}
-
 TEST(BrcToEigen, FullAndUpperCopyEveryValueAndUpdateFollowsNewValues) {
   std::mt19937 rng(7);
-  BrcMatrix a = random_spd_brc(60, rng);
+  BrcMatrix a = test::random_spd_brc(60, rng);
   BrcToEigen full(a), upper(a, BrcToEigen::Part::SymmetricUpper);
   for (int round = 0; round < 2; ++round) {
     const Eigen::MatrixXd d = test::dense_copy(a);
@@ -68,7 +34,7 @@ TEST(BrcToEigen, FullAndUpperCopyEveryValueAndUpdateFollowsNewValues) {
 
 TEST(BrcToEigen, CholmodOnTheUpperTriangleSolvesLikeADenseCholesky) {
   std::mt19937 rng(11);
-  const BrcMatrix a = random_spd_brc(80, rng);
+  const BrcMatrix a = test::random_spd_brc(80, rng);
   const BrcToEigen upper(a, BrcToEigen::Part::SymmetricUpper);
   reference::CholmodSolver cholmod;
   cholmod.factorize(upper.matrix());

@@ -12,10 +12,43 @@
 namespace corofem::test {
 namespace fs = std::filesystem;
 
+BrcMatrix random_spd_brc(int n, std::mt19937& rng) {
+  std::uniform_int_distribution<int> column(0, n - 1), count(0, 12);
+  std::vector<std::vector<int>> columns(n);
+  for (int i = 0; i < n; ++i) {
+    columns[i].push_back(i);
+    for (int k = count(rng); k > 0; --k) {
+      const int j = column(rng);
+      columns[i].push_back(j);
+      columns[j].push_back(i);
+    }
+  }
+  for (std::vector<int>& c : columns) {
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+  }
+  BrcMatrix a = make_brc_pattern(n, columns);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < n; ++i)
+    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
+      const int j = a.col_index[k];
+      if (j > i) continue;
+      Eigen::Matrix3d b =
+          Eigen::Matrix3d::NullaryExpr([&](Eigen::Index, Eigen::Index) { return u(rng); });
+      if (j == i)
+        b = (b + b.transpose()).eval() +
+            3.0 * (a.row_start[i + 1] - a.row_start[i]) * Eigen::Matrix3d::Identity();
+      a.block(k) = b;
+      a.block(a.find(j, i)) = b.transpose();
+    }
+  return a;
+}
+
 Eigen::MatrixXd dense_copy(const BrcMatrix& a) {
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * a.block_rows, 3 * a.block_cols);
   for (int i = 0; i < a.block_rows; ++i)
-    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) d.block<3, 3>(3 * i, 3 * a.col_index[k]) = a.block(k);
+    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
+      d.block<3, 3>(3 * i, 3 * a.col_index[k]) = a.block(k);
   return d;
 }
 
@@ -45,8 +78,9 @@ std::string read_text(const fs::path& file) {
 
 CliResult run_cli(const std::string& args, const std::string& launcher) {
   TempDir dir;
-  const std::string command = launcher + (launcher.empty() ? "" : " ") + "'" + COROFEM_CLI + "' " + args + " > '" +
-                              (dir / "out").string() + "' 2> '" + (dir / "err").string() + "'";
+  const std::string command = launcher + (launcher.empty() ? "" : " ") + "'" + COROFEM_CLI + "' " +
+                              args + " > '" + (dir / "out").string() + "' 2> '" +
+                              (dir / "err").string() + "'";
   const int status = std::system(command.c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -55,7 +89,9 @@ CliResult run_cli(const std::string& args, const std::string& launcher) {
   return result;
 }
 
-fs::path source_dir() { return COROFEM_SOURCE_DIR; }
+fs::path source_dir() {
+  return COROFEM_SOURCE_DIR;
+}
 
 fs::path models_dir() {
   if (const char* env = std::getenv("COROFEM_MODELS"); env && *env)
@@ -76,7 +112,8 @@ std::string cube_stl(int n) {
            std::to_string(p.z()) + "\n";
   };
   auto tri = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-    s += "facet normal 0 0 0\nouter loop\n" + point(a) + point(b) + point(c) + "endloop\nendfacet\n";
+    s +=
+        "facet normal 0 0 0\nouter loop\n" + point(a) + point(b) + point(c) + "endloop\nendfacet\n";
   };
   for (int axis = 0; axis < 3; ++axis)
     for (int side = 0; side < 2; ++side) {
@@ -101,8 +138,8 @@ std::string cube_stl(int n) {
 
 Mat12 dense_element_stiffness(const FeProblem& p, int e) {
   const Tet& t = p.mesh.tets[e];
-  return element_stiffness(p.mesh.rest[t[0]], p.mesh.rest[t[1]], p.mesh.rest[t[2]], p.mesh.rest[t[3]],
-                           p.materials[e]);
+  return element_stiffness(p.mesh.rest[t[0]], p.mesh.rest[t[1]], p.mesh.rest[t[2]],
+                           p.mesh.rest[t[3]], p.materials[e]);
 }
 
 }  // namespace corofem::test

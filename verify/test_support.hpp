@@ -1,10 +1,11 @@
 #pragma once
 // Helpers shared by the gates: temporary folders, running the CLI, small meshes, tolerances.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <iostream>
+#include <random>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "fem/fe_problem.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -27,6 +28,9 @@ class TempDir {
 
 /// A BRC matrix as a dense one, block by block: the oracle of the sparse passes and conversions.
 Eigen::MatrixXd dense_copy(const BrcMatrix& a);
+/// Symmetric pattern (block (j, i) wherever (i, j)) with the diagonal and up to 12 random blocks
+/// per row; values of an SPD matrix: a random symmetric one plus a dominant diagonal.
+BrcMatrix random_spd_brc(int n, std::mt19937& rng);
 
 struct CliResult {
   int exit_code;
@@ -65,7 +69,8 @@ void in_each_kernel_form(const F& body) {
   for (const bool vector : {false, true}) {
     set_vector_block_kernels(vector);
     if (vector != vector_block_kernels()) {
-      std::cout << "[   NOTE   ] this CPU has no AVX2/FMA: only the scalar block kernels are checked\n";
+      std::cout
+          << "[   NOTE   ] this CPU has no AVX2/FMA: only the scalar block kernels are checked\n";
       continue;
     }
     SCOPED_TRACE(block_kernels_name());
