@@ -132,6 +132,16 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
     // The oracle forms Q^T p - x, cancelling terms of |x| ~ 1 to a strain of ~0.1 (random Q):
     // its round-off, and the kernel's, are some ulps of |K_e| |x|, 1e-13 of |f| here.
     EXPECT_LT((force - force_ref).norm(), 1e-12 * force_ref.norm());
+    // Scaled into another matrix (a time step's (dt beta + dt^2) Ktilde, written straight into
+    // its system matrix): the scale multiplies V lambda and V mu, so the blocks are the scaled
+    // ones to round-off; the force is not scaled at all (the same bits).
+    const double scale = 2.5e-4;
+    BrcMatrix scaled = p.stiffness;
+    std::fill(scaled.values.begin(), scaled.values.end(), std::numeric_limits<double>::quiet_NaN());
+    Eigen::VectorXd scaled_force;
+    assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, scaled, scaled_force, scale);
+    EXPECT_LT((to_eigen(scaled) - scale * ref).norm(), 1e-14 * scale * ref.norm());
+    EXPECT_EQ((scaled_force - force).cwiseAbs().maxCoeff(), 0.0);
     Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
     const Eigen::VectorXd y_ref = ref * x;
     EXPECT_LT((p.stiffness * x - y_ref).norm(), 1e-14 * ref.norm() * x.norm());

@@ -54,7 +54,7 @@ Vec12 stiffness_times(const ElementRest& el, const Vec12& s) {
 /// entries. Scalar form: Eigen's 3-vector products.
 void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
                           const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, int part,
-                          BrcMatrix& k, Eigen::VectorXd& force) {
+                          double scale, BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   for (const int e : rows.elements[part]) {
@@ -77,9 +77,10 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
       if (own.vertex[a]) force.segment<3>(3 * t[a]) += q * ks.segment<3>(3 * a);
       for (int b = a; b < 4; ++b) {
         if (!own.vertex[a] && !own.vertex[b]) continue;
-        Mat3 rotated = el.lambda_volume * h[a] * h[b].transpose();
-        rotated.noalias() += el.mu_volume * h[b] * h[a].transpose();
-        rotated.diagonal().array() += el.mu_volume * el.gradient[a].dot(el.gradient[b]);
+        const double lambda = scale * el.lambda_volume, mu = scale * el.mu_volume;
+        Mat3 rotated = lambda * h[a] * h[b].transpose();
+        rotated.noalias() += mu * h[b] * h[a].transpose();
+        rotated.diagonal().array() += mu * el.gradient[a].dot(el.gradient[b]);
         if (own.vertex[a]) store_or_add(4 * a + b, rotated);
         if (b != a && own.vertex[b]) store_or_add(4 * b + a, rotated.transpose());
       }
@@ -115,7 +116,7 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
                                                             const TetMesh& mesh, const AssemblyMap& map,
                                                             const std::vector<Mat3>& rotations,
                                                             const Eigen::VectorXd& displacement, int part,
-                                                            BrcMatrix& k, Eigen::VectorXd& force) {
+                                                            double scale, BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
@@ -135,13 +136,13 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
     const unsigned first = map.first[e];
     const Vec12 ks = stiffness_times(el, corotated_strain(mesh, t, rotations[e], displacement));
     __m256d h[4];
-    alignas(32) double lambda_h[4][4], mu_h[4][4];  // V lambda h_a and V mu h_a
+    alignas(32) double lambda_h[4][4], mu_h[4][4];  // scale V lambda h_a and scale V mu h_a
     for (int a = 0; a < 4; ++a) {
       const Vec3& g = el.gradient[a];
       h[a] = _mm256_fmadd_pd(qc[2], _mm256_set1_pd(g[2]),
                              _mm256_fmadd_pd(qc[1], _mm256_set1_pd(g[1]), _mm256_mul_pd(qc[0], _mm256_set1_pd(g[0]))));
-      _mm256_store_pd(lambda_h[a], _mm256_mul_pd(_mm256_set1_pd(el.lambda_volume), h[a]));
-      _mm256_store_pd(mu_h[a], _mm256_mul_pd(_mm256_set1_pd(el.mu_volume), h[a]));
+      _mm256_store_pd(lambda_h[a], _mm256_mul_pd(_mm256_set1_pd(scale * el.lambda_volume), h[a]));
+      _mm256_store_pd(mu_h[a], _mm256_mul_pd(_mm256_set1_pd(scale * el.mu_volume), h[a]));
     }
     for (int a = 0; a < 4; ++a) {
       if (own.vertex[a]) {  // f_a += Q (K_e s)_a
@@ -155,7 +156,7 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
       }
       for (int b = a; b < 4; ++b) {
         if (!own.vertex[a] && !own.vertex[b]) continue;
-        const __m256d diagonal = _mm256_set1_pd(el.mu_volume * el.gradient[a].dot(el.gradient[b]));
+        const __m256d diagonal = _mm256_set1_pd(scale * el.mu_volume * el.gradient[a].dot(el.gradient[b]));
         __m256d r[3];
         for (int j = 0; j < 3; ++j)
           r[j] = _mm256_add_pd(_mm256_fmadd_pd(_mm256_broadcast_sd(&lambda_h[a][j]), h[b],
@@ -180,7 +181,7 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
 
 void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
                         const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,
-                        Eigen::VectorXd& force) {
+                        Eigen::VectorXd& force, double matrix_scale) {
   force.resize(3 * static_cast<Eigen::Index>(k.block_rows));
   const RowPartition& rows = map.rows;
   for_each_part(rows, [&](int part) {
@@ -188,9 +189,9 @@ void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh&
     force.segment(3 * lo, 3 * (hi - lo)).setZero();
 #ifdef COROFEM_HAVE_AVX2_KERNELS
     if (vector_block_kernels())
-      return assemble_part_avx2(elements, mesh, map, rotations, displacement, part, k, force);
+      return assemble_part_avx2(elements, mesh, map, rotations, displacement, part, matrix_scale, k, force);
 #endif
-    assemble_part_scalar(elements, mesh, map, rotations, displacement, part, k, force);
+    assemble_part_scalar(elements, mesh, map, rotations, displacement, part, matrix_scale, k, force);
   });
 }
 

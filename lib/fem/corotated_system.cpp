@@ -10,11 +10,11 @@ namespace corofem {
 
 void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vector<Vec3>& positions,
                const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations, Eigen::VectorXd& force,
-               PhaseClock& clock) {
+               PhaseClock& clock, BrcMatrix* matrix, double matrix_scale) {
   clock.time("rotate", [&] { extractor.extract(positions, rotations); });
   clock.time("assemble", [&] {
     assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement,
-                       problem.stiffness, force);
+                       matrix ? *matrix : problem.stiffness, force, matrix ? matrix_scale : 1.0);
   });
 }
 

@@ -8,11 +8,12 @@
 namespace corofem {
 
 /// Extracts rotations at `positions` = x + `displacement` (warm-started from `rotations`) and
-/// assembles Ktilde into problem.stiffness and the elastic force there into `force`
-/// (internal_forces' f_int). Phases "rotate" and "assemble" are timed on `clock`.
+/// assembles Ktilde into problem.stiffness, or matrix_scale Ktilde into `matrix` when given (a
+/// matrix with its pattern), and the elastic force there into `force` (internal_forces' f_int).
+/// Phases "rotate" and "assemble" are timed on `clock`.
 void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vector<Vec3>& positions,
                const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations, Eigen::VectorXd& force,
-               PhaseClock& clock);
+               PhaseClock& clock, BrcMatrix* matrix = nullptr, double matrix_scale = 1.0);
 
 /// Number of elements with det F <= 0 at `positions`.
 int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);

@@ -127,7 +127,12 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     });
     std::vector<Vec3> p;  // the rotations' input
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
-    linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock);
+    // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks: the
+    // assembly writes the scaled Ktilde into A's values unless Ktilde itself is wanted.
+    const double k_scale = dt * options.rayleigh_beta + dt * dt;
+    const bool assemble_into_system = !options.newton && !options.keep_stiffness;
+    linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock,
+              assemble_into_system ? &system : nullptr, k_scale);
     clock.time("checks", [&] {  // counted by the rotations' pass where it can, else a pass of its own
       const int counted = rotate.stats().inverted;
       result.inverted_max = std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, p));
@@ -142,13 +147,12 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       clock.time("forces", [&] { b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic); });
       clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
       clock.time("system", [&] {
-        // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks; the
-        // scaled copy is one pass over Ktilde into the preallocated A.
-        const double k_scale = dt * options.rayleigh_beta + dt * dt;
-        const std::vector<double>& k = problem.stiffness.values;
-        const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
+        if (!assemble_into_system) {  // the scaled copy: one pass over Ktilde into A
+          const std::vector<double>& k = problem.stiffness.values;
+          const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
 #pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
-        for (std::ptrdiff_t i = 0; i < values; ++i) system.values[i] = k_scale * k[i];
+          for (std::ptrdiff_t i = 0; i < values; ++i) system.values[i] = k_scale * k[i];
+        }
         add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, system);
         apply_dirichlet(bc, system, b);
       });

@@ -29,6 +29,10 @@ struct DynamicOptions {
   /// the step. Without it both stay as they are.
   std::function<void(int step, FeProblem& problem)> before_step;
   bool newton = false;           ///< fully implicit Euler by Newton (else linearly implicit)
+  /// Linearly implicit: problem.stiffness holds the step's Ktilde when on_step is called (for
+  /// callbacks that use it). Off, the assembly writes (dt beta + dt^2) Ktilde straight into the
+  /// step's matrix, and problem.stiffness is not written.
+  bool keep_stiffness = false;
   NewtonSettings newton_settings;  ///< per step; a step that misses the tolerance throws NotConverged
 };
 

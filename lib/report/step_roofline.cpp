@@ -141,9 +141,10 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // b = M v + dt (f_ext - f_int), f_int from the assembly: mass, velocity, external force and
   // f_int read, b written.
   t["forces"] = {4 * 8 * n + 8 * n, 5 * n};
-  // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde and its supports: K read, A written, the
-  // column indices (for the supported columns), the mass, the fixed flags, b read and written.
-  t["system"] = {2 * kBlock * blocks + kIndex * blocks + 8 * n + n + 16 * n, 9 * blocks + 3 * n};
+  // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde and its supports: the assembly wrote the
+  // scaled Ktilde into A (above); the mass added into the diagonal blocks, the column indices
+  // (for the supported columns), the fixed flags, b read and written.
+  t["system"] = {2 * kBlock * v + kIndex * blocks + 8 * n + n + 16 * n, 3 * n};
   Traffic update;
   for (const auto& [part, traffic] : update_traffic(solver)) update += traffic;
   t["update"] = update;

@@ -139,6 +139,7 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     checked = solver.get();
     simulation.set_solver(std::move(solver));
   }
+  if (options.on_step) simulation.keep_stiffness();  // it gets the problem, Ktilde included
   LinearSolver& under_test = checked ? checked->inner() : simulation.solver();
   if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) out.levels = mg->hierarchy().num_levels();
   out.result = simulation.run([&](const StepState& s) {

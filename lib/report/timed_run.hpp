@@ -20,7 +20,8 @@ struct TimedRunOptions {
   bool check_operators = false;    ///< Galerkin levels and rotations against the oracles, at the end
   /// Multigrid runs with PETSc built: time PETSc's MatPtAP (numeric reuse) on the final matrix.
   bool time_matptap = false;
-  /// Called after every step with the problem (for study metrics); may throw to stop the run.
+  /// Called after every step with the problem (for study metrics; its stiffness is the step's
+  /// Ktilde); may throw to stop the run.
   std::function<void(const StepState&, const FeProblem&)> on_step;
 };
 

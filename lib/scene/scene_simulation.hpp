@@ -31,6 +31,12 @@ class SceneSimulation {
   /// MultigridSolver::describe() with setup_ms.coarse_meshes; null for other solvers.
   nlohmann::json describe_multigrid(const LinearSolver& solver) const;
 
+  /// Dynamic runs: problem().stiffness holds each step's Ktilde when on_step is called
+  /// (DynamicOptions::keep_stiffness), for callbacks that read it.
+  void keep_stiffness() {
+    if (dynamic_) dynamic_->keep_stiffness = true;
+  }
+
   /// Static or dynamic, as the scene says; `on_step` follows every dynamic step. Phase times
   /// include "setup" (building) and "total".
   SimulationResult run(const std::function<void(const StepState&)>& on_step = {});
