@@ -393,6 +393,33 @@ TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks
   });
 }
 
+TEST_F(ThreadsTest, SideBySideRunsBothAndRethrowsAfterBoth) {
+  for (const int n : kThreadCounts) {
+    ScopedThreadCount threads(n);
+    // Each task's own parallel loop still covers its range (on its one thread when side by side).
+    std::vector<int> left(5000, 0), right(5000, 0);
+    run_side_by_side(
+        [&] {
+#pragma omp parallel for num_threads(threads_for(5000))
+          for (int i = 0; i < 5000; ++i) left[i] = i;
+        },
+        [&] {
+#pragma omp parallel for num_threads(threads_for(5000))
+          for (int i = 0; i < 5000; ++i) right[i] = 2 * i;
+        });
+    for (int i = 0; i < 5000; ++i) ASSERT_TRUE(left[i] == i && right[i] == 2 * i) << n << " threads, " << i;
+    // A failure in either comes out after both ran, the first task's first.
+    bool b_ran = false;
+    EXPECT_THROW(run_side_by_side([] { throw NumericalFault("a"); }, [&] { b_ran = true; }), NumericalFault);
+    EXPECT_TRUE(b_ran) << n << " threads";
+    try {
+      run_side_by_side([] { throw InputError("a"); }, [] { throw NumericalFault("b"); });
+      ADD_FAILURE() << "no exception";
+    } catch (const InputError&) {
+    }
+  }
+}
+
 TEST_F(ThreadsTest, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
   for (const std::string smoother : {"multicolour", "domains", "hybrid", "sequential"}) {
     Eigen::VectorXd one;

@@ -1,6 +1,7 @@
 #include "core/threads.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <string>
 #include <thread>
 
@@ -93,6 +94,31 @@ std::vector<int> balanced_ranges(const std::vector<long long>& weight_prefix, in
     bounds[p] = b;
   }
   return bounds;
+}
+
+void run_side_by_side(const std::function<void()>& a, const std::function<void()>& b) {
+  std::exception_ptr failed[2];
+  const auto run = [&](int which) {
+    try {
+      (which == 0 ? a : b)();
+    } catch (...) {
+      failed[which] = std::current_exception();  // no exception may leave a parallel region
+    }
+  };
+#ifdef _OPENMP
+  if (thread_count() > 1) {
+#pragma omp parallel num_threads(2)
+    run(omp_get_thread_num());
+  } else {
+    run(0);
+    run(1);
+  }
+#else
+  run(0);
+  run(1);
+#endif
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace corofem

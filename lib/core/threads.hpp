@@ -3,6 +3,7 @@
 // work starts; every parallel kernel splits its work so that its result does not depend on the
 // count (each output written by one thread, summed in a fixed order), so runs are bit-identical
 // at any count where the algorithm is the same.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,11 @@ void set_items_per_thread(long long items);
 void set_thread_count(int count, const char* what = "--threads");
 /// Parses the value of a --threads option ("all" = available_cores()); throws InputError.
 int parse_thread_count(const std::string& value);
+
+/// Runs `a` and `b` at once, one thread each, when thread_count() > 1 (their own parallel loops
+/// then run on that one thread), else a then b: for a serial task beside work independent of it.
+/// An exception from either is rethrown once both have finished (a's first).
+void run_side_by_side(const std::function<void()>& a, const std::function<void()>& b);
 
 /// Sets the count for a scope (a one-thread measurement inside a threaded run) and restores it.
 class ScopedThreadCount {
