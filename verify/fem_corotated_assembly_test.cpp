@@ -132,15 +132,20 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
     // The oracle forms Q^T p - x, cancelling terms of |x| ~ 1 to a strain of ~0.1 (random Q):
     // its round-off, and the kernel's, are some ulps of |K_e| |x|, 1e-13 of |f| here.
     EXPECT_LT((force - force_ref).norm(), 1e-12 * force_ref.norm());
-    // Scaled into another matrix (a time step's (dt beta + dt^2) Ktilde, written straight into
-    // its system matrix): the scale multiplies V lambda and V mu, so the blocks are the scaled
-    // ones to round-off; the force is not scaled at all (the same bits).
+    // A time step's matrix, scale Ktilde + diag(d), written straight into another matrix: the
+    // scale multiplies V lambda and V mu, so the blocks are the scaled ones to round-off, and d
+    // is added once per DOF (d of the size of the scaled diagonal, as a mass is); the force is
+    // neither (the same bits).
     const double scale = 2.5e-4;
+    const Eigen::VectorXd d = scale * ref.diagonal().cwiseAbs().maxCoeff() *
+                              Eigen::VectorXd::LinSpaced(p.num_dofs(), 1.0, 2.0);
+    Eigen::SparseMatrix<double> expected = scale * ref;
+    for (int i = 0; i < p.num_dofs(); ++i) expected.coeffRef(i, i) += d[i];
     BrcMatrix scaled = p.stiffness;
     std::fill(scaled.values.begin(), scaled.values.end(), std::numeric_limits<double>::quiet_NaN());
     Eigen::VectorXd scaled_force;
-    assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, scaled, scaled_force, scale);
-    EXPECT_LT((to_eigen(scaled) - scale * ref).norm(), 1e-14 * scale * ref.norm());
+    assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, scaled, scaled_force, scale, &d);
+    EXPECT_LT((to_eigen(scaled) - expected).norm(), 1e-14 * expected.norm());
     EXPECT_EQ((scaled_force - force).cwiseAbs().maxCoeff(), 0.0);
     Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
     const Eigen::VectorXd y_ref = ref * x;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cstring>
+#include <random>
 
 #include "cholmod_solver.hpp"
 #include "fem/corotated_assembly.hpp"
@@ -10,6 +12,7 @@
 #include "fem/fe_problem.hpp"
 #include "mesh/box_mesh.hpp"
 #include "sparse/brc_to_eigen.hpp"
+#include "test_support.hpp"
 
 namespace corofem {
 namespace {
@@ -46,6 +49,35 @@ TEST(Dirichlet, EliminationEqualsReducedDenseSolve) {
   for (std::size_t i = 0; i < free.size(); ++i)
     EXPECT_NEAR(x[free[i]], xf[i], 1e-10 * xf.lpNorm<Eigen::Infinity>());
   for (int c : fixed) EXPECT_EQ(x[c], p.dirichlet.value[c]);
+}
+
+TEST(Dirichlet, EliminationIsTheDenseOneBitForBitWithSomeDofsOfAVertexFixed) {
+  // apply_dirichlet visits only the rows and columns of supported vertices; the dense form below
+  // visits every entry, each row's columns in ascending order. Same operations in the same
+  // order: the same bits, also where a vertex has only some DOFs fixed.
+  std::mt19937 rng(3);
+  BrcMatrix a = test::random_spd_brc(40, rng);
+  DirichletConditions bc = DirichletConditions::none(3 * a.block_rows);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int d = 0; d < 3 * a.block_rows; d += 7) {  // every 7th DOF: vertices with 1 of 3 fixed
+    bc.fixed[d] = 1;
+    bc.value[d] = u(rng);
+  }
+  bc.fix_vertex(5, {0.1, -0.2, 0.3});
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * a.block_rows, -1, 1);
+  Eigen::MatrixXd dense = test::dense_copy(a);
+  Eigen::VectorXd dense_b = b;
+  for (int row = 0; row < dense.rows(); ++row)
+    for (int col = 0; col < dense.cols(); ++col) {
+      if (dense(row, col) == 0 && row != col) continue;  // outside the pattern (no entry is 0 inside)
+      if (!bc.fixed[row] && bc.fixed[col]) dense_b[row] -= dense(row, col) * bc.value[col];
+      if (bc.fixed[row] || bc.fixed[col]) dense(row, col) = row == col ? 1.0 : 0.0;
+    }
+  for (int d = 0; d < dense.rows(); ++d)
+    if (bc.fixed[d]) dense_b[d] = bc.value[d];
+  apply_dirichlet(bc, a, b);
+  EXPECT_EQ((test::dense_copy(a) - dense).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_TRUE(std::memcmp(b.data(), dense_b.data(), sizeof(double) * b.size()) == 0);
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ Vec12 stiffness_times(const ElementRest& el, const Vec12& s) {
 /// entries. Scalar form: Eigen's 3-vector products.
 void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
                           const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, int part,
-                          double scale, BrcMatrix& k, Eigen::VectorXd& force) {
+                          double scale, const Eigen::VectorXd* added_diagonal, BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   for (const int e : rows.elements[part]) {
@@ -81,6 +81,8 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
         Mat3 rotated = lambda * h[a] * h[b].transpose();
         rotated.noalias() += mu * h[b] * h[a].transpose();
         rotated.diagonal().array() += mu * el.gradient[a].dot(el.gradient[b]);
+        if (added_diagonal && b == a && (first >> (5 * a) & 1))  // once a vertex: its block's first store
+          rotated.diagonal() += added_diagonal->segment<3>(3 * t[a]);
         if (own.vertex[a]) store_or_add(4 * a + b, rotated);
         if (b != a && own.vertex[b]) store_or_add(4 * b + a, rotated.transpose());
       }
@@ -116,7 +118,8 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
                                                             const TetMesh& mesh, const AssemblyMap& map,
                                                             const std::vector<Mat3>& rotations,
                                                             const Eigen::VectorXd& displacement, int part,
-                                                            double scale, BrcMatrix& k, Eigen::VectorXd& force) {
+                                                            double scale, const Eigen::VectorXd* added_diagonal,
+                                                            BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
@@ -162,6 +165,10 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
           r[j] = _mm256_add_pd(_mm256_fmadd_pd(_mm256_broadcast_sd(&lambda_h[a][j]), h[b],
                                                _mm256_mul_pd(_mm256_broadcast_sd(&mu_h[b][j]), h[a])),
                                _mm256_and_pd(diagonal, lane[j]));
+        if (added_diagonal && b == a && (first >> (5 * a) & 1)) {  // once a vertex: its block's first store
+          const __m256d d = _mm256_maskload_pd(added_diagonal->data() + 3 * static_cast<std::ptrdiff_t>(t[a]), first3);
+          for (int j = 0; j < 3; ++j) r[j] = _mm256_add_pd(r[j], _mm256_and_pd(d, lane[j]));
+        }
         if (own.vertex[a])
           add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), first >> (4 * a + b) & 1, r[0], r[1], r[2]);
         if (b != a && own.vertex[b]) {
@@ -181,7 +188,7 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
 
 void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
                         const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,
-                        Eigen::VectorXd& force, double matrix_scale) {
+                        Eigen::VectorXd& force, double matrix_scale, const Eigen::VectorXd* diagonal) {
   force.resize(3 * static_cast<Eigen::Index>(k.block_rows));
   const RowPartition& rows = map.rows;
   for_each_part(rows, [&](int part) {
@@ -189,9 +196,10 @@ void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh&
     force.segment(3 * lo, 3 * (hi - lo)).setZero();
 #ifdef COROFEM_HAVE_AVX2_KERNELS
     if (vector_block_kernels())
-      return assemble_part_avx2(elements, mesh, map, rotations, displacement, part, matrix_scale, k, force);
+      return assemble_part_avx2(elements, mesh, map, rotations, displacement, part, matrix_scale, diagonal, k,
+                                force);
 #endif
-    assemble_part_scalar(elements, mesh, map, rotations, displacement, part, matrix_scale, k, force);
+    assemble_part_scalar(elements, mesh, map, rotations, displacement, part, matrix_scale, diagonal, k, force);
   });
 }
 

@@ -16,11 +16,13 @@ namespace corofem {
 /// the step's right-hand side needs no pass of its own), each thread of map.rows writing its own
 /// rows (bit-identical at every thread count).
 /// `rotations` holds Qhat_e per element (the rotation taking the rest element to the deformed one).
-/// `matrix_scale`: K gets matrix_scale sum_e Q_e K_e Q_e^T (a time step's dt^2 Ktilde, written
-/// straight into the step's matrix: no pass to scale a copy); the force is not scaled.
+/// `matrix_scale`: K gets matrix_scale sum_e Q_e K_e Q_e^T, plus `diagonal` (one entry per DOF)
+/// on the diagonal when given: a time step's matrix (dt beta + dt^2) Ktilde + (1 + dt alpha) M,
+/// written in this pass (no pass to scale a copy, none to add the mass into the diagonal blocks
+/// spread over the matrix). The force is neither.
 void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
                         const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,
-                        Eigen::VectorXd& force, double matrix_scale = 1.0);
+                        Eigen::VectorXd& force, double matrix_scale = 1.0, const Eigen::VectorXd* diagonal = nullptr);
 
 /// Elastic internal force, element by element: f_int = sum_e Q_e K_e (Q_e^T p_e - x_e), p = x + u.
 /// Equals Ktilde p - f0 of the assembled system, but is evaluated from vertex-0 offsets as

@@ -10,11 +10,15 @@ namespace corofem {
 
 void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vector<Vec3>& positions,
                const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations, Eigen::VectorXd& force,
-               PhaseClock& clock, BrcMatrix* matrix, double matrix_scale) {
+               PhaseClock& clock, const AssemblyTarget& target) {
   clock.time("rotate", [&] { extractor.extract(positions, rotations); });
   clock.time("assemble", [&] {
-    assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement,
-                       matrix ? *matrix : problem.stiffness, force, matrix ? matrix_scale : 1.0);
+    if (target.matrix)
+      assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement, *target.matrix,
+                         force, target.scale, target.diagonal);
+    else
+      assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement,
+                         problem.stiffness, force);
   });
 }
 

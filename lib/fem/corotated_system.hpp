@@ -7,13 +7,20 @@
 
 namespace corofem {
 
+/// Where linearize() assembles: Ktilde into problem.stiffness (no matrix), or a time step's
+/// scale Ktilde + diag(diagonal) into `matrix` (with problem.stiffness's pattern).
+struct AssemblyTarget {
+  BrcMatrix* matrix = nullptr;
+  double scale = 1.0;
+  const Eigen::VectorXd* diagonal = nullptr;  ///< per DOF; none: nothing added
+};
+
 /// Extracts rotations at `positions` = x + `displacement` (warm-started from `rotations`) and
-/// assembles Ktilde into problem.stiffness, or matrix_scale Ktilde into `matrix` when given (a
-/// matrix with its pattern), and the elastic force there into `force` (internal_forces' f_int).
+/// assembles into `target` and the elastic force there into `force` (internal_forces' f_int).
 /// Phases "rotate" and "assemble" are timed on `clock`.
 void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vector<Vec3>& positions,
                const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations, Eigen::VectorXd& force,
-               PhaseClock& clock, BrcMatrix* matrix = nullptr, double matrix_scale = 1.0);
+               PhaseClock& clock, const AssemblyTarget& target = {});
 
 /// Number of elements with det F <= 0 at `positions`.
 int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);

@@ -1,7 +1,9 @@
 #include "fem/dirichlet.hpp"
 
 #include <cmath>
+#include <string>
 
+#include "core/errors.hpp"
 #include "core/threads.hpp"
 
 namespace corofem {
@@ -25,26 +27,39 @@ int DirichletConditions::num_fixed() const {
 }
 
 void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd& b) {
-  // Only blocks in a row or column of a vertex with a fixed DOF change: find them from the
-  // column indices (4 B a block) instead of visiting all 9 entries of every block.
+  // Only blocks in a row or column of a vertex with a fixed DOF change. The pattern is symmetric
+  // (an FE matrix's), so they are row v and, through v's neighbours i, the blocks (i, v): visited
+  // from the supported vertices alone, not by scanning every block's column (the dragon's step:
+  // 0.5 ms a step for the scan, on one thread).
   std::vector<char> vertex_fixed(a.block_rows, 0);
   for (int d = 0; d < static_cast<int>(bc.fixed.size()); ++d) vertex_fixed[d / 3] |= bc.fixed[d];
-  // Each row's entries, and its b, are written by one thread, in the serial order.
-#pragma omp parallel for schedule(static) num_threads(threads_for(a.block_rows / 4))
-  for (int i = 0; i < a.block_rows; ++i) {
-    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
-      const int j = a.col_index[k];
-      if (!vertex_fixed[i] && !vertex_fixed[j]) continue;
-      double* block = a.values.data() + 9 * static_cast<std::size_t>(k);
-      for (int r = 0; r < 3; ++r) {
-        const int row = 3 * i + r;
-        for (int c = 0; c < 3; ++c) {
-          const int col = 3 * j + c;
-          double& entry = block[3 * r + c];
-          if (!bc.fixed[row] && bc.fixed[col]) b[row] -= entry * bc.value[col];
-          if (bc.fixed[row] || bc.fixed[col]) entry = (row == col) ? 1.0 : 0.0;
-        }
+  // A block visited twice is visited as no-op the second time: its entries in a fixed row or
+  // column are then 0 (or 1), so b loses nothing more. Row i's b sees the fixed columns in
+  // ascending order, as a scan of the row would.
+  const auto apply = [&](int i, int k) {
+    const int j = a.col_index[k];
+    double* block = a.values.data() + 9 * static_cast<std::size_t>(k);
+    for (int r = 0; r < 3; ++r) {
+      const int row = 3 * i + r;
+      for (int c = 0; c < 3; ++c) {
+        const int col = 3 * j + c;
+        double& entry = block[3 * r + c];
+        if (!bc.fixed[row] && bc.fixed[col]) b[row] -= entry * bc.value[col];
+        if (bc.fixed[row] || bc.fixed[col]) entry = (row == col) ? 1.0 : 0.0;
       }
+    }
+  };
+  for (int v = 0; v < a.block_rows; ++v) {
+    if (!vertex_fixed[v]) continue;
+    for (int k = a.row_start[v]; k < a.row_start[v + 1]; ++k) {
+      const int i = a.col_index[k];
+      apply(v, k);  // row v
+      if (i == v) continue;
+      const int transposed = a.find(i, v);  // column v, in row i
+      if (transposed < 0)
+        throw NumericalFault("supports: the matrix pattern is not symmetric (block (" + std::to_string(v) + ", " +
+                             std::to_string(i) + ") without (" + std::to_string(i) + ", " + std::to_string(v) + "))");
+      apply(i, transposed);
     }
   }
   for (int d = 0; d < static_cast<int>(bc.fixed.size()); ++d)

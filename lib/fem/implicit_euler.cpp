@@ -114,6 +114,9 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), elastic, b;
   Eigen::VectorXd previous_velocity = velocity;  // v_{n-1}: the solve's start extrapolates from it
   BrcMatrix system = problem.stiffness;  // the step's matrix; its pattern is allocated once
+  const double k_scale = dt * options.rayleigh_beta + dt * dt;
+  const Eigen::VectorXd mass_diagonal = (1 + dt * options.rayleigh_alpha) * problem.mass;
+  const bool assemble_into_system = !options.newton && !options.keep_stiffness;
   std::unique_ptr<NewtonStepper> newton;
   if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.name());
   for (int step = 1; step <= options.steps; ++step) {
@@ -128,11 +131,9 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     std::vector<Vec3> p;  // the rotations' input
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
     // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks: the
-    // assembly writes the scaled Ktilde into A's values unless Ktilde itself is wanted.
-    const double k_scale = dt * options.rayleigh_beta + dt * dt;
-    const bool assemble_into_system = !options.newton && !options.keep_stiffness;
+    // assembly writes all of it into A's values unless Ktilde itself is wanted.
     linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock,
-              assemble_into_system ? &system : nullptr, k_scale);
+              assemble_into_system ? AssemblyTarget{&system, k_scale, &mass_diagonal} : AssemblyTarget{});
     clock.time("checks", [&] {  // counted by the rotations' pass where it can, else a pass of its own
       const int counted = rotate.stats().inverted;
       result.inverted_max = std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, p));
@@ -147,13 +148,13 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       clock.time("forces", [&] { b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic); });
       clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
       clock.time("system", [&] {
-        if (!assemble_into_system) {  // the scaled copy: one pass over Ktilde into A
+        if (!assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
           const std::vector<double>& k = problem.stiffness.values;
           const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
 #pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
           for (std::ptrdiff_t i = 0; i < values; ++i) system.values[i] = k_scale * k[i];
+          add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, system);
         }
-        add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, system);
         apply_dirichlet(bc, system, b);
       });
       // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.

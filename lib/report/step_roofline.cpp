@@ -133,18 +133,24 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // V lambda h_a h_b^T + V mu h_b h_a^T + V mu (g_a . g_b) I: 35), 16 block += (9), and the
   // elastic force Q K_e s_e (strain 117, K_e s from the gradients 138, rotate back 4 x 18);
   // the gradients and V lambda, V mu read out of ElementRest, the 16 target blocks of the
-  // assembly map, rest positions and displacements, K written once (zeroing fused), the force
-  // written.
+  // assembly map, rest positions and displacements, the step's matrix written once (zeroing
+  // fused; the mass read and added into its diagonal), the force written.
   t["assemble"] = {rotations + lines(4 * kVec3 + 16) * e + sizeof(std::array<int, 16>) * e + tets + kVec3 * v +
-                       8 * n + kBlock * blocks + 8 * n,
+                       8 * n + kBlock * blocks + 8 * n + 8 * n,
                    (60 + 10 * 35 + 16 * 9 + 117 + 138 + 72) * e};
   // b = M v + dt (f_ext - f_int), f_int from the assembly: mass, velocity, external force and
   // f_int read, b written.
   t["forces"] = {4 * 8 * n + 8 * n, 5 * n};
-  // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde and its supports: the assembly wrote the
-  // scaled Ktilde into A (above); the mass added into the diagonal blocks, the column indices
-  // (for the supported columns), the fixed flags, b read and written.
-  t["system"] = {2 * kBlock * v + kIndex * blocks + 8 * n + n + 16 * n, 3 * n};
+  // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde: the assembly wrote it (above). Its supports:
+  // the velocity's prescribed values (fixed flags, prescribed displacements and u read, values
+  // written), the supported vertices' rows and columns (their blocks read and written, with
+  // their column indices), b's entries.
+  double supported_blocks = 0;
+  std::vector<char> vertex_fixed(problem.mesh.num_vertices(), 0);
+  for (std::size_t d = 0; d < problem.dirichlet.fixed.size(); ++d) vertex_fixed[d / 3] |= problem.dirichlet.fixed[d];
+  for (int i = 0; i < k.block_rows; ++i)
+    if (vertex_fixed[i]) supported_blocks += 2 * (k.row_start[i + 1] - k.row_start[i]);
+  t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlock + kIndex) + 16 * n, 2 * n + 18 * supported_blocks};
   Traffic update;
   for (const auto& [part, traffic] : update_traffic(solver)) update += traffic;
   t["update"] = update;
