@@ -4,7 +4,6 @@
 #include <string>
 
 #include "core/errors.hpp"
-#include "core/threads.hpp"
 
 namespace corofem {
 
