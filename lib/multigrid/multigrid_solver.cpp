@@ -16,12 +16,18 @@ namespace corofem {
 
 namespace {
 
+/// Runs f; returns its wall time in ms.
+template <class F>
+double wall_ms(const F& f) {
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 /// Runs f and adds its wall time in ms to totals[part].
 template <class F>
 void timed(std::map<std::string, double>& totals, const char* part, const F& f) {
-  const auto start = std::chrono::steady_clock::now();
-  f();
-  totals[part] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  totals[part] += wall_ms(f);
 }
 
 std::map<std::string, double> means(const std::map<std::string, double>& totals, int count) {
@@ -134,14 +140,9 @@ void MultigridSolver::update_levels() {
   // Each part keeps its own time; at two or more threads they overlap.
   const int last = hierarchy_.num_levels() - 1;
   double smoothers_ms = 0, coarsest_ms = 0;
-  const auto time_into = [](double& ms, const auto& f) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  };
-  run_side_by_side([&] { time_into(coarsest_ms, [&] { update_coarsest(); }); },
+  run_side_by_side([&] { coarsest_ms = wall_ms([&] { update_coarsest(); }); },
                    [&] {
-                     time_into(smoothers_ms, [&] {
+                     smoothers_ms = wall_ms([&] {
                        for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));
                      });
                    });
