@@ -17,12 +17,8 @@ namespace {
 class SerialOpenMp {
  public:
 #ifdef COROFEM_HAVE_OPENMP
-  SerialOpenMp() : saved_(omp_get_max_active_levels()) {
-    omp_set_max_active_levels(0);
-  }
-  ~SerialOpenMp() {
-    omp_set_max_active_levels(saved_);
-  }
+  SerialOpenMp() : saved_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
+  ~SerialOpenMp() { omp_set_max_active_levels(saved_); }
 
  private:
   int saved_;
@@ -70,12 +66,8 @@ Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const {
   return x;
 }
 
-double CholmodSolver::factor_nonzeros() const {
-  return impl_->lnz;
-}
-double CholmodSolver::factorization_flops() const {
-  return impl_->flops;
-}
+double CholmodSolver::factor_nonzeros() const { return impl_->lnz; }
+double CholmodSolver::factorization_flops() const { return impl_->flops; }
 
 Eigen::VectorXd cholmod_solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b) {
   CholmodSolver solver;

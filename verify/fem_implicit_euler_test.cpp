@@ -42,8 +42,9 @@ INSTANTIATE_TEST_SUITE_P(Formulations, DampedSettling, ::testing::Values(false, 
 TEST(ImplicitEuler, AssemblingIntoTheSystemMatrixIsTheScaledCopyAndKeepsKtildeOnRequest) {
   // The linearly implicit step has the assembly write (dt beta + dt^2) Ktilde straight into A;
   // with keep_stiffness it assembles Ktilde into problem.stiffness and scales a copy, as before.
-  // The two differ by round-off in A (the scale enters V lambda and V mu, not the sums), so the
-  // trajectories agree to round-off amplified by cond(A) (~1e4 here): 1e-10.
+  // The two differ by round-off in A (the scale enters V lambda and V mu, not the sums; the mass
+  // is added at a block's first store, not after its sum), so the trajectories agree to
+  // round-off amplified by cond(A) (~1e4 here): 1e-10.
   const Cantilever bar;
   DynamicOptions o{true, 0.01, 12, 1.0, 0.002};
   FeProblem fused = bar.build(1, 3.0), kept = bar.build(1, 3.0);

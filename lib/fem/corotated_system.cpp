@@ -13,12 +13,8 @@ void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vect
                PhaseClock& clock, const AssemblyTarget& target) {
   clock.time("rotate", [&] { extractor.extract(positions, rotations); });
   clock.time("assemble", [&] {
-    if (target.matrix)
-      assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement, *target.matrix,
-                         force, target.scale, target.diagonal);
-    else
-      assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement,
-                         problem.stiffness, force);
+    assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, displacement,
+                       target.matrix ? *target.matrix : problem.stiffness, force, target.scale, target.diagonal);
   });
 }
 

@@ -7,8 +7,8 @@
 
 namespace corofem {
 
-/// Where linearize() assembles: Ktilde into problem.stiffness (no matrix), or a time step's
-/// scale Ktilde + diag(diagonal) into `matrix` (with problem.stiffness's pattern).
+/// Where linearize() assembles scale Ktilde + diag(diagonal): into `matrix` (with
+/// problem.stiffness's pattern; a time step's), or, by default, Ktilde into problem.stiffness.
 struct AssemblyTarget {
   BrcMatrix* matrix = nullptr;
   double scale = 1.0;

@@ -25,13 +25,18 @@ int DirichletConditions::num_fixed() const {
   return n;
 }
 
+std::vector<char> DirichletConditions::supported_vertices() const {
+  std::vector<char> supported(fixed.size() / 3, 0);
+  for (std::size_t d = 0; d < fixed.size(); ++d) supported[d / 3] |= fixed[d];
+  return supported;
+}
+
 void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd& b) {
   // Only blocks in a row or column of a vertex with a fixed DOF change. The pattern is symmetric
   // (an FE matrix's), so they are row v and, through v's neighbours i, the blocks (i, v): visited
   // from the supported vertices alone, not by scanning every block's column (the dragon's step:
   // 0.5 ms a step for the scan, on one thread).
-  std::vector<char> vertex_fixed(a.block_rows, 0);
-  for (int d = 0; d < static_cast<int>(bc.fixed.size()); ++d) vertex_fixed[d / 3] |= bc.fixed[d];
+  const std::vector<char> vertex_fixed = bc.supported_vertices();
   // A block visited twice is visited as no-op the second time: its entries in a fixed row or
   // column are then 0 (or 1), so b loses nothing more. Row i's b sees the fixed columns in
   // ascending order, as a scan of the row would.

@@ -15,6 +15,8 @@ struct DirichletConditions {
   static DirichletConditions none(int num_dofs);
   void fix_vertex(int v, const Eigen::Vector3d& displacement = Eigen::Vector3d::Zero());
   int num_fixed() const;
+  /// Per vertex: 1 if any of its DOFs is prescribed (its row and column of A change).
+  std::vector<char> supported_vertices() const;
   bool any() const { return num_fixed() > 0; }
 };
 

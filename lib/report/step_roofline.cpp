@@ -146,10 +146,9 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // written), the supported vertices' rows and columns (their blocks read and written, with
   // their column indices), b's entries.
   double supported_blocks = 0;
-  std::vector<char> vertex_fixed(problem.mesh.num_vertices(), 0);
-  for (std::size_t d = 0; d < problem.dirichlet.fixed.size(); ++d) vertex_fixed[d / 3] |= problem.dirichlet.fixed[d];
+  const std::vector<char> supported = problem.dirichlet.supported_vertices();
   for (int i = 0; i < k.block_rows; ++i)
-    if (vertex_fixed[i]) supported_blocks += 2 * (k.row_start[i + 1] - k.row_start[i]);
+    if (supported[i]) supported_blocks += 2 * (k.row_start[i + 1] - k.row_start[i]);
   t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlock + kIndex) + 16 * n, 2 * n + 18 * supported_blocks};
   Traffic update;
   for (const auto& [part, traffic] : update_traffic(solver)) update += traffic;
