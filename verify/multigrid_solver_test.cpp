@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "core/errors.hpp"
+#include "core/threads.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/implicit_euler.hpp"
 #include "fem/loads.hpp"
@@ -297,6 +298,68 @@ double asymptotic_rho(MultigridSolver& mg, const BrcMatrix& a, const std::vector
     previous = r.norm();
   }
   return ratio;
+}
+
+TEST(MultigridSolver, OverlappedFactorizationIsTheInUpdateBits) {
+  // At two or more threads MG-PCG defers the coarsest factorization of every update after the
+  // first to the next solve, beside its initial residual and first descent: the same operations
+  // on the same data, so the same bits as one thread (where nothing is deferred: every kernel
+  // gives the same bits at any count). Also through vcycle(), with a start that is already
+  // converged (no descent runs), and with a factorization that fails.
+  const MeshCase c{"box", box_spec(Vec3(1, 0.4, 0.4), {10, 4, 4}), make_box_mesh({1, 0.4, 0.4}, {10, 4, 4}), {}};
+  FeProblem p = problem_for(c);
+  Eigen::VectorXd b;
+  const BrcMatrix system = small_strain_system(p, b);
+  BrcMatrix stiffer = system;  // a second matrix with the same pattern
+  for (double& v : stiffer.values) v *= 1.5;
+  set_items_per_thread(1);  // a small mesh, threaded anyway
+  struct Run {
+    Eigen::VectorXd x, cycled, restarted;
+    int iterations = 0;
+    bool deferred = false;
+  };
+  auto run = [&](int threads) {
+    const ScopedThreadCount count(threads);
+    auto mg = make_multigrid_solver(analysis("mgpcg", 1e-10, "lattice"), p, {}, true);
+    Run r;
+    mg->set_matrix(system);
+    EXPECT_FALSE(mg->update_deferred()) << "the first update analyses: never deferred";
+    mg->set_matrix(stiffer);
+    r.deferred = mg->update_deferred();
+    r.x = Eigen::VectorXd::Zero(b.size());
+    r.iterations = mg->solve(b, r.x).iterations;
+    EXPECT_FALSE(mg->update_deferred());
+    // The solution of the stiffer system as the start: CG stops before preconditioning.
+    mg->set_matrix(stiffer);
+    r.restarted = r.x;
+    EXPECT_EQ(mg->solve(b, r.restarted).iterations, 0);
+    mg->set_matrix(system);
+    r.cycled = Eigen::VectorXd::Zero(b.size());
+    mg->vcycle(0, b, r.cycled, true);
+    // A failing factorization: at one thread set_matrix throws, deferred the solve does.
+    BrcMatrix negative = system;
+    for (double& v : negative.values) v = -v;
+    EXPECT_THROW(
+        {
+          mg->set_matrix(negative);
+          Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+          mg->solve(b, x);
+        },
+        NumericalFault);
+    return r;
+  };
+  const Run one = run(1);
+  EXPECT_FALSE(one.deferred);
+  EXPECT_GT(one.iterations, 2);
+  for (const int threads : {2, 3}) {
+    const Run many = run(threads);
+    EXPECT_TRUE(many.deferred) << threads;
+    EXPECT_EQ(many.iterations, one.iterations) << threads;
+    EXPECT_TRUE(many.x == one.x) << threads << " threads: other bits";
+    EXPECT_TRUE(many.restarted == one.x) << threads;
+    EXPECT_TRUE(many.cycled == one.cycled) << threads;
+  }
+  set_items_per_thread(2048);
 }
 
 TEST(MultigridSolver, TwoGridEqualsDenseOperator) {

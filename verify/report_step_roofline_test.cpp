@@ -6,6 +6,7 @@
 
 #include <set>
 
+#include "core/threads.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "report/step_roofline.hpp"
 #include "rotation/element_quadrature.hpp"
@@ -23,6 +24,7 @@ nlohmann::json box_scene() {
 }
 
 TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
+  const ScopedThreadCount one(1);  // the update phase in full (two threads: below)
   SceneSimulation sim(parse_scene(box_scene(), ".", "box"));
   sim.run();  // one step: the hierarchy holds a system matrix
   const auto& solver = dynamic_cast<const MultigridSolver&>(sim.solver());
@@ -75,6 +77,15 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   // rotate's flops grow by 250 per tet per Newton iteration.
   const auto t3 = step_traffic(problem, solver, 3.0, 5.0);
   EXPECT_DOUBLE_EQ(t3.at("rotate").flops - t.at("rotate").flops, 250 * e);
+  // At two threads MG-PCG factors the coarsest level and sets up the smoothers in the solve
+  // (MultigridSolver::defers_update): their traffic moves with them, the step's total stays.
+  const ScopedThreadCount two(2);
+  ASSERT_TRUE(solver.defers_update());
+  const auto t2 = step_traffic(problem, solver, 2.0, 5.0);
+  const double moved = solver.coarsest_factorization_flops() + 50 * v;
+  EXPECT_DOUBLE_EQ(t2.at("update").flops, t.at("update").flops - moved);
+  EXPECT_DOUBLE_EQ(t2.at("solve").flops, t.at("solve").flops + moved);
+  EXPECT_DOUBLE_EQ(t2.at("update").bytes + t2.at("solve").bytes, t.at("update").bytes + t.at("solve").bytes);
 }
 
 TEST(StepRoofline, RecordComparesEachPhaseWithItsFloor) {

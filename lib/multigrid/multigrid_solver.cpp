@@ -58,7 +58,9 @@ nlohmann::json MultigridParams::to_json() const {
                      {"vcycles", vcycles},
                      {"max_iterations", max_iterations},
                      {"tolerance", tolerance},
-                     {"coarsest", "cholmod"}}}};
+                     {"coarsest", "cholmod"},
+                     {"coarsest_factorization",
+                      overlap_factorization ? "beside the first descent at 2+ threads" : "in the update"}}}};
 }
 
 struct MultigridSolver::Coarsest {
@@ -135,8 +137,22 @@ void MultigridSolver::take_matrix(BrcMatrix& a) {
 }
 
 void MultigridSolver::update_levels() {
-  // CHOLMOD factors the coarsest level on one thread (cholmod_solver.cpp): the smoothers' set-up,
-  // which does not need it, runs beside it on another (dragon, two threads: about 0.6 ms a step).
+  // The coarsest factorization is serial (CHOLMOD, cholmod_solver.cpp). MG-PCG's initial
+  // residual needs neither it nor the smoothers, and its first V-cycle's descent needs only the
+  // smoothers: so at two or more threads the update stops after the Galerkin products and the
+  // next solve runs the factorization on one thread beside those on another
+  // (run_overlapped_pcg). The first update, which analyses the pattern, runs in full here.
+  update_pending_ = true;
+  if (!(defers_update() && coarsest_->converter)) complete_update();
+}
+
+bool MultigridSolver::defers_update() const {
+  return params_.overlap_factorization && preconditioner_ && thread_count() > 1 && hierarchy_.num_levels() > 1;
+}
+
+void MultigridSolver::complete_update(const std::function<void()>& beside) {
+  if (!update_pending_) return;
+  update_pending_ = false;
   // Each part keeps its own time; at two or more threads they overlap.
   const int last = hierarchy_.num_levels() - 1;
   double smoothers_ms = 0, coarsest_ms = 0;
@@ -145,6 +161,7 @@ void MultigridSolver::update_levels() {
                      smoothers_ms = wall_ms([&] {
                        for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));
                      });
+                     if (beside) beside();
                    });
   update_ms_["smoothers"] += smoothers_ms;
   update_ms_["coarsest"] += coarsest_ms;
@@ -182,17 +199,24 @@ void MultigridSolver::update_coarsest() {
 }
 
 void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
-  const int last = hierarchy_.num_levels() - 1;
-  if (h == last) {
+  complete_update();
+  cycle(h, b, x, zero_guess);
+}
+
+void MultigridSolver::cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
+  if (h == hierarchy_.num_levels() - 1) {
     timed(solve_ms_, "coarsest", [&] { x = coarsest_->cholmod.solve(b); });
     return;
   }
+  descend(h, b, x, zero_guess);
+  cycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1], true);
+  ascend(h, b, x);
+}
+
+void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
   const BrcMatrix& a = hierarchy_.matrix(h);
   const bool fine = h == 0;
-  const char* smooth = fine ? "fine_smooth" : "coarse_levels";
-  const char* residual = fine ? "fine_residual" : "coarse_levels";
-  const char* transfer = fine ? "fine_transfer" : "coarse_levels";
-  timed(solve_ms_, smooth, [&] {
+  timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
     int s = 0;
     if (zero_guess && params_.pre_smoothing > 0) {
       smoothers_[h].forward_from_zero(a, b, x);
@@ -202,15 +226,24 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
     }
     for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
   });
-  timed(solve_ms_, residual, [&] { a.residual(b, x, residual_[h]); });
-  timed(solve_ms_, transfer, [&] {
-    hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]);
+  timed(solve_ms_, fine ? "fine_residual" : "coarse_levels", [&] { a.residual(b, x, residual_[h]); });
+  timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
+        [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
+}
+
+void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const bool fine = h == 0;
+  timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
+        [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
+  timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
+    for (int s = 0; s < params_.post_smoothing; ++s) smoothers_[h].backward(hierarchy_.matrix(h), b, x);
   });
-  vcycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1], true);
-  timed(solve_ms_, transfer, [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
-  timed(solve_ms_, smooth, [&] {
-    for (int s = 0; s < params_.post_smoothing; ++s) smoothers_[h].backward(a, b, x);
-  });
+}
+
+void MultigridSolver::finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const int last = hierarchy_.num_levels() - 1;
+  cycle(last, coarse_b_[last], coarse_x_[last], true);
+  for (int h = last - 1; h >= 0; --h) ascend(h, h == 0 ? b : coarse_b_[h], h == 0 ? x : coarse_x_[h]);
 }
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -220,11 +253,39 @@ SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) 
   return stats;
 }
 
+SolveStats MultigridSolver::run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  // The same operations in the same order as complete_update() and then preconditioned_cg():
+  // the same bits. The descent runs only when CG will ask for a preconditioned residual.
+  const BrcMatrix& a = hierarchy_.matrix(0);
+  const int last = hierarchy_.num_levels() - 1;
+  Eigen::VectorXd r0, z0;
+  bool descended = false;
+  complete_update([&] {
+    const double b_norm = start_iterative_solve(b, x);
+    a.residual(b, x, r0);
+    if (b_norm == 0 || r0.norm() <= params_.tolerance * b_norm) return;
+    descend(0, r0, z0, true);
+    for (int h = 1; h < last; ++h) descend(h, coarse_b_[h], coarse_x_[h], true);
+    descended = true;
+  });
+  return preconditioned_cg(
+      a, b, x,
+      [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+        if (!descended) return cycle(0, r, z, true);
+        descended = false;  // r is r0: CG starts from it
+        z.swap(z0);
+        finish_cycle(r, z);
+      },
+      params_.tolerance, params_.max_iterations, "mgpcg", &r0);
+}
+
 SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const BrcMatrix& a = hierarchy_.matrix(0);
+  if (preconditioner_ && update_pending_) return run_overlapped_pcg(b, x);
+  complete_update();
   if (preconditioner_)
     return preconditioned_cg(
-        a, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { vcycle(0, r, z, true); },
+        a, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { cycle(0, r, z, true); },
         params_.tolerance, params_.max_iterations, "mgpcg");
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
@@ -236,7 +297,7 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
   double rk = r0;
   for (int k = 0; k < cap; ++k) {
     if (params_.vcycles == 0 && rk <= params_.tolerance * b_norm) break;
-    vcycle(0, b, x, false);
+    cycle(0, b, x, false);
     a.residual(b, x, r);
     rk = r.norm();
     ++stats.iterations;

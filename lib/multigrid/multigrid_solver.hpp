@@ -2,6 +2,7 @@
 // Geometric multigrid with Galerkin coarse operators (paper section 4; Georgii and Westermann
 // 2005): V-cycles with block Gauss-Seidel smoothing and CHOLMOD on the coarsest level, as a
 // solver ("multigrid") or as the preconditioner of CG ("mgpcg").
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -22,6 +23,9 @@ struct MultigridParams {
   double tolerance = 1e-8;         ///< relative residual |b - A x| / |b|
   GalerkinMethod galerkin = GalerkinMethod::Gather;
   SmootherOrdering smoother = SmootherOrdering::Sequential;  ///< the Gauss-Seidel sweeps' order
+  /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial
+  /// residual and first descent (see MultigridSolver::update_deferred), not in the update.
+  bool overlap_factorization = true;
 
   nlohmann::json to_json() const;
   nlohmann::json smoother_json() const;  ///< the smoother's part of to_json()
@@ -44,6 +48,13 @@ class MultigridSolver : public LinearSolver {
   /// at 0 whatever it holds (a correction: every coarse level, and the preconditioner), so the
   /// first forward sweep reads half the matrix.
   void vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
+  /// Whether set_matrix leaves the coarsest factorization and the smoothers' set-up to the next
+  /// solve (MG-PCG with overlap_factorization, at two or more threads, from the second update
+  /// on): that solve runs them beside its initial residual and its first V-cycle's descent.
+  /// Their time then counts in the solve, not the update.
+  bool defers_update() const;
+  /// Whether the last set_matrix's factorization and smoothers' set-up still wait for a solve.
+  bool update_deferred() const { return update_pending_; }
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
   const MultigridParams& params() const { return params_; }
   /// The coarsest level's Cholesky factor: entries of L and flops per factorization (CHOLMOD's
@@ -66,8 +77,22 @@ class MultigridSolver : public LinearSolver {
 
  private:
   SolveStats run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// MG-PCG whose update is pending: the initial residual and the first V-cycle's descent on one
+  /// thread, the coarsest factorization on another, then CG.
+  SolveStats run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   void update_levels();  ///< after the Galerkin products: the smoothers and the coarsest factor
+  /// Runs a pending update: the coarsest factorization on one thread, and on another the
+  /// smoothers' set-up, then `beside` (work that needs neither the factor nor its absence).
+  void complete_update(const std::function<void()>& beside = {});
   void update_coarsest();
+  void cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
+  /// Level h's part of a V-cycle before its coarse correction (pre-smoothing, the residual
+  /// restricted into coarse_b_[h + 1]), and the part after it (the correction prolongated into
+  /// x, post-smoothing).
+  void descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
+  void ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// The rest of a V-cycle from level 0 whose descent has run: the coarsest solve, the ascents.
+  void finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   MultigridParams params_;
   bool preconditioner_;
   MultigridHierarchy hierarchy_;
@@ -75,6 +100,7 @@ class MultigridSolver : public LinearSolver {
   struct Coarsest;
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
+  bool update_pending_ = false;
   int coarsest_shifts_ = 0;
   nlohmann::json level_info_;
   std::map<std::string, double> setup_ms_;

@@ -150,8 +150,11 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   for (int i = 0; i < k.block_rows; ++i)
     if (supported[i]) supported_blocks += 2 * (k.row_start[i + 1] - k.row_start[i]);
   t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlock + kIndex) + 16 * n, 2 * n + 18 * supported_blocks};
-  Traffic update;
-  for (const auto& [part, traffic] : update_traffic(solver)) update += traffic;
+  // The coarsest factorization and the smoothers' set-up count where they run: in the solve
+  // when the solver defers them to it (MultigridSolver::defers_update).
+  Traffic update, deferred;
+  for (const auto& [part, traffic] : update_traffic(solver))
+    (solver.defers_update() && (part == "coarsest" || part == "smoothers") ? deferred : update) += traffic;
   t["update"] = update;
   // MG-PCG (solver/preconditioned_cg.cpp): per iteration A p, one V-cycle and 14 vector passes
   // (two dots, two axpys, a norm, p = z + beta p); the start: r = b - A x, norms, r.z.
@@ -159,6 +162,7 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   Traffic solve = (solve_iterations + 1) * matvec(solver.hierarchy().matrix(0));
   solve += solve_iterations * cycle;
   solve += {(14 * solve_iterations + 9) * 8 * n, (12 * solve_iterations + 6) * n};
+  solve += deferred;
   t["solve"] = solve;
   return t;
 }

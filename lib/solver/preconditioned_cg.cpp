@@ -41,12 +41,15 @@ double dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
 
 SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                              const Preconditioner& precondition, double tolerance,
-                             int max_iterations, const char* name) {
+                             int max_iterations, const char* name, const Eigen::VectorXd* initial_residual) {
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
   if (b_norm == 0) return stats;
   Eigen::VectorXd r, z = Eigen::VectorXd::Zero(b.size()), q;
-  a.residual(b, x, r);
+  if (initial_residual)
+    r = *initial_residual;
+  else
+    a.residual(b, x, r);
   const double r0 = r.norm();
   double rk = r0;
   if (rk > tolerance * b_norm) {

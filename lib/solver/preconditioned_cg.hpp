@@ -15,9 +15,12 @@ using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::Vecto
 /// Iterates from x (the initial guess) until |b - A x| <= tolerance |b| or max_iterations.
 /// `name` prefixes the NumericalFault thrown on a non-finite residual and the NotConverged thrown
 /// at max_iterations above the tolerance. Returns the relative residual and the convergence factor.
+/// `initial_residual`, if given, is b - A x for the x given (sized as b), computed by the caller
+/// (MG-PCG computes it beside its coarsest factorization): used instead of a product of its own.
 SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                              const Preconditioner& precondition, double tolerance,
-                             int max_iterations, const char* name);
+                             int max_iterations, const char* name,
+                             const Eigen::VectorXd* initial_residual = nullptr);
 
 /// CG with the inverse 3x3 diagonal blocks as preconditioner ("jacobi-pcg"): the baseline a
 /// multigrid preconditioner has to beat.
