@@ -321,8 +321,10 @@ void BM_BlockKernels(benchmark::State& state, const std::string& model) {
   BlockGaussSeidel smoother(SmootherOrdering::Hybrid);
   smoother.set_matrix(a);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(system.rhs.size()), y;
-  std::vector<double> product_ms[2], sweep_ms[2];
+  std::vector<double> product_ms[2], sweep_ms[2], residual_ms[2];
   for (auto _ : state) {
+    residual_ms[0].push_back(warm_time_ms([&] { a.residual(system.rhs, x, y); }));
+    residual_ms[1].push_back(warm_time_ms([&] { smoother.residual_after_forward_from_zero(a, system.rhs, x, y); }));
     for (const bool vector : {false, true}) {
       set_vector_block_kernels(vector);
       product_ms[vector].push_back(warm_time_ms([&] { a.multiply(system.rhs, y); }));
@@ -340,6 +342,8 @@ void BM_BlockKernels(benchmark::State& state, const std::string& model) {
   state.counters["sweeps_scalar_ms"] = median(sweep_ms[0]);
   state.counters["sweeps_avx2_ms"] = median(sweep_ms[1]);
   state.counters["sweeps_speedup"] = median(sweep_ms[0]) / median(sweep_ms[1]);
+  state.counters["residual_ms"] = median(residual_ms[0]);
+  state.counters["residual_after_sweep_ms"] = median(residual_ms[1]);
   state.counters["threads"] = thread_count();
 }
 

@@ -393,6 +393,53 @@ TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks
   });
 }
 
+TEST_F(ThreadsTest, ResidualAfterTheSweepFromZeroReadsOnlyTheBlocksTheSweepDidNot) {
+  // The V-cycle's residual after its sweep from zero: b - A x to round-off, from the blocks the
+  // sweep did not read (sequential and hybrid), the same bits at every thread count. The two
+  // forms differ by the rounding of the sweep's own arithmetic (a 3x3 inverse applied to a sum
+  // of some 30 terms) and of the residual's sums: a few hundred ulps of |b| + |A| |x| at most.
+  const SmootherSystem system = smoother_system();
+  const BrcMatrix& a = system.a;
+  const Eigen::VectorXd& b = system.b;
+  BrcMatrix abs_a = a;
+  for (double& v : abs_a.values) v = std::abs(v);
+  const int domain_blocks = static_cast<int>(a.num_blocks() / 5);
+  test::in_each_kernel_form([&] {
+    for (const SmootherOrdering ordering : {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
+                                            SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
+      SCOPED_TRACE(smoother_ordering_name(ordering));
+      Eigen::VectorXd one;
+      for (const int n : kThreadCounts) {
+        ScopedThreadCount threads(n);
+        BlockGaussSeidel gs(ordering, ordering == SmootherOrdering::Domains ? 200 : domain_blocks);
+        gs.set_matrix(a);
+        Eigen::VectorXd x, r, full;
+        gs.forward_from_zero(a, b, x);
+        gs.residual_after_forward_from_zero(a, b, x, r);
+        a.residual(b, x, full);
+        const Eigen::VectorXd scale = b.cwiseAbs() + abs_a * x.cwiseAbs();
+        EXPECT_LT(((r - full).cwiseAbs().array() / scale.array()).maxCoeff(), 1e-13) << n << " threads";
+        EXPECT_GT((full.cwiseAbs().array() / scale.array()).maxCoeff(), 1e-3) << "a residual that is not round-off";
+        if (one.size() == 0) one = r;
+        EXPECT_TRUE(same_bits(r, one)) << n << " threads";
+        if (ordering != SmootherOrdering::Sequential && ordering != SmootherOrdering::Hybrid) continue;
+        // The diagonal blocks and those left of it in the row's domain poisoned: the same bits.
+        const bool hybrid = ordering == SmootherOrdering::Hybrid;
+        const int domains = hybrid ? gs.num_domains() : 1;
+        const auto begin = [&](int d) { return hybrid ? gs.domain_rows_begin(d) : d * a.block_rows; };
+        BrcMatrix poisoned = a;
+        for (int d = 0; d < domains; ++d)
+          for (int i = begin(d); i < begin(d + 1); ++i)
+            for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
+              if (a.col_index[k] <= i && a.col_index[k] >= begin(d)) poisoned.block(k).setConstant(std::nan(""));
+        Eigen::VectorXd y;
+        gs.residual_after_forward_from_zero(poisoned, b, x, y);
+        EXPECT_TRUE(same_bits(y, r)) << n << " threads, swept blocks poisoned";
+      }
+    }
+  });
+}
+
 TEST_F(ThreadsTest, SideBySideRunsBothAndRethrowsAfterBoth) {
   for (const int n : kThreadCounts) {
     ScopedThreadCount threads(n);

@@ -62,6 +62,7 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
   if (!ordered_) order_rows(a);  // the pattern never changes: ordered once
   const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
   inverse_diagonal_.resize(a.block_rows);
+  if (hybrid) l1_.resize(3 * a.block_rows);
 #pragma omp parallel for schedule(static) num_threads(threads_for(a.block_rows))
   for (int i = 0; i < a.block_rows; ++i) {
     Eigen::Matrix3d d = a.block(diagonal_block_[i]);
@@ -70,6 +71,7 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
       for (int k = a.row_start[i]; k < own_begin_[i]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
       for (int k = own_end_[i]; k < a.row_start[i + 1]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
       d.diagonal() += l1;
+      l1_.segment<3>(3 * i) = l1;
     }
     inverse_diagonal_[i] = d.inverse();
   }
@@ -183,6 +185,28 @@ void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::Vector
                                  diagonal_block_[i], [xs](int j) { return xs + 3 * j; }, fresh);
       const double r[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
       solve_diagonal(inverse_diagonal_[i].data(), r, xs + 3 * i);
+    }
+  }
+}
+
+void BlockGaussSeidel::residual_after_forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                                        const Eigen::VectorXd& x, Eigen::VectorXd& r) const {
+  const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
+  if (!hybrid && ordering_ != SmootherOrdering::Sequential) return a.residual(b, x, r);
+  r.resize(b.size());
+  const double* xs = x.data();
+  auto source = [xs](int j) { return xs + 3 * j; };
+  // Row i: the blocks left of its domain, then those right of its diagonal (in its domain and
+  // beyond it: contiguous, the columns being sorted).
+#pragma omp parallel for schedule(static) num_threads(threads_for(a.num_blocks() / 2))
+  for (int i = 0; i < a.block_rows; ++i) {
+    double left[3] = {0, 0, 0}, right[3];
+    if (hybrid && own_begin_[i] > a.row_start[i])
+      block_row_sum(a.col_index.data(), a.values.data(), a.row_start[i], own_begin_[i], source, left);
+    block_row_sum(a.col_index.data(), a.values.data(), diagonal_block_[i] + 1, a.row_start[i + 1], source, right);
+    for (int c = 0; c < 3; ++c) {
+      const double kept = hybrid ? l1_[3 * i + c] * xs[3 * i + c] : 0.0;
+      r[3 * i + c] = kept - (left[c] + right[c]);
     }
   }
 }

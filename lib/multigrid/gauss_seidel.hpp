@@ -53,6 +53,13 @@ class BlockGaussSeidel {
   /// a correction): the same bits as x.setZero(); forward(a, b, x), reading for the sequential
   /// and hybrid orderings only the blocks below the diagonal.
   void forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// r = b - A x for the x forward_from_zero(a, b, x) left, reading for the sequential and
+  /// hybrid orderings only the blocks that sweep did not (right of the diagonal, and outside the
+  /// row's domain): the sweep made b_i - (its blocks) x = (M_ii - A_ii) x_i, with M_ii - A_ii the
+  /// l1 term (0 for the sequential one). The same residual to round-off, from about half the
+  /// matrix; the other orderings compute it in full.
+  void residual_after_forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x,
+                                        Eigen::VectorXd& r) const;
   /// z = D^{-1} r with the same inverted diagonal blocks (the block-Jacobi preconditioner; with
   /// the hybrid ordering, the l1-augmented ones).
   void block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
@@ -79,6 +86,7 @@ class BlockGaussSeidel {
   int domain_size_;
   bool ordered_ = false;
   std::vector<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inverse_diagonal_;
+  Eigen::VectorXd l1_;  ///< hybrid: the l1 norms added to the diagonal, 3 per row
   std::vector<int> diagonal_block_;
   std::vector<int> colour_start_, colour_rows_;  ///< rows of each colour, ascending
   std::vector<int> domain_start_, domain_rows_;  ///< interior rows of each domain, ascending

@@ -226,7 +226,14 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
     }
     for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
   });
-  timed(solve_ms_, fine ? "fine_residual" : "coarse_levels", [&] { a.residual(b, x, residual_[h]); });
+  // After a single sweep from zero, the residual needs only the blocks that sweep did not read.
+  const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1;
+  timed(solve_ms_, fine ? "fine_residual" : "coarse_levels", [&] {
+    if (from_zero_sweep)
+      smoothers_[h].residual_after_forward_from_zero(a, b, x, residual_[h]);
+    else
+      a.residual(b, x, residual_[h]);
+  });
   timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
         [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
 }
