@@ -244,7 +244,13 @@ def render_thread_table(tables, md):
     md.append(f"### Table 1 on one thread and on {n} threads (ms per step; in brackets paper/ours)\n\n")
     md.append("- Every kernel writes each output from one thread and sums in a fixed order: both runs give "
               "the same bits (verify/threads_test.cpp). The smoother is l1 hybrid Gauss-Seidel in both, its "
-              "domains set by each level's size, not by the threads (README, Multigrid).\n\n")
+              "domains set by each level's size, not by the threads (README, Multigrid).\n")
+    if any(r.get("coarsest_factorization_in") == "solve" for r in rows):
+        md.append(f"- At {n} threads MG-PCG factors the coarsest level (CHOLMOD, serial) and sets up the smoothers "
+                  "at the start of the solve, on one thread beside the initial residual and the first V-cycle's "
+                  "descent on the other (`MultigridSolver::defers_update`): there the update is the Galerkin "
+                  "products alone and the solve carries the rest; the one-thread column keeps them in the update.\n")
+    md.append("\n")
     out = []
     for r in rows:
         p = r.get("paper") or {}
@@ -404,8 +410,11 @@ def render_multigrid_quality(tables, md):
                     [t(r["solve_ms"] - outer) if r.get("solve_ms") is not None else "-"] +
                     [t(up.get(p)) for p in ("galerkin", "smoothers", "coarsest")])
     if rows:
+        deferred = any(r.get("coarsest_factorization_in") == "solve" for r in tables.get("multigrid", []))
         md.append("Where MG-PCG's time goes (ms per step; solve parts are means over the run's solves, the "
-                  "outer iteration is CG's own product and vector updates: the median solve less the parts):\n\n")
+                  "outer iteration is CG's own product and vector updates: the median solve less the parts" +
+                  ("; the solve also holds the coarsest factorization, run beside its first descent, so the "
+                   "remainder includes what of it the descent did not hide" if deferred else "") + "):\n\n")
         md.append(table(["model", "hierarchy", "fine smoothing", "fine residual", "fine transfers",
                          "coarser levels", "coarsest solves", "outer CG", "update: Galerkin",
                          "update: smoothers", "update: coarsest factorization"], rows))

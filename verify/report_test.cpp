@@ -6,6 +6,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -320,12 +321,18 @@ TEST(Report, MarkdownIsRedrawnFromTheJsonAlone) {
 
 fs::path golden_dir() { return test::source_dir() / "verify" / "golden" / "report"; }
 
-/// Copies the golden JSON records into `dir` and runs the renderer on them with `options`,
-/// its stderr to `stderr_file`; returns its exit status.
-int render_golden_fixture(const TempDir& dir, const std::string& options, const std::string& stderr_file) {
+/// Copies the golden JSON records into `dir` (`edit_tables` may change tables.json first) and
+/// runs the renderer on them with `options`, its stderr to `stderr_file`; returns its exit status.
+int render_golden_fixture(const TempDir& dir, const std::string& options, const std::string& stderr_file,
+                          const std::function<void(json&)>& edit_tables = {}) {
   for (const char* file :
        {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json", "mpi_scaling.json"})
     fs::copy_file(golden_dir() / file, dir / file);
+  if (edit_tables) {
+    json tables = json::parse(read_text(dir / "tables.json"));
+    edit_tables(tables);
+    test::write_text(dir / "tables.json", tables.dump());
+  }
   const std::string script = (test::source_dir() / "reports" / "render").string();
   return std::system(("'" + script + "' '" + dir.path().string() + "' " + options + " 2>'" + stderr_file +
                       "' >/dev/null").c_str());
@@ -342,6 +349,22 @@ TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
   if (got.find("matplotlib was not available") != std::string::npos)
     GTEST_SKIP() << "no matplotlib: the golden file has the charts' links";
   EXPECT_EQ(got, expected);
+}
+
+TEST(Report, SaysWhenTheSolveCarriedTheCoarsestFactorization) {
+  // At two or more threads MG-PCG runs the coarsest factorization in the solve phase: the
+  // thread table says so when a row's record does (the golden records predate it: they do not).
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  const std::string note = "`MultigridSolver::defers_update`";
+  TempDir plain, deferred;
+  ASSERT_EQ(render_golden_fixture(plain, "--blank-times", "/dev/null"), 0);
+  ASSERT_EQ(render_golden_fixture(deferred, "--blank-times", "/dev/null",
+                                  [](json& tables) {
+                                    for (json& row : tables["table1"]) row["coarsest_factorization_in"] = "solve";
+                                  }),
+            0);
+  EXPECT_EQ(read_text(plain / "REPORT.md").find(note), std::string::npos);
+  EXPECT_NE(read_text(deferred / "REPORT.md").find(note), std::string::npos);
 }
 
 TEST(Report, RendererDrawsEveryChartOfTheFixtureWithoutWarnings) {

@@ -113,7 +113,8 @@ nlohmann::json MultigridSolver::describe() const {
           {"solves", rho.size()},
           {"rho", median_or_null(rho)},
           {"iterations", median_or_null(iterations)},
-          {"coarsest_shifts", coarsest_shifts_}};
+          {"coarsest_shifts", coarsest_shifts_},
+          {"deferred_updates", deferred_updates_}};
 }
 
 MultigridSolver::~MultigridSolver() = default;
@@ -267,6 +268,7 @@ SolveStats MultigridSolver::run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::
   const int last = hierarchy_.num_levels() - 1;
   Eigen::VectorXd r0, z0;
   bool descended = false;
+  ++deferred_updates_;
   complete_update([&] {
     const double b_norm = start_iterative_solve(b, x);
     a.residual(b, x, r0);

@@ -70,7 +70,8 @@ class MultigridSolver : public LinearSolver {
   /// iteration (CG's product and vector updates).
   std::map<std::string, double> solve_parts_ms() const;
   /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
-  /// complexity, setup times, and the median rho and iterations over the solves so far.
+  /// complexity, setup times, the median rho and iterations over the solves so far, and how many
+  /// updates had their coarsest factorization run in the next solve (`deferred_updates`).
   nlohmann::json describe() const;
   /// How many coarsest-level factorizations needed the semidefinite shift (see set_matrix).
   int coarsest_shifts() const { return coarsest_shifts_; }
@@ -101,6 +102,7 @@ class MultigridSolver : public LinearSolver {
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
   bool update_pending_ = false;
+  int deferred_updates_ = 0;  ///< updates whose factorization ran in a solve (run_overlapped_pcg)
   int coarsest_shifts_ = 0;
   nlohmann::json level_info_;
   std::map<std::string, double> setup_ms_;

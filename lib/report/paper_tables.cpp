@@ -50,6 +50,13 @@ json phase_medians(const TimedRun& run, int warmup) {
 /// One row of the multigrid quality table: the hierarchy of `pcg` (an MG-PCG run) and its
 /// iterations and times, with the convergence factor of the stationary V(1,1) cycle (`vcycle`,
 /// the same scene solved by V-cycles to the same tolerance).
+/// The phase a multigrid run's coarsest factorizations were timed in: "solve" when the solver
+/// deferred them to its solves (MultigridSolver::defers_update), else "update".
+json coarsest_factorization_phase(const TimedRun& run) {
+  if (!run.multigrid.is_object()) return nullptr;
+  return run.multigrid.value("deferred_updates", 0) > 0 ? "solve" : "update";
+}
+
 json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warmup) {
   const json& mg = pcg.multigrid;
   json sizes = json::array();
@@ -70,7 +77,8 @@ json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warm
           {"solve_parts_ms", mg["solve_parts_ms"]},  // means over the run's solves
           {"update_parts_ms", mg["update_parts_ms"]},
           {"vcycle_solve_ms", vcycle.median_ms("solve", warmup)},
-          {"step_ms", pcg.median_ms("step", warmup)}};
+          {"step_ms", pcg.median_ms("step", warmup)},
+          {"coarsest_factorization_in", coarsest_factorization_phase(pcg)}};
 }
 
 }  // namespace
@@ -176,6 +184,7 @@ json run_paper_tables(const ReportConfig& config) {
                     {"assemble_ms", main.median_ms("assemble", warmup)},
                     {"update_ms", main.median_ms("update", warmup)},
                     {"update_naive_ms", naive.median_ms("update", warmup)},
+                    {"coarsest_factorization_in", coarsest_factorization_phase(main)},
                     {"solve_ms", main.median_ms("solve", warmup)},
                     {"step_ms", main.median_ms("step", warmup)},
                     {"tps", tps_of(main, warmup)},
