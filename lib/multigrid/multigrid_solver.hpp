@@ -24,7 +24,7 @@ struct MultigridParams {
   GalerkinMethod galerkin = GalerkinMethod::Gather;
   SmootherOrdering smoother = SmootherOrdering::Sequential;  ///< the Gauss-Seidel sweeps' order
   /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial
-  /// residual and first descent (see MultigridSolver::update_deferred), not in the update.
+  /// residual and first descent (see MultigridSolver::defers_update), not in the update.
   bool overlap_factorization = true;
 
   nlohmann::json to_json() const;
@@ -83,7 +83,7 @@ class MultigridSolver : public LinearSolver {
   SolveStats run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   void update_levels();  ///< after the Galerkin products: the smoothers and the coarsest factor
   /// Runs a pending update: the coarsest factorization on one thread, and on another the
-  /// smoothers' set-up, then `beside` (work that needs neither the factor nor its absence).
+  /// smoothers' set-up, then `beside` (work that does not need the factor).
   void complete_update(const std::function<void()>& beside = {});
   void update_coarsest();
   void cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
