@@ -305,7 +305,7 @@ TEST(MultigridSolver, OverlappedFactorizationIsTheInUpdateBits) {
   // first to the next solve, beside its initial residual and first descent: the same operations
   // on the same data, so the same bits as one thread (where nothing is deferred: every kernel
   // gives the same bits at any count). Also through vcycle(), with a start that is already
-  // converged (no descent runs), and with a factorization that fails.
+  // converged (CG never uses the descent), and with a factorization that fails.
   const MeshCase c{"box", box_spec(Vec3(1, 0.4, 0.4), {10, 4, 4}), make_box_mesh({1, 0.4, 0.4}, {10, 4, 4}), {}};
   FeProblem p = problem_for(c);
   Eigen::VectorXd b;

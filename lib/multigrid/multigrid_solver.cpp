@@ -263,25 +263,24 @@ SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) 
 
 SolveStats MultigridSolver::run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   // The same operations in the same order as complete_update() and then preconditioned_cg():
-  // the same bits. The descent runs only when CG will ask for a preconditioned residual.
+  // the same bits. The descent runs whether or not CG then asks for it (a start that already
+  // meets the tolerance wastes it, beside the factorization it waits for anyway).
   const BrcMatrix& a = hierarchy_.matrix(0);
   const int last = hierarchy_.num_levels() - 1;
   Eigen::VectorXd r0, z0;
-  bool descended = false;
   ++deferred_updates_;
   complete_update([&] {
-    const double b_norm = start_iterative_solve(b, x);
+    start_iterative_solve(b, x);  // x sized as CG sizes it
     a.residual(b, x, r0);
-    if (b_norm == 0 || r0.norm() <= params_.tolerance * b_norm) return;
     descend(0, r0, z0, true);
     for (int h = 1; h < last; ++h) descend(h, coarse_b_[h], coarse_x_[h], true);
-    descended = true;
   });
+  bool descended = true;
   return preconditioned_cg(
       a, b, x,
       [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
         if (!descended) return cycle(0, r, z, true);
-        descended = false;  // r is r0: CG starts from it
+        descended = false;  // CG's first call: r is r0
         z.swap(z0);
         finish_cycle(r, z);
       },

@@ -47,9 +47,6 @@ json phase_medians(const TimedRun& run, int warmup) {
   return phases;
 }
 
-/// One row of the multigrid quality table: the hierarchy of `pcg` (an MG-PCG run) and its
-/// iterations and times, with the convergence factor of the stationary V(1,1) cycle (`vcycle`,
-/// the same scene solved by V-cycles to the same tolerance).
 /// The phase a multigrid run's coarsest factorizations were timed in: "solve" when the solver
 /// deferred them to its solves (MultigridSolver::defers_update), else "update".
 json coarsest_factorization_phase(const TimedRun& run) {
@@ -57,6 +54,9 @@ json coarsest_factorization_phase(const TimedRun& run) {
   return run.multigrid.value("deferred_updates", 0) > 0 ? "solve" : "update";
 }
 
+/// One row of the multigrid quality table: the hierarchy of `pcg` (an MG-PCG run) and its
+/// iterations and times, with the convergence factor of the stationary V(1,1) cycle (`vcycle`,
+/// the same scene solved by V-cycles to the same tolerance).
 json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warmup) {
   const json& mg = pcg.multigrid;
   json sizes = json::array();
