@@ -91,15 +91,101 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
 }
 
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-/// dst, a row-major 3x3 block, += (or, for the block's first element, =) the matrix whose rows
-/// are lanes 0-2 of r0, r1, r2 (lane 3 zero): repacked into the block's 4 + 4 + 1 layout, two
-/// 4-wide adds and one scalar.
-__attribute__((target("avx2,fma"))) inline void add_rows_avx2(double* dst, bool first, __m256d r0, __m256d r1,
-                                                              __m256d r2) {
-  const __m256d v0 = _mm256_blend_pd(r0, _mm256_permute4x64_pd(r1, 0x00), 0b1000);  // r0[0..2], r1[0]
-  const __m256d v1 = _mm256_blend_pd(_mm256_permute4x64_pd(r1, 0x09), _mm256_permute4x64_pd(r2, 0x40),
-                                     0b1100);  // r1[1], r1[2], r2[0], r2[1]
-  const double v2 = _mm_cvtsd_f64(_mm256_extractf128_pd(r2, 1));
+/// h = Q g_a of one vertex in the lane patterns of a row-major 3x3 block: entry (r, c) of
+/// x y^T is x_r y_c, so the block's entries 0-3, (0,0) (0,1) (0,2) (1,0), are P(x) Q(y) and its
+/// entries 4-7, (1,1) (1,2) (2,0) (2,1), are S(x) T(y); entry 8 is x_2 y_2. Each pattern also
+/// times scale V lambda (l) and scale V mu (m), so that a block is one multiply and one FMA per
+/// 4 entries, already in storage order (no repacking).
+struct PackedGradient {
+  __m256d p, q, s, t;      // h in lanes [0 0 0 1], [0 1 2 0], [1 1 2 2], [1 2 0 1]
+  __m256d lp, lq, ls, lt;  // l times those
+  __m256d mp, mq, ms, mt;  // m times those
+  double h2, lh2, mh2;
+};
+
+__attribute__((target("avx2,fma"), always_inline)) inline PackedGradient pack_gradient(__m256d h, double l,
+                                                                                       double m) {
+  PackedGradient g;
+  const __m256d lv = _mm256_set1_pd(l), mv = _mm256_set1_pd(m);
+  g.p = _mm256_permute4x64_pd(h, 0x40);
+  g.q = _mm256_permute4x64_pd(h, 0x24);
+  g.s = _mm256_permute4x64_pd(h, 0xA5);
+  g.t = _mm256_permute4x64_pd(h, 0x49);
+  g.lp = _mm256_mul_pd(lv, g.p), g.lq = _mm256_mul_pd(lv, g.q);
+  g.ls = _mm256_mul_pd(lv, g.s), g.lt = _mm256_mul_pd(lv, g.t);
+  g.mp = _mm256_mul_pd(mv, g.p), g.mq = _mm256_mul_pd(mv, g.q);
+  g.ms = _mm256_mul_pd(mv, g.s), g.mt = _mm256_mul_pd(mv, g.t);
+  g.h2 = _mm_cvtsd_f64(_mm256_extractf128_pd(h, 1));
+  g.lh2 = l * g.h2, g.mh2 = m * g.h2;
+  return g;
+}
+
+/// Columns c0, c1, c2 (lane 3 zero) of a 3x3 matrix to its rows (lane 3 zero).
+__attribute__((target("avx2,fma"), always_inline)) inline void transpose3_avx2(const __m256d c[3], __m256d r[3]) {
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d lo01 = _mm256_unpacklo_pd(c[0], c[1]), hi01 = _mm256_unpackhi_pd(c[0], c[1]);
+  const __m256d lo2 = _mm256_unpacklo_pd(c[2], zero), hi2 = _mm256_unpackhi_pd(c[2], zero);
+  r[0] = _mm256_permute2f128_pd(lo01, lo2, 0x20);
+  r[1] = _mm256_permute2f128_pd(hi01, hi2, 0x20);
+  r[2] = _mm256_permute2f128_pd(lo01, lo2, 0x31);
+}
+
+/// p[0..2] in lanes 0-2, lane 3 zero.
+__attribute__((target("avx2,fma"), always_inline)) inline __m256d load3_avx2(const double* p) {
+  return _mm256_maskload_pd(p, _mm256_set_epi64x(0, -1, -1, -1));
+}
+
+/// Lane i of v in all four lanes.
+template <int i>
+__attribute__((target("avx2,fma"), always_inline)) inline __m256d lane_avx2(__m256d v) {
+  return _mm256_permute4x64_pd(v, i * 0x55);
+}
+
+/// The element's force Q (K_e s_e)_a, a = 0..3 (lane 3 zero): corotated_strain and
+/// stiffness_times in 4-wide form, the same formulas summed in another order (round-off).
+/// qc: Q's columns.
+__attribute__((target("avx2,fma"), always_inline)) inline void element_force_avx2(
+    const TetMesh& mesh, const Tet& t, const ElementRest& el, const __m256d qc[3], const double* u, __m256d f[4]) {
+  __m256d qt[3];  // Q^T's columns: Q's rows
+  transpose3_avx2(qc, qt);
+  const __m256d e[3] = {_mm256_set_pd(0, 0, 0, 1), _mm256_set_pd(0, 0, 1, 0), _mm256_set_pd(0, 1, 0, 0)};
+  const __m256d qt_minus_i[3] = {_mm256_sub_pd(qt[0], e[0]), _mm256_sub_pd(qt[1], e[1]), _mm256_sub_pd(qt[2], e[2])};
+  const __m256d x0 = load3_avx2(mesh.rest[t[0]].data()), u0 = load3_avx2(u + 3 * static_cast<std::ptrdiff_t>(t[0]));
+  __m256d g[3];  // G = sum_b s_b g_b^T by columns, s_b = (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0)
+  for (int b = 1; b < 4; ++b) {
+    const __m256d dx = _mm256_sub_pd(load3_avx2(mesh.rest[t[b]].data()), x0);
+    const __m256d du = _mm256_sub_pd(load3_avx2(u + 3 * static_cast<std::ptrdiff_t>(t[b])), u0);
+    __m256d sb = _mm256_mul_pd(qt_minus_i[0], lane_avx2<0>(dx));
+    sb = _mm256_fmadd_pd(qt_minus_i[1], lane_avx2<1>(dx), sb);
+    sb = _mm256_fmadd_pd(qt_minus_i[2], lane_avx2<2>(dx), sb);
+    sb = _mm256_fmadd_pd(qt[0], lane_avx2<0>(du), sb);
+    sb = _mm256_fmadd_pd(qt[1], lane_avx2<1>(du), sb);
+    sb = _mm256_fmadd_pd(qt[2], lane_avx2<2>(du), sb);
+    const double* gb = el.gradient[b].data();
+    for (int c = 0; c < 3; ++c)
+      g[c] = b == 1 ? _mm256_mul_pd(sb, _mm256_broadcast_sd(gb + c)) : _mm256_fmadd_pd(sb, _mm256_broadcast_sd(gb + c), g[c]);
+  }
+  alignas(32) double diagonal[3][4];
+  for (int c = 0; c < 3; ++c) _mm256_store_pd(diagonal[c], g[c]);
+  const __m256d volumetric = _mm256_set1_pd(el.lambda_volume * (diagonal[0][0] + diagonal[1][1] + diagonal[2][2]));
+  __m256d gt[3];
+  transpose3_avx2(g, gt);
+  const __m256d mu = _mm256_set1_pd(el.mu_volume);
+  const __m256d shear[3] = {_mm256_mul_pd(mu, _mm256_add_pd(g[0], gt[0])), _mm256_mul_pd(mu, _mm256_add_pd(g[1], gt[1])),
+                            _mm256_mul_pd(mu, _mm256_add_pd(g[2], gt[2]))};
+  for (int a = 0; a < 4; ++a) {  // (K_e s)_a = V lambda tr(G) g_a + V mu (G + G^T) g_a, then Q times it
+    const double* ga = el.gradient[a].data();
+    __m256d ks = _mm256_mul_pd(volumetric, load3_avx2(ga));
+    for (int c = 0; c < 3; ++c) ks = _mm256_fmadd_pd(shear[c], _mm256_broadcast_sd(ga + c), ks);
+    __m256d fa = _mm256_mul_pd(qc[0], lane_avx2<0>(ks));
+    fa = _mm256_fmadd_pd(qc[1], lane_avx2<1>(ks), fa);
+    f[a] = _mm256_fmadd_pd(qc[2], lane_avx2<2>(ks), fa);
+  }
+}
+
+/// dst, a row-major 3x3 block, += (or, for the block's first element, =) v0 | v1 | v2.
+__attribute__((target("avx2,fma"), always_inline)) inline void add_block_avx2(double* dst, bool first, __m256d v0,
+                                                                              __m256d v1, double v2) {
   if (first) {
     _mm256_storeu_pd(dst, v0);
     _mm256_storeu_pd(dst + 4, v1);
@@ -111,9 +197,10 @@ __attribute__((target("avx2,fma"))) inline void add_rows_avx2(double* dst, bool 
   dst[8] += v2;
 }
 
-/// The same part in AVX2. h_a = Q g_a and the force Q (K_e s)_a are 4-wide (lane 3 zero); row r
-/// of a block is V lambda h_a[r] h_b + V mu h_b[r] h_a plus the diagonal term in lane r (one
-/// multiply, one FMA); a 4x4 transpose of the rows gives the (b, a) block.
+/// The same part in AVX2. h_a = Q g_a and the force Q (K_e s)_a are 4-wide (lane 3 zero). Block
+/// (a, b) is l h_a h_b^T + m h_b h_a^T + d I (d = m g_a . g_b) in storage order from the packed
+/// patterns; block (b, a) takes entry (r, c) from the same operands as (a, b)'s entry (c, r), so
+/// it is (a, b)'s exact transpose, and both have the scalar form's roundings: the same bits.
 __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<ElementRest>& elements,
                                                             const TetMesh& mesh, const AssemblyMap& map,
                                                             const std::vector<Mat3>& rotations,
@@ -122,61 +209,56 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
                                                             BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
-  const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
-  const __m256d zero = _mm256_setzero_pd();
-  const __m256d lane[3] = {_mm256_castsi256_pd(_mm256_set_epi64x(0, 0, 0, -1)),
-                           _mm256_castsi256_pd(_mm256_set_epi64x(0, 0, -1, 0)),
-                           _mm256_castsi256_pd(_mm256_set_epi64x(0, -1, 0, 0))};
+  const __m256d lane0 = _mm256_castsi256_pd(_mm256_set_epi64x(0, 0, 0, -1));
   double* kv = k.values.data();
   for (const int e : rows.elements[part]) {
     const Tet& t = mesh.tets[e];
     const Owned own(t, lo, hi);
     const ElementRest& el = elements[e];
     const double* q = rotations[e].data();  // column-major: Q_rc = q[r + 3 c]
-    const __m256d qc[3] = {_mm256_maskload_pd(q, first3), _mm256_maskload_pd(q + 3, first3),
-                           _mm256_maskload_pd(q + 6, first3)};
+    const __m256d qc[3] = {load3_avx2(q), load3_avx2(q + 3), load3_avx2(q + 6)};
     const auto& blocks = map.block[e];
     const unsigned first = map.first[e];
-    const Vec12 ks = stiffness_times(el, corotated_strain(mesh, t, rotations[e], displacement));
-    __m256d h[4];
-    alignas(32) double lambda_h[4][4], mu_h[4][4];  // scale V lambda h_a and scale V mu h_a
+    __m256d f[4];
+    element_force_avx2(mesh, t, el, qc, displacement.data(), f);
+    const double l = scale * el.lambda_volume, m = scale * el.mu_volume;
+    PackedGradient h[4];
+#pragma GCC unroll 4
     for (int a = 0; a < 4; ++a) {
       const Vec3& g = el.gradient[a];
-      h[a] = _mm256_fmadd_pd(qc[2], _mm256_set1_pd(g[2]),
-                             _mm256_fmadd_pd(qc[1], _mm256_set1_pd(g[1]), _mm256_mul_pd(qc[0], _mm256_set1_pd(g[0]))));
-      _mm256_store_pd(lambda_h[a], _mm256_mul_pd(_mm256_set1_pd(scale * el.lambda_volume), h[a]));
-      _mm256_store_pd(mu_h[a], _mm256_mul_pd(_mm256_set1_pd(scale * el.mu_volume), h[a]));
-    }
-    for (int a = 0; a < 4; ++a) {
+      const __m256d ha = _mm256_fmadd_pd(
+          qc[2], _mm256_set1_pd(g[2]),
+          _mm256_fmadd_pd(qc[1], _mm256_set1_pd(g[1]), _mm256_mul_pd(qc[0], _mm256_set1_pd(g[0]))));
+      h[a] = pack_gradient(ha, l, m);
       if (own.vertex[a]) {  // f_a += Q (K_e s)_a
-        __m256d fa = _mm256_mul_pd(qc[0], _mm256_set1_pd(ks[3 * a]));
-        fa = _mm256_fmadd_pd(qc[1], _mm256_set1_pd(ks[3 * a + 1]), fa);
-        fa = _mm256_fmadd_pd(qc[2], _mm256_set1_pd(ks[3 * a + 2]), fa);
         alignas(32) double fa_lanes[4];
-        _mm256_store_pd(fa_lanes, fa);
+        _mm256_store_pd(fa_lanes, f[a]);
         double* dst = force.data() + 3 * static_cast<std::ptrdiff_t>(t[a]);
         for (int c = 0; c < 3; ++c) dst[c] += fa_lanes[c];
       }
+    }
+#pragma GCC unroll 4
+    for (int a = 0; a < 4; ++a) {
+#pragma GCC unroll 4
       for (int b = a; b < 4; ++b) {
         if (!own.vertex[a] && !own.vertex[b]) continue;
-        const __m256d diagonal = _mm256_set1_pd(scale * el.mu_volume * el.gradient[a].dot(el.gradient[b]));
-        __m256d r[3];
-        for (int j = 0; j < 3; ++j)
-          r[j] = _mm256_add_pd(_mm256_fmadd_pd(_mm256_broadcast_sd(&lambda_h[a][j]), h[b],
-                                               _mm256_mul_pd(_mm256_broadcast_sd(&mu_h[b][j]), h[a])),
-                               _mm256_and_pd(diagonal, lane[j]));
+        const PackedGradient &x = h[a], &y = h[b];
+        const double d = m * el.gradient[a].dot(el.gradient[b]);
+        const __m256d d0 = _mm256_and_pd(_mm256_set1_pd(d), lane0);
+        __m256d v0 = _mm256_add_pd(_mm256_fmadd_pd(x.lp, y.q, _mm256_mul_pd(y.mp, x.q)), d0);
+        __m256d v1 = _mm256_add_pd(_mm256_fmadd_pd(x.ls, y.t, _mm256_mul_pd(y.ms, x.t)), d0);
+        double v2 = _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(x.lh2), _mm_set_sd(y.h2), _mm_set_sd(y.mh2 * x.h2))) + d;
         if (added_diagonal && b == a && (first >> (5 * a) & 1)) {  // once a vertex: its block's first store
-          const __m256d d = _mm256_maskload_pd(added_diagonal->data() + 3 * static_cast<std::ptrdiff_t>(t[a]), first3);
-          for (int j = 0; j < 3; ++j) r[j] = _mm256_add_pd(r[j], _mm256_and_pd(d, lane[j]));
+          const double* dd = added_diagonal->data() + 3 * static_cast<std::ptrdiff_t>(t[a]);
+          v0 = _mm256_add_pd(v0, _mm256_and_pd(_mm256_set1_pd(dd[0]), lane0));
+          v1 = _mm256_add_pd(v1, _mm256_and_pd(_mm256_set1_pd(dd[1]), lane0));
+          v2 += dd[2];
         }
-        if (own.vertex[a])
-          add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), first >> (4 * a + b) & 1, r[0], r[1], r[2]);
+        if (own.vertex[a]) add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), first >> (4 * a + b) & 1, v0, v1, v2);
         if (b != a && own.vertex[b]) {
-          const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
-          const __m256d t2 = _mm256_unpacklo_pd(r[2], zero), t3 = _mm256_unpackhi_pd(r[2], zero);
-          add_rows_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]), first >> (4 * b + a) & 1,
-                        _mm256_permute2f128_pd(t0, t2, 0x20),
-                        _mm256_permute2f128_pd(t1, t3, 0x20), _mm256_permute2f128_pd(t0, t2, 0x31));
+          const __m256d w0 = _mm256_add_pd(_mm256_fmadd_pd(x.lq, y.p, _mm256_mul_pd(y.mq, x.p)), d0);
+          const __m256d w1 = _mm256_add_pd(_mm256_fmadd_pd(x.lt, y.s, _mm256_mul_pd(y.mt, x.s)), d0);
+          add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]), first >> (4 * b + a) & 1, w0, w1, v2);
         }
       }
     }
