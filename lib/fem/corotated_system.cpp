@@ -23,7 +23,7 @@ int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions)
 #pragma omp parallel for schedule(static) reduction(+ : inverted) num_threads(threads_for(problem.mesh.num_tets()))
   for (int e = 0; e < problem.mesh.num_tets(); ++e) {
     const Mat3 f =
-        deformation_gradient(problem.elements[e].rest_edge_inverse, positions, problem.mesh.tets[e]);
+        deformation_gradient(problem.elements[e].rest_edge_inverse(), positions, problem.mesh.tets[e]);
     if (f.determinant() <= 0) ++inverted;
   }
   return inverted;

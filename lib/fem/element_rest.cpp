@@ -12,11 +12,10 @@ std::vector<ElementRest> precompute_elements(const TetMesh& mesh,
     const Vec3 &x0 = mesh.rest[t[0]], &x1 = mesh.rest[t[1]], &x2 = mesh.rest[t[2]],
                &x3 = mesh.rest[t[3]];
     ElementRest& el = elements[e];
-    el.rest_edge_inverse = rest_edge_inverse(x0, x1, x2, x3);
-    el.volume = signed_volume(x0, x1, x2, x3);
-    el.gradient = shape_gradients(el.rest_edge_inverse);
-    el.lambda_volume = std::abs(el.volume) * materials[e].lame_lambda();
-    el.mu_volume = std::abs(el.volume) * materials[e].lame_mu();
+    el.gradient = shape_gradients(rest_edge_inverse(x0, x1, x2, x3));
+    const double volume = std::abs(signed_volume(x0, x1, x2, x3));
+    el.lambda_volume = volume * materials[e].lame_lambda();
+    el.mu_volume = volume * materials[e].lame_mu();
   }
   return elements;
 }

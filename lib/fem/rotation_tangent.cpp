@@ -61,7 +61,7 @@ RotationTangent::RotationTangent(const FeProblem& problem, const std::string& me
     h_.resize(mesh.tets.size());
     for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
       // F = sum_b (x_b - x_0) B.row(b-1), B = Dm^{-1}.
-      const Mat3& b = problem.elements[e].rest_edge_inverse;
+      const Mat3 b = problem.elements[e].rest_edge_inverse();
       h_[e][0] = -(b.row(0) + b.row(1) + b.row(2)).transpose();
       for (int v = 1; v < 4; ++v) h_[e][v] = b.row(v - 1).transpose();
     }
