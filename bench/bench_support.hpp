@@ -20,6 +20,11 @@ double time_ms(const std::function<void()>& f);
 /// kernels alternated in one run are compared in the state a step repeats.
 double warm_time_ms(const std::function<void()>& f);
 
+/// Writes one byte a cache line over a buffer larger than this machine's last-level cache
+/// (260 MiB here), so the next kernel finds its data in memory, as a step's assembly does after
+/// the Galerkin stream.
+void evict_caches();
+
 void set_models_dir(const std::filesystem::path& dir);
 const std::filesystem::path& models_dir();
 

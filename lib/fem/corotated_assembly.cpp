@@ -91,6 +91,12 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
 }
 
 #ifdef COROFEM_HAVE_AVX2_KERNELS
+/// The assembly's K blocks are cold in the step (the Galerkin stream has evicted them) and
+/// scattered, so no hardware prefetcher fetches them: the blocks of the element this many places
+/// ahead in the part's list are prefetched (in the dragon's step the assembly went from 9.9 to
+/// 8.1-8.9 ms at 1 thread and from 4.9-5.7 to 4.2-4.3 ms at 2, alternated runs).
+constexpr std::size_t kPrefetchAhead = 24;
+
 /// h = Q g_a of one vertex in the lane patterns of a row-major 3x3 block: entry (r, c) of
 /// x y^T is x_r y_c, so the block's entries 0-3, (0,0) (0,1) (0,2) (1,0), are P(x) Q(y) and its
 /// entries 4-7, (1,1) (1,2) (2,0) (2,1), are S(x) T(y); entry 8 is x_2 y_2. Each pattern also
@@ -211,7 +217,17 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   const __m256d lane0 = _mm256_castsi256_pd(_mm256_set_epi64x(0, 0, 0, -1));
   double* kv = k.values.data();
-  for (const int e : rows.elements[part]) {
+  const std::vector<int>& list = rows.elements[part];
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    const int e = list[n];
+    if (n + kPrefetchAhead < list.size()) {  // a block's 72 bytes span up to two lines
+      const auto& ahead = map.block[list[n + kPrefetchAhead]];
+      for (int ab = 0; ab < 16; ++ab) {
+        const char* blk = reinterpret_cast<const char*>(kv + 9 * static_cast<std::size_t>(ahead[ab]));
+        _mm_prefetch(blk, _MM_HINT_T0);
+        _mm_prefetch(blk + 64, _MM_HINT_T0);
+      }
+    }
     const Tet& t = mesh.tets[e];
     const Owned own(t, lo, hi);
     const ElementRest& el = elements[e];
