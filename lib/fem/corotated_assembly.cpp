@@ -168,16 +168,20 @@ __attribute__((target("avx2,fma"), always_inline)) inline void element_force_avx
     sb = _mm256_fmadd_pd(qt[1], lane_avx2<1>(du), sb);
     sb = _mm256_fmadd_pd(qt[2], lane_avx2<2>(du), sb);
     const double* gb = el.gradient[b].data();
-    for (int c = 0; c < 3; ++c)
-      g[c] = b == 1 ? _mm256_mul_pd(sb, _mm256_broadcast_sd(gb + c)) : _mm256_fmadd_pd(sb, _mm256_broadcast_sd(gb + c), g[c]);
+    for (int c = 0; c < 3; ++c) {
+      const __m256d gbc = _mm256_broadcast_sd(gb + c);
+      g[c] = b == 1 ? _mm256_mul_pd(sb, gbc) : _mm256_fmadd_pd(sb, gbc, g[c]);
+    }
   }
   alignas(32) double diagonal[3][4];
   for (int c = 0; c < 3; ++c) _mm256_store_pd(diagonal[c], g[c]);
-  const __m256d volumetric = _mm256_set1_pd(el.lambda_volume * (diagonal[0][0] + diagonal[1][1] + diagonal[2][2]));
+  const double trace = diagonal[0][0] + diagonal[1][1] + diagonal[2][2];
+  const __m256d volumetric = _mm256_set1_pd(el.lambda_volume * trace);
   __m256d gt[3];
   transpose3_avx2(g, gt);
   const __m256d mu = _mm256_set1_pd(el.mu_volume);
-  const __m256d shear[3] = {_mm256_mul_pd(mu, _mm256_add_pd(g[0], gt[0])), _mm256_mul_pd(mu, _mm256_add_pd(g[1], gt[1])),
+  const __m256d shear[3] = {_mm256_mul_pd(mu, _mm256_add_pd(g[0], gt[0])),
+                            _mm256_mul_pd(mu, _mm256_add_pd(g[1], gt[1])),
                             _mm256_mul_pd(mu, _mm256_add_pd(g[2], gt[2]))};
   for (int a = 0; a < 4; ++a) {  // (K_e s)_a = V lambda tr(G) g_a + V mu (G + G^T) g_a, then Q times it
     const double* ga = el.gradient[a].data();
@@ -270,7 +274,9 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
           v1 = _mm256_add_pd(v1, _mm256_and_pd(_mm256_set1_pd(dd[1]), lane0));
           v2 += dd[2];
         }
-        if (own.vertex[a]) add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), first >> (4 * a + b) & 1, v0, v1, v2);
+        if (own.vertex[a])
+          add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), first >> (4 * a + b) & 1, v0, v1,
+                         v2);
         if (b != a && own.vertex[b]) {
           const __m256d w0 = _mm256_add_pd(_mm256_fmadd_pd(x.lq, y.p, _mm256_mul_pd(y.mq, x.p)), d0);
           const __m256d w1 = _mm256_add_pd(_mm256_fmadd_pd(x.lt, y.s, _mm256_mul_pd(y.mt, x.s)), d0);
