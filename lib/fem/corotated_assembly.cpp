@@ -229,7 +229,7 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
       for (int ab = 0; ab < 16; ++ab) {
         const char* blk = reinterpret_cast<const char*>(kv + 9 * static_cast<std::size_t>(ahead[ab]));
         _mm_prefetch(blk, _MM_HINT_T0);
-        _mm_prefetch(blk + 64, _MM_HINT_T0);
+        _mm_prefetch(blk + 71, _MM_HINT_T0);  // its last byte: within the values
       }
     }
     const Tet& t = mesh.tets[e];
