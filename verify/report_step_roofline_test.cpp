@@ -65,7 +65,8 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   EXPECT_DOUBLE_EQ(t.at("update").flops, 18.0 * static_cast<double>(h.gather(0).num_pairs()) + 50 * v +
                                              solver.coarsest_factorization_flops());
   // solve: one more iteration adds one fine product, one V-cycle and 15 vector passes; a V-cycle
-  // reads the fine matrix three times (two sweeps and the residual) at least.
+  // reads the fine matrix one and a half times at least (the post-smoothing sweep, and the sweep
+  // from zero, which reads the blocks below the diagonal and forms the residual from them).
   const auto t6 = step_traffic(problem, solver, 2.0, 6.0);
   const double fine_matrix = 76 * blocks + 4 * (v + 1);
   const double per_iteration = t6.at("solve").bytes - t.at("solve").bytes;
@@ -73,7 +74,7 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   // a DOF on a lattice of 8 weights a vertex) and the coarsest substitutions (L read twice).
   const double coarsest = 16 * solver.coarsest_factor_nonzeros() + 32 * 3.0 * h.matrix(1).block_rows;
   EXPECT_LE(per_iteration, 4 * fine_matrix + 15 * 8 * n + 3 * (72 + 4) * v + 200 * n + coarsest);
-  EXPECT_GE(per_iteration, 4 * fine_matrix + 15 * 8 * n + 16 * solver.coarsest_factor_nonzeros());
+  EXPECT_GE(per_iteration, 2.5 * fine_matrix + 15 * 8 * n + 16 * solver.coarsest_factor_nonzeros());
   // rotate's flops grow by 250 per tet per Newton iteration.
   const auto t3 = step_traffic(problem, solver, 3.0, 5.0);
   EXPECT_DOUBLE_EQ(t3.at("rotate").flops - t.at("rotate").flops, 250 * e);

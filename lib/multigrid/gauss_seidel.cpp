@@ -120,14 +120,14 @@ void BlockGaussSeidel::order_hybrid(const BrcMatrix& a) {
   domain_start_ = balanced_ranges(prefix, domains);
   own_begin_.resize(a.block_rows);
   own_end_.resize(a.block_rows);
-  boundary_rows_ = 0;
+  halo_rows_.clear();
   for (int d = 0; d < domains; ++d) {
     const int lo = domain_start_[d], hi = domain_start_[d + 1];
     for (int i = lo; i < hi; ++i) {
       const auto first = a.col_index.begin() + a.row_start[i], last = a.col_index.begin() + a.row_start[i + 1];
       own_begin_[i] = static_cast<int>(std::lower_bound(first, last, lo) - a.col_index.begin());
       own_end_[i] = static_cast<int>(std::lower_bound(first, last, hi) - a.col_index.begin());
-      boundary_rows_ += own_begin_[i] != a.row_start[i] || own_end_[i] != a.row_start[i + 1];
+      if (own_begin_[i] != a.row_start[i] || own_end_[i] != a.row_start[i + 1]) halo_rows_.push_back(i);
     }
   }
 }
@@ -189,25 +189,58 @@ void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::Vector
   }
 }
 
-void BlockGaussSeidel::residual_after_forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b,
-                                                        const Eigen::VectorXd& x, Eigen::VectorXd& r) const {
+void BlockGaussSeidel::forward_from_zero_with_residual(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                                       Eigen::VectorXd& x, Eigen::VectorXd& r) const {
   const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
-  if (!hybrid && ordering_ != SmootherOrdering::Sequential) return a.residual(b, x, r);
+  if (!hybrid && ordering_ != SmootherOrdering::Sequential) {
+    forward_from_zero(a, b, x);
+    return a.residual(b, x, r);
+  }
+  x.resize(b.size());
   r.resize(b.size());
-  const double* xs = x.data();
-  auto source = [xs](int j) { return xs + 3 * j; };
-  // Row i: the blocks left of its domain, then those right of its diagonal (in its domain and
-  // beyond it: contiguous, the columns being sorted).
-#pragma omp parallel for schedule(static) num_threads(threads_for(a.num_blocks() / 2))
-  for (int i = 0; i < a.block_rows; ++i) {
-    double left[3] = {0, 0, 0}, right[3];
-    if (hybrid && own_begin_[i] > a.row_start[i])
-      block_row_sum(a.col_index.data(), a.values.data(), a.row_start[i], own_begin_[i], source, left);
-    block_row_sum(a.col_index.data(), a.values.data(), diagonal_block_[i] + 1, a.row_start[i + 1], source, right);
-    for (int c = 0; c < 3; ++c) {
-      const double kept = hybrid ? l1_[3 * i + c] * xs[3 * i + c] : 0.0;
-      r[3 * i + c] = kept - (left[c] + right[c]);
+  double* xs = x.data();
+  double* rs = r.data();
+  const int* col = a.col_index.data();
+  const double* v = a.values.data();
+  const int domains = hybrid ? num_domains() : 1;
+#pragma omp parallel num_threads(std::min(domains, threads_for(a.num_blocks())))
+  {
+#pragma omp for schedule(static, 1)
+    for (int d = 0; d < domains; ++d) {
+      const int first = hybrid ? domain_start_[d] : 0, last = hybrid ? domain_start_[d + 1] : a.block_rows;
+      for (int i = first; i < last; ++i) {
+        // The sweep from zero reads the domain's blocks left of the diagonal (as forward_from_zero,
+        // the same bits), which leaves b_i - (those blocks and A_ii) x = (M_ii - A_ii) x_i: the l1
+        // term, 0 for the sequential ordering.
+        const int begin = hybrid ? own_begin_[i] : a.row_start[i], diagonal = diagonal_block_[i];
+        double fresh[3];
+        block_row_sum<false, true>(col, v, begin, diagonal, [xs](int j) { return xs + 3 * j; }, fresh);
+        const double ri[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
+        double* xi = xs + 3 * i;
+        solve_diagonal(inverse_diagonal_[i].data(), ri, xi);
+        for (int c = 0; c < 3; ++c) rs[3 * i + c] = hybrid ? l1_[3 * i + c] * xi[c] : 0.0;
+        // The same blocks, transposed, are the domain's blocks right of the diagonal in rows
+        // j < i (A symmetric): their term - A_ji x_i of r_j, added now.
+        const double minus_xi[3] = {-xi[0], -xi[1], -xi[2]};
+        add_transposed_row(col, v, begin, diagonal, minus_xi, rs);
+      }
     }
+    if (hybrid) add_off_domain_products(a, xs, -1.0, rs);
+  }
+}
+
+void BlockGaussSeidel::add_off_domain_products(const BrcMatrix& a, const double* x, double sign, double* y) const {
+  // Called inside a parallel region, after the domains: every x is final once all have passed
+  // the loop's barrier. Each halo row is written by one thread, its two runs summed in order.
+  const int rows = static_cast<int>(halo_rows_.size());
+  auto source = [x](int j) { return x + 3 * j; };
+#pragma omp for schedule(static)
+  for (int n = 0; n < rows; ++n) {
+    const int i = halo_rows_[n];
+    double left[3] = {0, 0, 0}, right[3] = {0, 0, 0};
+    block_row_sum(a.col_index.data(), a.values.data(), a.row_start[i], own_begin_[i], source, left);
+    block_row_sum(a.col_index.data(), a.values.data(), own_end_[i], a.row_start[i + 1], source, right);
+    for (int c = 0; c < 3; ++c) y[3 * i + c] += sign * (left[c] + right[c]);
   }
 }
 

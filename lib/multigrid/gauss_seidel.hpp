@@ -53,13 +53,14 @@ class BlockGaussSeidel {
   /// a correction): the same bits as x.setZero(); forward(a, b, x), reading for the sequential
   /// and hybrid orderings only the blocks below the diagonal.
   void forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
-  /// r = b - A x for the x forward_from_zero(a, b, x) left, reading for the sequential and
-  /// hybrid orderings only the blocks that sweep did not (right of the diagonal, and outside the
-  /// row's domain): the sweep made b_i - (its blocks) x = (M_ii - A_ii) x_i, with M_ii - A_ii the
-  /// l1 term (0 for the sequential one). The same residual to round-off, from about half the
-  /// matrix; the other orderings compute it in full.
-  void residual_after_forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x,
-                                        Eigen::VectorXd& r) const;
+  /// forward_from_zero(a, b, x) (the same bits) and r = b - A x for the x it leaves, in one pass
+  /// for the sequential and hybrid orderings: the sweep leaves b_i - (the blocks it read) x =
+  /// (M_ii - A_ii) x_i, the l1 term (0 for the sequential one), and the blocks it reads, transposed,
+  /// are the blocks right of the diagonal in the rows above; only the blocks outside each row's
+  /// domain are read a second time. Requires A symmetric bit for bit (an FE matrix and its
+  /// Galerkin products are). b - A x to round-off; the other orderings compute it in full.
+  void forward_from_zero_with_residual(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                       Eigen::VectorXd& r) const;
   /// z = D^{-1} r with the same inverted diagonal blocks (the block-Jacobi preconditioner; with
   /// the hybrid ordering, the l1-augmented ones).
   void block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
@@ -69,7 +70,7 @@ class BlockGaussSeidel {
   int coloured_rows() const { return static_cast<int>(colour_rows_.size()); }
   /// Hybrid: rows with a neighbour in another domain (coupled to it by Jacobi), and domain d's
   /// rows [domain_rows_begin(d), domain_rows_begin(d + 1)).
-  int boundary_rows() const { return boundary_rows_; }
+  int boundary_rows() const { return static_cast<int>(halo_rows_.size()); }
   int domain_rows_begin(int d) const { return domain_start_[d]; }
 
  private:
@@ -79,6 +80,9 @@ class BlockGaussSeidel {
   /// row's domain [lo, hi) and from frozen_ outside it; Backward: its blocks in reverse order.
   template <bool Hybrid, bool Backward>
   void relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo, int hi) const;
+  /// y_i += sign (the blocks outside row i's domain) x, for the hybrid halo rows; an omp for
+  /// inside the caller's parallel region, after its domains.
+  void add_off_domain_products(const BrcMatrix& a, const double* x, double sign, double* y) const;
   void sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
   void order_rows(const BrcMatrix& a);
   void order_hybrid(const BrcMatrix& a);
@@ -93,7 +97,7 @@ class BlockGaussSeidel {
   // Hybrid: domain d is rows [domain_start_[d], domain_start_[d + 1]); row i's in-domain blocks
   // are [own_begin_[i], own_end_[i]) (columns sorted, the domain contiguous).
   std::vector<int> own_begin_, own_end_;
-  int boundary_rows_ = 0;
+  std::vector<int> halo_rows_;  ///< hybrid: the rows with blocks outside their domain, ascending
   mutable Eigen::VectorXd frozen_;  ///< x at the start of a hybrid sweep
 };
 

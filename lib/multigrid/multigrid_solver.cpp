@@ -217,7 +217,11 @@ void MultigridSolver::cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x,
 void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
   const BrcMatrix& a = hierarchy_.matrix(h);
   const bool fine = h == 0;
+  // A single sweep from zero forms its residual as it goes (the blocks it reads, transposed, are
+  // the rest of the rows above): that residual counts in the smoothing.
+  const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1;
   timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
+    if (from_zero_sweep) return smoothers_[h].forward_from_zero_with_residual(a, b, x, residual_[h]);
     int s = 0;
     if (zero_guess && params_.pre_smoothing > 0) {
       smoothers_[h].forward_from_zero(a, b, x);
@@ -227,14 +231,8 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
     }
     for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
   });
-  // After a single sweep from zero, the residual needs only the blocks that sweep did not read.
-  const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1;
-  timed(solve_ms_, fine ? "fine_residual" : "coarse_levels", [&] {
-    if (from_zero_sweep)
-      smoothers_[h].residual_after_forward_from_zero(a, b, x, residual_[h]);
-    else
-      a.residual(b, x, residual_[h]);
-  });
+  if (!from_zero_sweep)
+    timed(solve_ms_, fine ? "fine_residual" : "coarse_levels", [&] { a.residual(b, x, residual_[h]); });
   timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
         [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
 }

@@ -67,7 +67,8 @@ class MultigridSolver : public LinearSolver {
   /// Mean ms per solve of the V-cycles' parts: "fine_smooth", "fine_residual", "fine_transfer"
   /// (restriction and prolongation of the finest level), "coarse_levels" (all of these on the
   /// levels between), "coarsest" (CHOLMOD's triangular solves). The rest of a solve is the outer
-  /// iteration (CG's product and vector updates).
+  /// iteration (CG's product and vector updates). A pre-smoothing of one sweep from zero forms
+  /// its residual in passing: that residual then counts in fine_smooth (no "fine_residual").
   std::map<std::string, double> solve_parts_ms() const;
   /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
   /// complexity, setup times, the median rho and iterations over the solves so far, and how many

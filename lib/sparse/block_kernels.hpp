@@ -98,6 +98,51 @@ inline void block_row_sum(const int* col, const double* v, int begin, int end, c
   block_row_sum_scalar<Backward>(col, v, begin, end, source, s);
 }
 
+/// y_j += A_kj^T x_k over the blocks [begin, end) of row k (columns j): for a symmetric matrix
+/// these are the blocks A_jk = A_kj^T of column k, so a sweep that reads row k can add x_k's
+/// part of (A x)_j for the rows j it will not read again. Scalar form.
+inline void add_transposed_row_scalar(const int* col, const double* v, int begin, int end, const double* xk,
+                                      double* y) {
+  for (int n = begin; n < end; ++n) {
+    const double* m = v + 9 * static_cast<std::ptrdiff_t>(n);
+    double* yj = y + 3 * col[n];
+    yj[0] += m[0] * xk[0] + m[3] * xk[1] + m[6] * xk[2];
+    yj[1] += m[1] * xk[0] + m[4] * xk[1] + m[7] * xk[2];
+    yj[2] += m[2] * xk[0] + m[5] * xk[1] + m[8] * xk[2];
+  }
+}
+
+#ifdef COROFEM_HAVE_AVX2_KERNELS
+/// The same in AVX2: A^T x as x_0 (row 0) + x_1 (row 1) + x_2 (row 2), three FMAs a block (the
+/// scalar form, with its 9 loads and 3 reductions a block, made the fused sweep slower than a
+/// sweep and a separate product).
+__attribute__((target("avx2,fma"))) inline void add_transposed_row_avx2(const int* col, const double* v, int begin,
+                                                                       int end, const double* xk, double* y) {
+  const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
+  const __m256d x0 = _mm256_broadcast_sd(xk), x1 = _mm256_broadcast_sd(xk + 1), x2 = _mm256_broadcast_sd(xk + 2);
+  for (int n = begin; n < end; ++n) {
+    const double* m = v + 9 * static_cast<std::ptrdiff_t>(n);
+    __m256d t = _mm256_mul_pd(_mm256_loadu_pd(m), x0);
+    t = _mm256_fmadd_pd(_mm256_loadu_pd(m + 3), x1, t);
+    t = _mm256_fmadd_pd(_mm256_maskload_pd(m + 6, first3), x2, t);
+    alignas(32) double l[4];
+    _mm256_store_pd(l, t);
+    double* yj = y + 3 * col[n];
+    yj[0] += l[0];
+    yj[1] += l[1];
+    yj[2] += l[2];
+  }
+}
+#endif
+
+/// The transposed row in the form chosen for this process.
+inline void add_transposed_row(const int* col, const double* v, int begin, int end, const double* xk, double* y) {
+#ifdef COROFEM_HAVE_AVX2_KERNELS
+  if (vector_block_kernels()) return add_transposed_row_avx2(col, v, begin, end, xk, y);
+#endif
+  add_transposed_row_scalar(col, v, begin, end, xk, y);
+}
+
 /// e += w a over the 9 entries of a block, in the scalar form (each entry rounded twice).
 inline void add_scaled_block_scalar(double* e, double w, const double* a) {
   for (int m = 0; m < 9; ++m) e[m] += w * a[m];
