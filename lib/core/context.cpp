@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/build_info.hpp"
+#include "core/huge_pages.hpp"
 #include "sparse/block_kernels.hpp"
 
 namespace corofem {
@@ -65,6 +66,7 @@ nlohmann::json run_context() {
           {"threads_used", thread_count()},
           {"openmp", have_openmp()},
           {"block_kernels", block_kernels_name()},
+          {"huge_pages", huge_pages_setting()},
           {"host", host},
           {"date", utc_now()}};
 }
