@@ -11,6 +11,7 @@
 // keep their own allocator.
 #include <sys/mman.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -39,18 +40,26 @@ bool huge_pages_wanted() {
 }
 
 #if COROFEM_OWN_ALLOCATOR
-void* allocate(std::size_t bytes) {
+void* try_allocate(std::size_t bytes) {
   if (bytes >= kHugePage && huge_pages_wanted()) {
+    if (bytes > SIZE_MAX - kHugePage) return nullptr;
     const std::size_t rounded = (bytes + kHugePage - 1) & ~(kHugePage - 1);
     void* p = nullptr;
-    if (posix_memalign(&p, kHugePage, rounded) == 0) {
-      madvise(p, rounded, MADV_HUGEPAGE);  // advice: where the kernel cannot, 4 KB pages remain
-      return p;
-    }
-  } else if (void* p = std::malloc(bytes ? bytes : 1)) {
+    if (posix_memalign(&p, kHugePage, rounded) != 0) return nullptr;
+    madvise(p, rounded, MADV_HUGEPAGE);  // advice: where the kernel cannot, 4 KB pages remain
     return p;
   }
-  throw std::bad_alloc();
+  return std::malloc(bytes ? bytes : 1);
+}
+
+/// The standard's operator new: the new-handler, if any, gets to free memory before each retry.
+void* allocate(std::size_t bytes) {
+  for (;;) {
+    if (void* p = try_allocate(bytes)) return p;
+    const std::new_handler handler = std::get_new_handler();
+    if (!handler) throw std::bad_alloc();
+    handler();
+  }
 }
 #endif
 
