@@ -225,11 +225,11 @@ void BlockGaussSeidel::forward_from_zero_with_residual(const BrcMatrix& a, const
         add_transposed_row(col, v, begin, diagonal, minus_xi, rs);
       }
     }
-    if (hybrid) add_off_domain_products(a, xs, -1.0, rs);
+    if (hybrid) subtract_off_domain_products(a, xs, rs);
   }
 }
 
-void BlockGaussSeidel::add_off_domain_products(const BrcMatrix& a, const double* x, double sign, double* y) const {
+void BlockGaussSeidel::subtract_off_domain_products(const BrcMatrix& a, const double* x, double* r) const {
   // Called inside a parallel region, after the domains: every x is final once all have passed
   // the loop's barrier. Each halo row is written by one thread, its two runs summed in order.
   const int rows = static_cast<int>(halo_rows_.size());
@@ -240,7 +240,7 @@ void BlockGaussSeidel::add_off_domain_products(const BrcMatrix& a, const double*
     double left[3] = {0, 0, 0}, right[3] = {0, 0, 0};
     block_row_sum(a.col_index.data(), a.values.data(), a.row_start[i], own_begin_[i], source, left);
     block_row_sum(a.col_index.data(), a.values.data(), own_end_[i], a.row_start[i + 1], source, right);
-    for (int c = 0; c < 3; ++c) y[3 * i + c] += sign * (left[c] + right[c]);
+    for (int c = 0; c < 3; ++c) r[3 * i + c] -= left[c] + right[c];
   }
 }
 

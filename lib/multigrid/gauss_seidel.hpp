@@ -80,9 +80,9 @@ class BlockGaussSeidel {
   /// row's domain [lo, hi) and from frozen_ outside it; Backward: its blocks in reverse order.
   template <bool Hybrid, bool Backward>
   void relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo, int hi) const;
-  /// y_i += sign (the blocks outside row i's domain) x, for the hybrid halo rows; an omp for
-  /// inside the caller's parallel region, after its domains.
-  void add_off_domain_products(const BrcMatrix& a, const double* x, double sign, double* y) const;
+  /// r_i -= (the blocks outside row i's domain) x, for the hybrid halo rows; an omp for inside
+  /// the caller's parallel region, after its domains.
+  void subtract_off_domain_products(const BrcMatrix& a, const double* x, double* r) const;
   void sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
   void order_rows(const BrcMatrix& a);
   void order_hybrid(const BrcMatrix& a);
