@@ -43,7 +43,9 @@ TEST(HugePages, LargeVectorsAreAlignedAndAdvisedSmallOnesAreNot) {
   for (std::size_t i = 0; i < large.size(); ++i) large[i] = static_cast<double>(i);
   EXPECT_EQ(large.back(), static_cast<double>(large.size() - 1));
   const int eligible = thp_eligible(large.data());
-  if (eligible >= 0) EXPECT_EQ(eligible, 1) << "the mapping was not advised for huge pages";
+  if (eligible >= 0) {
+    EXPECT_EQ(eligible, 1) << "the mapping was not advised for huge pages";
+  }
   // Below 2 MB, the ordinary allocator: no 2 MB alignment asked for (one in 512 would have it by
   // chance, so two allocations that both have it would point at the rule being wrong).
   std::vector<double> small_a(1000), small_b(3000);

@@ -166,40 +166,29 @@ void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, E
 }
 
 void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  x.resize(b.size());
-  const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
-  if (!hybrid && ordering_ != SmootherOrdering::Sequential) {
-    x.setZero();
-    return forward(a, b, x);
-  }
-  // From x = 0 a row reads only the values this sweep already wrote: its own domain's columns
-  // below the diagonal (every other term multiplies a zero), so half the matrix is read.
-  double* xs = x.data();
-  const int domains = hybrid ? num_domains() : 1;
-#pragma omp parallel for schedule(static, 1) num_threads(std::min(domains, threads_for(a.num_blocks())))
-  for (int d = 0; d < domains; ++d) {
-    const int first = hybrid ? domain_start_[d] : 0, last = hybrid ? domain_start_[d + 1] : a.block_rows;
-    for (int i = first; i < last; ++i) {
-      double fresh[3];
-      block_row_sum<false, true>(a.col_index.data(), a.values.data(), hybrid ? own_begin_[i] : a.row_start[i],
-                                 diagonal_block_[i], [xs](int j) { return xs + 3 * j; }, fresh);
-      const double r[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
-      solve_diagonal(inverse_diagonal_[i].data(), r, xs + 3 * i);
-    }
-  }
+  sweep_from_zero(a, b, x, nullptr);
 }
 
 void BlockGaussSeidel::forward_from_zero_with_residual(const BrcMatrix& a, const Eigen::VectorXd& b,
                                                        Eigen::VectorXd& x, Eigen::VectorXd& r) const {
+  sweep_from_zero(a, b, x, &r);
+}
+
+void BlockGaussSeidel::sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                       Eigen::VectorXd* r) const {
+  x.resize(b.size());
   const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
   if (!hybrid && ordering_ != SmootherOrdering::Sequential) {
-    forward_from_zero(a, b, x);
-    return a.residual(b, x, r);
+    x.setZero();
+    forward(a, b, x);
+    if (r) a.residual(b, x, *r);
+    return;
   }
-  x.resize(b.size());
-  r.resize(b.size());
+  // From x = 0 a row reads only the values this sweep already wrote: its own domain's columns
+  // below the diagonal (every other term multiplies a zero), so half the matrix is read.
+  if (r) r->resize(b.size());
   double* xs = x.data();
-  double* rs = r.data();
+  double* rs = r ? r->data() : nullptr;
   const int* col = a.col_index.data();
   const double* v = a.values.data();
   const int domains = hybrid ? num_domains() : 1;
@@ -209,23 +198,23 @@ void BlockGaussSeidel::forward_from_zero_with_residual(const BrcMatrix& a, const
     for (int d = 0; d < domains; ++d) {
       const int first = hybrid ? domain_start_[d] : 0, last = hybrid ? domain_start_[d + 1] : a.block_rows;
       for (int i = first; i < last; ++i) {
-        // The sweep from zero reads the domain's blocks left of the diagonal (as forward_from_zero,
-        // the same bits), which leaves b_i - (those blocks and A_ii) x = (M_ii - A_ii) x_i: the l1
-        // term, 0 for the sequential ordering.
         const int begin = hybrid ? own_begin_[i] : a.row_start[i], diagonal = diagonal_block_[i];
         double fresh[3];
         block_row_sum<false, true>(col, v, begin, diagonal, [xs](int j) { return xs + 3 * j; }, fresh);
         const double ri[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
         double* xi = xs + 3 * i;
         solve_diagonal(inverse_diagonal_[i].data(), ri, xi);
+        if (!rs) continue;
+        // The row now leaves b_i - (the blocks read and A_ii) x = (M_ii - A_ii) x_i: the l1
+        // term, 0 for the sequential ordering. The same blocks, transposed, are the domain's
+        // blocks right of the diagonal in rows j < i (A symmetric): their term - A_ji x_i of
+        // r_j, added now.
         for (int c = 0; c < 3; ++c) rs[3 * i + c] = hybrid ? l1_[3 * i + c] * xi[c] : 0.0;
-        // The same blocks, transposed, are the domain's blocks right of the diagonal in rows
-        // j < i (A symmetric): their term - A_ji x_i of r_j, added now.
         const double minus_xi[3] = {-xi[0], -xi[1], -xi[2]};
         add_transposed_row(col, v, begin, diagonal, minus_xi, rs);
       }
     }
-    if (hybrid) subtract_off_domain_products(a, xs, rs);
+    if (rs && hybrid) subtract_off_domain_products(a, xs, rs);
   }
 }
 

@@ -80,6 +80,8 @@ class BlockGaussSeidel {
   /// row's domain [lo, hi) and from frozen_ outside it; Backward: its blocks in reverse order.
   template <bool Hybrid, bool Backward>
   void relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo, int hi) const;
+  /// forward_from_zero, and with `r` also its residual (forward_from_zero_with_residual).
+  void sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd* r) const;
   /// r_i -= (the blocks outside row i's domain) x, for the hybrid halo rows; an omp for inside
   /// the caller's parallel region, after its domains.
   void subtract_off_domain_products(const BrcMatrix& a, const double* x, double* r) const;

@@ -46,8 +46,8 @@ double blocks_below_diagonal(const BrcMatrix& a) {
   return lower;
 }
 
-Traffic gauss_seidel_sweep_from_zero(const BrcMatrix& a) {
-  const double n = 3.0 * a.block_rows, lower = blocks_below_diagonal(a);
+Traffic gauss_seidel_sweep_from_zero(const BrcMatrix& a, double lower) {
+  const double n = 3.0 * a.block_rows;
   return {(kBlock + kIndex) * lower + kIndex * (a.block_rows + 1) + (kBlock + kIndex) * a.block_rows + 16 * n,
           18.0 * lower + 15.0 * a.block_rows};
 }
@@ -65,12 +65,13 @@ Traffic vcycle(const MultigridSolver& solver, int h) {
   const double n = 3.0 * a.block_rows, coarse = 3.0 * t.coarse;
   const int pre = solver.params().pre_smoothing, post = solver.params().post_smoothing;
   Traffic out = (std::max(pre - 1, 0) + post) * gauss_seidel_sweep(a);
-  if (pre > 0) out += gauss_seidel_sweep_from_zero(a);
+  const double lower = blocks_below_diagonal(a);
+  if (pre > 0) out += gauss_seidel_sweep_from_zero(a, lower);
   if (pre == 1) {
     // r = b - A x in the same pass (forward_from_zero_with_residual): the blocks it reads,
     // transposed, 18 flops each; r written. The halo rows' blocks outside their domain, read
     // again, are left out: a floor.
-    out += {8 * n, 18 * blocks_below_diagonal(a) + 3 * n};
+    out += {8 * n, 18 * lower + 3 * n};
   } else {
     out += matvec(a);
     out += {24 * n, n};  // r = b - A x
