@@ -1,6 +1,7 @@
 #include "report/paper_tables.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <ostream>
 
 #include "core/errors.hpp"
@@ -147,6 +148,13 @@ json run_paper_tables(const ReportConfig& config) {
           single_run = timed_run(scene, id, options);
           one_thread = phase_medians(single_run, warmup);
           one_thread["roofline"] = single_run.roofline(warmup, roofs_one);
+          one_thread["separate_run"] = true;
+          one_thread["linear_iterations"] = single_run.result.linear_iterations;
+          // Every kernel gives the same bits at every thread count: so must the whole run.
+          const Eigen::VectorXd& u1 = single_run.result.displacement;
+          const Eigen::VectorXd& u = main.result.displacement;
+          one_thread["same_displacement_bits"] =
+              u1.size() == u.size() && std::memcmp(u1.data(), u.data(), u.size() * sizeof(double)) == 0;
         }
         say("naive Galerkin update");
         const TimedRun naive = timed_run(with_analysis(scene, {{"galerkin", "naive"}}), id, {});
@@ -170,9 +178,12 @@ json run_paper_tables(const ReportConfig& config) {
                       ours_one.is_number() && ours_one.get<double>() > 0
                           ? json(main.matptap_ms / ours_one.get<double>())
                           : json(nullptr)}};
-        if (one_thread.is_null()) {
+        if (one_thread.is_null()) {  // this run is on one thread
           one_thread = all;
           one_thread["roofline"] = main.roofline(warmup, roofs_one);
+          one_thread["separate_run"] = false;
+          one_thread["linear_iterations"] = main.result.linear_iterations;
+          one_thread["same_displacement_bits"] = true;
         }
         return json{{"tets", main.tets},
                     {"threads", threads},
@@ -189,6 +200,7 @@ json run_paper_tables(const ReportConfig& config) {
                     {"step_ms", main.median_ms("step", warmup)},
                     {"tps", tps_of(main, warmup)},
                     {"solve_iterations", main.median_iterations(warmup)},
+                    {"linear_iterations", main.result.linear_iterations},
                     {"solve_accuracy",
                      {{"relative_residual_max", main.solve_residual_max},
                       {"error_vs_cholmod_max", main.solve_error_max},
