@@ -17,6 +17,7 @@ Progress goes to stderr; the JSON (with the runs' own context) to --out, written
 """
 import argparse
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -71,6 +72,7 @@ def measure(corofem, cells, solver, ranks, threads, steps, repeats, work):
     return {"solver": solver, "ranks": ranks, "threads": threads, "cells": cells,
             "tets": record["mesh"]["tets"], "vertices": record["mesh"]["vertices"],
             "linear_iterations_per_step": record["linear_iterations"] / record["steps"],
+            "displacement_norm": math.sqrt(sum(c * c for u in record["displacement"] for c in u)),
             "converged": record["converged"],
             "ms_per_step": {k: statistics.median(v) for k, v in per_step.items()},
             "ms_per_step_runs": per_step["step"]}, record["context"]

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <sstream>
 
 #include "fem/corotated_assembly.hpp"
 #include "fem/fe_problem.hpp"
@@ -47,8 +48,9 @@ Eigen::VectorXd force_at(const FeProblem& p, RotationExtractor& method, const st
 }
 
 struct Measured {
-  double fd_error;   ///< |J - J_fd|_F / |J_fd|_F
-  double asymmetry;  ///< |J - J^T|_F / |J|_F
+  double fd_error;      ///< |J - J_fd|_F / |J_fd|_F
+  double asymmetry;     ///< |J - J^T|_F / |J|_F
+  double ktilde_error;  ///< |Ktilde - J_fd|_F / |J_fd|_F: the paper's tangent, Q held constant
 };
 
 Measured measure(const std::string& name) {
@@ -75,30 +77,74 @@ Measured measure(const std::string& name) {
     down[k] -= h;
     fd.col(k) = (force_at(p, *method, r, up) - force_at(p, *method, r, down)) / (2 * h);
   }
-  return {(analytic - fd).norm() / fd.norm(), (analytic - analytic.transpose()).norm() / analytic.norm()};
+  Eigen::VectorXd force;
+  assemble_corotated(p.elements, p.mesh, p.assembly, r, u, p.stiffness, force);
+  const Eigen::MatrixXd ktilde = Eigen::MatrixXd(to_eigen(p.stiffness));
+  return {(analytic - fd).norm() / fd.norm(), (analytic - analytic.transpose()).norm() / analytic.norm(),
+          (ktilde - fd).norm() / fd.norm()};
 }
 
-class ConsistentTangent : public ::testing::TestWithParam<std::string> {};
+/// A method and whether its force is conservative (the gradient of an energy, so its tangent
+/// is symmetric): polar's rotation is the one of F, and mueller2016 and polar-fixed converge to
+/// it on uninverted elements; the energy methods, qr and polar-smoothed rotate by something else.
+struct TangentCase {
+  const char* method;
+  bool conservative;
+};
+
+void PrintTo(const TangentCase& c, std::ostream* os) { *os << c.method; }
+
+class ConsistentTangent : public ::testing::TestWithParam<TangentCase> {};
 
 TEST_P(ConsistentTangent, EqualsFiniteDifferencesOfTheForce) {
-  const std::string name = GetParam();
+  const std::string name = GetParam().method;
   const Measured m = measure(name);
   FeProblem p = bent_box_problem();
+  const auto record = [](const char* key, double value) {
+    std::ostringstream text;
+    text << value;
+    RecordProperty(key, text.str());
+  };
+  record("fd_error", m.fd_error);
+  record("asymmetry", m.asymmetry);
+  record("ktilde_error", m.ktilde_error);
+  // On this deformation the rotation's terms are a visible part of the tangent: Ktilde alone
+  // (Q held constant) is at least 1e-2 from it (4.5e-2 to 8.8e-2 measured), 1e4 times the
+  // tolerance below, so that check sees a missing or wrong term.
+  if (name != "none") {
+    EXPECT_GT(m.ktilde_error, 1e-2) << name << ": the deformation no longer tests the rotation's terms";
+  }
   if (RotationTangent(p, name).exact()) {
+    // The differences' truncation (~1e-12) and rounding (~1e-10) bound what they can resolve.
     EXPECT_LT(m.fd_error, 1e-6) << name;
   } else {
-    // polar-smoothed: the neighbours' coupling is left out; say how far that is.
+    // polar-smoothed: polar's rotation terms at the smoothed rotation, the dependence of the
+    // smoothing on the 1-ring left out (it reaches outside K's pattern). Measured 0.17 from the
+    // differences, farther than Ktilde (0.045) in this norm, yet Newton converges on it and
+    // stalls on Ktilde (StaticNewton: 8.2 iterations per increment; Ktilde stops at 1e-9). So
+    // this norm cannot judge its rotation terms (with their sign flipped: 0.18); what it can:
+    // not exact, within 0.3 of the derivative (a tangent missing its material part or scaled
+    // wrong is ~1 away), and with the rotation's non-symmetric terms present (the asymmetry
+    // check below: Ktilde alone is symmetric).
     EXPECT_GT(m.fd_error, 1e-6) << name << " is exact after all: make exact() say so";
-    std::cout << name << ": approximate tangent, " << m.fd_error << " from finite differences\n";
+    EXPECT_LT(m.fd_error, 0.3) << name;
   }
-  std::cout << name << ": " << m.fd_error << " from finite differences, asymmetry " << m.asymmetry << "\n";
+  if (GetParam().conservative) {
+    // A gradient's Jacobian is symmetric; only the sums' rounding (|J| ~ 1e5, ulps ~ 1e-16) is left.
+    EXPECT_LT(m.asymmetry, 1e-12) << name;
+  } else {
+    // No potential: an asymmetry of the size of the rotation's terms, not of rounding.
+    EXPECT_GT(m.asymmetry, 1e-2) << name;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, ConsistentTangent,
-                         ::testing::Values("polar", "polar-fixed", "mueller2016", "polar-smoothed",
-                                           "energy-newton", "energy-exact", "qr", "none"),
+                         ::testing::Values(TangentCase{"polar", true}, TangentCase{"polar-fixed", true},
+                                           TangentCase{"mueller2016", true}, TangentCase{"polar-smoothed", false},
+                                           TangentCase{"energy-newton", false}, TangentCase{"energy-exact", false},
+                                           TangentCase{"qr", false}, TangentCase{"none", true}),
                          [](const auto& info) {
-                           std::string s = info.param;
+                           std::string s = info.param.method;
                            for (char& c : s)
                              if (c == '-') c = '_';
                            return s;

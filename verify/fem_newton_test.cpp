@@ -73,9 +73,7 @@ TEST(StaticNewton, EqualsTheLaggedSolutionWhereBothConverge) {
   ASSERT_TRUE(lagged.converged) << lagged.message;
   ASSERT_TRUE(newton.converged) << newton.message;
   const double difference = (lagged.displacement - newton.displacement).norm() / newton.displacement.norm();
-  std::cout << "polar: lagged (" << lagged.iterations << " iterations) vs Newton (" << newton.iterations
-            << "): " << difference << " of |u|\n";
-  EXPECT_LT(difference, 1e-5);
+  EXPECT_LT(difference, 1e-5) << "lagged: " << lagged.iterations << " iterations, Newton: " << newton.iterations;
 }
 
 struct EnergyTrace {
@@ -117,11 +115,22 @@ TEST(NewtonEuler, ConservativeMethodNeverGainsEnergy) {
   const EnergyTrace polar = free_vibration("polar", true);
   EXPECT_LE(polar.largest_rise, 1e-7);
   EXPECT_LT(polar.final_ratio, 1.0);
+}
+
+TEST(NewtonEuler, EveryMethodAndIntegratorDampsTheFreeVibrationAlike) {
+  // The same vibration under the linearly implicit step and with non-conservative forces. Strains
+  // are small here, so the forces' non-conservative part (second order in the strain) creates no
+  // energy the integrator does not damp: no rise beyond Newton's tolerance, as for polar. Implicit
+  // Euler's damping depends on dt and the vibration's frequency, not on the method: every run ends
+  // within 0.03 of polar under Newton (the runs measure 0.715-0.731 against 0.729; a wrong force
+  // or a step that loses the mass moves this by far more).
+  const EnergyTrace reference = free_vibration("polar", true);
   for (const auto& [method, newton] : std::vector<std::pair<std::string, bool>>{
-           {"polar", true}, {"polar", false}, {"energy-exact", true}, {"energy-exact", false}, {"qr", true}}) {
+           {"polar", false}, {"energy-exact", true}, {"energy-exact", false}, {"qr", true}}) {
+    SCOPED_TRACE(method + (newton ? " newton" : " linear-implicit"));
     const EnergyTrace t = free_vibration(method, newton);
-    std::cout << method << (newton ? " newton" : " linear-implicit") << ": largest energy rise per step "
-              << t.largest_rise << " of E at release, E end / E release " << t.final_ratio << "\n";
+    EXPECT_LE(t.largest_rise, 1e-7);
+    EXPECT_NEAR(t.final_ratio, reference.final_ratio, 0.03);
   }
 }
 

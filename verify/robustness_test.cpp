@@ -137,6 +137,10 @@ TEST(Robustness, TenThousandStepsKeepConstantMemory) {
   });
   std::cout << "[ long run ] RSS at step 1000: " << at_1000 << " kB, at step 10000: " << at_10000
             << " kB, peak " << peak_rss_kb() << " kB\n";
+  // Both readings must have been taken: a run that stopped early, or an RSS that could not be
+  // read (current_rss_kb() returns 0), measures nothing.
+  ASSERT_GT(at_1000, 0) << "step 1000 not reached, or RSS unreadable";
+  ASSERT_GT(at_10000, 0) << "step 10000 not reached, or RSS unreadable";
   // A leak of even 100 bytes per step would add ~900 kB over the 9000 steps.
   EXPECT_LT(at_10000 - at_1000, 256);
 }

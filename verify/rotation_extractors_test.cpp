@@ -142,9 +142,13 @@ TEST(Continuity, FlatteningThroughZeroVolume) {
         largest = std::max(largest, jump);
       }
     }
-    std::cout << "[ continuity ] " << method << ": largest jump " << largest << " rad\n";
     // Step in F is 0.005; a continuous method moves by O(0.005 |dQ/dF|): 0.05 rad is 10x that.
-    if (method == "energy-exact" || method == "energy-newton") {
+    // polar (and polar-smoothed, polar on one element) returns a reflection once det F < 0 and
+    // jumps by pi there: the failure the paper's Figures 4-5 are about, asserted so that a change
+    // of that behaviour is seen. polar-fixed, qr and mueller2016 stay proper and continuous.
+    if (method == "polar" || method == "polar-smoothed") {
+      EXPECT_GT(largest, 3.0) << method;
+    } else {
       EXPECT_LT(largest, 0.05) << method;
     }
   }
