@@ -9,7 +9,7 @@
 
 #include "bench_support.hpp"
 #include "core/build_info.hpp"
-#include "core/context.hpp"
+#include "io/run_context.hpp"
 #include "core/threads.hpp"
 
 int main(int argc, char** argv) {

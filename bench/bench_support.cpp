@@ -7,12 +7,12 @@
 #include <memory>
 
 #include "fem/corotated_assembly.hpp"
-#include "fem/implicit_euler.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/vertex_selection.hpp"
 #include "rotation/rotation_extractor.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 #include "mesh/gmsh_mesh.hpp"
 #include "mesh/locality_order.hpp"
 #include "scene/coarse_meshes.hpp"

@@ -9,7 +9,7 @@
 
 #include "bench_support.hpp"
 #include "core/errors.hpp"
-#include "fem/implicit_euler.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "fem/loads.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/multigrid_solver.hpp"

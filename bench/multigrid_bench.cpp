@@ -16,7 +16,7 @@
 #include "multigrid/multigrid_solver.hpp"
 #include "solver/petsc_galerkin.hpp"
 #include "solver/petsc_solver.hpp"
-#include "solver/preconditioned_cg.hpp"
+#include "linalg/preconditioned_cg.hpp"
 #include "sparse/block_kernels.hpp"
 #include "sparse/brc_to_eigen.hpp"
 

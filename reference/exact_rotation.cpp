@@ -1,17 +1,9 @@
 #include "exact_rotation.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <random>
 
 namespace corofem::reference {
-
-Eigen::Matrix3d rotation_factor_svd(const Eigen::Matrix3d& m) {
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Matrix3d u = svd.matrixU(), v = svd.matrixV();
-  Eigen::Vector3d d(1, 1, (u * v.transpose()).determinant() < 0 ? -1 : 1);
-  return u * d.asDiagonal() * v.transpose();
-}
 
 Eigen::Quaterniond rotation_factor_horn(const Eigen::Matrix3d& m) {
   // f(q) = tr(Rt(q)^T M) with Rt(q) v = q v q* (a quadratic form in q, = R(q) |q|^2).

@@ -1,21 +1,18 @@
 #pragma once
 // Exact minimizers of the paper's rotation energy (PAPER_NOTES section 2): for a linear tet,
 // E_e(Q) = const - 2 tr(Q^T S) with S = F C, so the minimizer is the proper rotation factor of S.
-// Two independent routes, plus a brute-force search that assumes nothing about the energy.
+// The production path takes the SVD route (rotation/rotation_factor.hpp); the oracles here are
+// Horn's quaternion route and a brute-force search that assumes nothing about the energy.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <functional>
 
 namespace corofem::reference {
 
-/// argmax over proper rotations of tr(R^T M): R = U diag(1, 1, det(U V^T)) V^T from the SVD
-/// M = U S V^T (singular values descending). Unique unless the two smallest singular values of M
-/// are equal with det M < 0 (or M has rank < 2).
-Eigen::Matrix3d rotation_factor_svd(const Eigen::Matrix3d& m);
-
-/// The same maximizer by Horn (1987): the unit quaternion q maximizing q^T N q, N the 4x4
-/// symmetric matrix with q^T N q = tr(R(q)^T M) for unit q, i.e. the eigenvector of N's largest
-/// eigenvalue. N is built here by polarization from quaternion products, not from Horn's table.
+/// argmax over proper rotations of tr(R^T M) by Horn (1987): the unit quaternion q maximizing
+/// q^T N q, N the 4x4 symmetric matrix with q^T N q = tr(R(q)^T M) for unit q, i.e. the
+/// eigenvector of N's largest eigenvalue. N is built here by polarization from quaternion
+/// products, not from Horn's table.
 Eigen::Quaterniond rotation_factor_horn(const Eigen::Matrix3d& m);
 
 /// Global minimizer of an arbitrary energy over SO(3): `samples` uniformly random rotations

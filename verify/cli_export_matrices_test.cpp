@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "galerkin_oracle.hpp"
-#include "report/matrix_market.hpp"
+#include "io/matrix_market.hpp"
 #include "test_support.hpp"
 
 namespace corofem {

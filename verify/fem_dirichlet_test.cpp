@@ -6,7 +6,7 @@
 #include <cstring>
 #include <random>
 
-#include "cholmod_solver.hpp"
+#include "cholmod_oracle.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/dirichlet.hpp"
 #include "fem/fe_problem.hpp"

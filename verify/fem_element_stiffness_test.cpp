@@ -5,7 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <random>
 
-#include "fem/element_stiffness.hpp"
+#include "element/element_stiffness.hpp"
 
 namespace corofem {
 namespace {

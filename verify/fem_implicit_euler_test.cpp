@@ -4,8 +4,8 @@
 
 #include "cantilever_fixture.hpp"
 #include "fem/corotated_assembly.hpp"
-#include "fem/implicit_euler.hpp"
-#include "fem/static_solver.hpp"
+#include "integrate/implicit_euler.hpp"
+#include "integrate/static_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {

@@ -9,11 +9,11 @@
 
 #include "cantilever_fixture.hpp"
 #include "fem/corotated_assembly.hpp"
-#include "fem/implicit_euler.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "fem/rotation_tangent.hpp"
-#include "fem/static_solver.hpp"
+#include "integrate/static_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "fem/fe_problem.hpp"
-#include "fem/static_solver.hpp"
+#include "integrate/static_solver.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/polar_decomposition.hpp"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "cantilever_fixture.hpp"
-#include "fem/static_solver.hpp"
+#include "integrate/static_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "test_support.hpp"
 

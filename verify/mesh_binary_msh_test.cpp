@@ -12,7 +12,7 @@
 #include "core/errors.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_mesh.hpp"
-#include "scene/run_scene.hpp"
+#include "cli/run_scene.hpp"
 #include "scene/scene.hpp"
 #include "test_support.hpp"
 

@@ -7,10 +7,10 @@
 #include <iostream>
 
 #include "cantilever_fixture.hpp"
-#include "fem/static_solver.hpp"
+#include "integrate/static_solver.hpp"
 #include "report/calculix_oracle.hpp"
 #include "rotation/rotation_extractor.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 #include "test_support.hpp"
 
 namespace corofem {

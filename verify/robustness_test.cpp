@@ -11,10 +11,10 @@
 #include "core/memory_usage.hpp"
 #include "fem/corotated_system.hpp"
 #include "fem/fe_problem.hpp"
-#include "fem/implicit_euler.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
-#include "scene/run_scene.hpp"
+#include "cli/run_scene.hpp"
 #include "scene/scene.hpp"
 #include "test_support.hpp"
 

@@ -9,6 +9,7 @@
 
 #include "exact_rotation.hpp"
 #include "rotation/quaternion.hpp"
+#include "rotation/rotation_factor.hpp"
 #include "rotation/energy_newton_batch.hpp"
 #include "rotation/energy_rotation.hpp"
 #include "mesh/box_mesh.hpp"
@@ -19,7 +20,6 @@ namespace {
 
 using reference::brute_force_minimize;
 using reference::rotation_factor_horn;
-using reference::rotation_factor_svd;
 
 Mat3 random_rotation(std::mt19937& rng) {
   std::normal_distribution<double> n;
@@ -132,7 +132,7 @@ TEST(RotationEnergy, NewtonExactSvdHornAndBruteForceAgree) {
     const Mat3 warm = Eigen::AngleAxisd(0.3, Vec3::Random().normalized()).toRotationMatrix() * exact;
     const NewtonOutcome newton = energy_newton_rotation(s, a, warm, 1e-14, 30);
     newton_fallbacks += newton.fell_back;
-    const Mat3 svd = rotation_factor_svd(s);
+    const Mat3 svd = rotation_factor(s);
     const Mat3 horn = rotation_factor_horn(s).toRotationMatrix();
     auto energy = [&](const Mat3& q) { return rotation_energy(q, rest, deformed); };
     const Mat3 brute = brute_force_minimize(energy, 4000, rng());
@@ -301,7 +301,7 @@ TEST(RotationEnergy, NewtonDetectsSingularHessianAndFallsBack) {
   const NewtonOutcome out = energy_newton_rotation(s, 2.75, Mat3::Identity(), 1e-12, 20);
   EXPECT_TRUE(out.rotation.allFinite());
   EXPECT_NEAR(out.rotation.determinant(), 1.0, 1e-12);
-  EXPECT_NEAR((out.rotation.transpose() * s).trace(), (rotation_factor_svd(s).transpose() * s).trace(), 1e-12);
+  EXPECT_NEAR((out.rotation.transpose() * s).trace(), (rotation_factor(s).transpose() * s).trace(), 1e-12);
 }
 
 }  // namespace

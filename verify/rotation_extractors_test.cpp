@@ -8,7 +8,7 @@
 
 #include "cantilever_fixture.hpp"
 #include "rotation/quaternion.hpp"
-#include "fem/static_solver.hpp"
+#include "integrate/static_solver.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
 

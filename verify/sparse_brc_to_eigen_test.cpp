@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <random>
 
-#include "cholmod_solver.hpp"
+#include "linalg/cholmod_factorization.hpp"
 #include "sparse/brc_matrix.hpp"
 #include "sparse/brc_to_eigen.hpp"
 #include "test_support.hpp"
@@ -36,7 +36,7 @@ TEST(BrcToEigen, CholmodOnTheUpperTriangleSolvesLikeADenseCholesky) {
   std::mt19937 rng(11);
   const BrcMatrix a = test::random_spd_brc(80, rng);
   const BrcToEigen upper(a, BrcToEigen::Part::SymmetricUpper);
-  reference::CholmodSolver cholmod;
+  CholmodFactorization cholmod;
   cholmod.factorize(upper.matrix());
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * a.block_rows, -1, 2);
   const Eigen::MatrixXd d = test::dense_copy(a);

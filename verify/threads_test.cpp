@@ -15,7 +15,7 @@
 #include "fem/corotated_assembly.hpp"
 #include "fem/fe_problem.hpp"
 #include "multigrid/galerkin.hpp"
-#include "multigrid/gauss_seidel.hpp"
+#include "linalg/gauss_seidel.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/mesh_level.hpp"
 #include "galerkin_oracle.hpp"

@@ -9,8 +9,8 @@
 #include "core/errors.hpp"
 #include "core/threads.hpp"
 #include "report/report_driver.hpp"
-#include "scene/export_matrices.hpp"
-#include "scene/run_scene.hpp"
+#include "cli/export_matrices.hpp"
+#include "cli/run_scene.hpp"
 #include "solver/mpi_launch.hpp"
 
 namespace corofem {

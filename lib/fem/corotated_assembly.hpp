@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "fem/assembly_map.hpp"
-#include "fem/element_rest.hpp"
+#include "element/element_rest.hpp"
 #include "fem/fe_problem.hpp"
 
 namespace corofem {

@@ -6,7 +6,7 @@
 
 #include "fem/assembly_map.hpp"
 #include "fem/dirichlet.hpp"
-#include "fem/element_rest.hpp"
+#include "element/element_rest.hpp"
 
 namespace corofem {
 

@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "fem/material.hpp"
+#include "element/material.hpp"
 
 namespace corofem {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/element_stiffness.hpp"
+#include "element/element_stiffness.hpp"
 
 namespace corofem {
 

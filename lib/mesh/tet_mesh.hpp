@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "core/types.hpp"
+
 namespace corofem {
 
-using Vec3 = Eigen::Vector3d;
 using Tet = std::array<int, 4>;
 
 struct TetMesh {

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <optional>
 
-#include "cholmod_solver.hpp"
+#include "linalg/cholmod_factorization.hpp"
 #include "core/errors.hpp"
 #include "core/statistics.hpp"
 #include "core/threads.hpp"
-#include "solver/preconditioned_cg.hpp"
+#include "linalg/preconditioned_cg.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
@@ -65,7 +65,7 @@ nlohmann::json MultigridParams::to_json() const {
 
 struct MultigridSolver::Coarsest {
   std::optional<BrcToEigen> converter;
-  reference::CholmodSolver cholmod;
+  CholmodFactorization cholmod;
 };
 
 MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
@@ -138,7 +138,7 @@ void MultigridSolver::take_matrix(BrcMatrix& a) {
 }
 
 void MultigridSolver::update_levels() {
-  // The coarsest factorization is serial (CHOLMOD, cholmod_solver.cpp). MG-PCG's initial
+  // The coarsest factorization is serial (CHOLMOD, linalg/cholmod_factorization.cpp). MG-PCG's initial
   // residual needs neither it nor the smoothers, and its first V-cycle's descent needs only the
   // smoothers: so at two or more threads the update stops after the Galerkin products and the
   // next solve runs the factorization on one thread beside those on another

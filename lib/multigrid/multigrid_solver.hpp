@@ -6,10 +6,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "multigrid/gauss_seidel.hpp"
+#include "linalg/gauss_seidel.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 

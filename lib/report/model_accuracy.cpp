@@ -3,14 +3,14 @@
 #include <chrono>
 #include <ostream>
 
-#include "fem/static_solver.hpp"
+#include "integrate/static_solver.hpp"
 #include "report/calculix_oracle.hpp"
 #include "report/case_record.hpp"
 #include "rotation/polar_decomposition.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_problem.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 using nlohmann::json;

@@ -5,7 +5,7 @@
 #include <ostream>
 
 #include "core/atomic_file.hpp"
-#include "core/context.hpp"
+#include "io/run_context.hpp"
 #include "report/model_accuracy.hpp"
 #include "report/paper_tables.hpp"
 #include "report/speed_accuracy.hpp"

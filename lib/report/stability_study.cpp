@@ -12,7 +12,7 @@
 #include "fem/rotation_tangent.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
-#include "report/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 

@@ -168,7 +168,7 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   for (const auto& [part, traffic] : update_traffic(solver))
     (solver.defers_update() && (part == "coarsest" || part == "smoothers") ? deferred : update) += traffic;
   t["update"] = update;
-  // MG-PCG (solver/preconditioned_cg.cpp): per iteration A p, one V-cycle and 14 vector passes
+  // MG-PCG (linalg/preconditioned_cg.cpp): per iteration A p, one V-cycle and 14 vector passes
   // (two dots, two axpys, a norm, p = z + beta p); the start: r = b - A x, norms, r.z.
   const Traffic cycle = vcycle(solver, 0);
   Traffic solve = (solve_iterations + 1) * matvec(solver.hierarchy().matrix(0));

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/statistics.hpp"
-#include "fem/implicit_euler.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "report/step_roofline.hpp"
 
 namespace corofem {

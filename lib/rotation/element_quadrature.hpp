@@ -5,7 +5,7 @@
 // V/4; Keast 1986) integrates it exactly with the fewest points.
 #include <array>
 
-#include "fem/element_stiffness.hpp"
+#include "element/element_stiffness.hpp"
 
 namespace corofem {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/threads.hpp"
-#include "exact_rotation.hpp"
+#include "rotation/rotation_factor.hpp"
 #include "rotation/energy_newton_batch.hpp"
 #include "rotation/polar_decomposition.hpp"
 
@@ -104,7 +104,7 @@ Mat3 energy_exact_rotation(const Mat3& s) {
   const double det = s.determinant();
   const double norm = s.norm();
   if (det > 1e-6 * norm * norm * norm) return polar_rotation(s, Mat3::Identity());
-  return reference::rotation_factor_svd(s);
+  return rotation_factor(s);
 }
 
 NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, double tolerance,

@@ -2,7 +2,7 @@
 // Polar decomposition F = R S by Higham's scaled Newton iteration (Hauth and Strasser 2004, as in
 // VegaFEM and SOFA). For det F < 0 the orthogonal factor is a reflection (det R = -1); that is
 // kept on purpose: it is the behaviour of the prior work the stability study measures.
-#include "fem/element_rest.hpp"
+#include "element/element_rest.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {

@@ -3,7 +3,7 @@
 // two rotations.
 #include <Eigen/Geometry>
 
-#include "fem/element_stiffness.hpp"
+#include "element/element_stiffness.hpp"
 
 namespace corofem {
 

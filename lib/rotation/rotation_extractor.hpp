@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/element_rest.hpp"
+#include "element/element_rest.hpp"
 
 namespace corofem {
 

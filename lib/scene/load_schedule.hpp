@@ -3,7 +3,7 @@
 // releases (README "Scene format": ramp_steps, release_step, moves).
 #include <memory>
 
-#include "fem/implicit_euler.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "scene/scene.hpp"
 
 namespace corofem {

@@ -10,7 +10,7 @@
 #include "core/memory_usage.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/json_fields.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/material.hpp"
+#include "element/material.hpp"
 #include "mesh/vertex_selection.hpp"
 #include "rotation/rotation_extractor.hpp"
 

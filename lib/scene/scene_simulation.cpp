@@ -6,7 +6,7 @@
 #include "scene/coarse_meshes.hpp"
 #include "scene/load_schedule.hpp"
 #include "scene/scene_problem.hpp"
-#include "solver/solver_factory.hpp"
+#include "scene/solver_factory.hpp"
 
 namespace corofem {
 namespace {

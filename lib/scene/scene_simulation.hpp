@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "fem/implicit_euler.hpp"
-#include "fem/static_solver.hpp"
+#include "integrate/implicit_euler.hpp"
+#include "integrate/static_solver.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "scene/scene.hpp"
 

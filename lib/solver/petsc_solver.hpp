@@ -22,7 +22,7 @@
 
 #include "mesh/tet_mesh.hpp"
 #include "multigrid/transfer.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 

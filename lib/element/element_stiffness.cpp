@@ -1,4 +1,4 @@
-#include "fem/element_stiffness.hpp"
+#include "element/element_stiffness.hpp"
 
 #include <Eigen/LU>
 

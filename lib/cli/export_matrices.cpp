@@ -1,14 +1,14 @@
-#include "scene/export_matrices.hpp"
+#include "cli/export_matrices.hpp"
 
 #include "core/atomic_file.hpp"
-#include "core/context.hpp"
+#include "io/run_context.hpp"
 #include "core/errors.hpp"
-#include "fem/implicit_euler.hpp"
-#include "fem/static_solver.hpp"
-#include "report/matrix_market.hpp"
+#include "integrate/implicit_euler.hpp"
+#include "integrate/static_solver.hpp"
+#include "io/matrix_market.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/scene_problem.hpp"
-#include "solver/solver_factory.hpp"
+#include "scene/solver_factory.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {

@@ -1,4 +1,4 @@
-#include "multigrid/gauss_seidel.hpp"
+#include "linalg/gauss_seidel.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "solver/preconditioned_cg.hpp"
+#include "linalg/preconditioned_cg.hpp"
 
 #include <cmath>
 
@@ -7,7 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/threads.hpp"
-#include "multigrid/gauss_seidel.hpp"
+#include "linalg/gauss_seidel.hpp"
 
 namespace corofem {
 

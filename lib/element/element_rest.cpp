@@ -1,4 +1,4 @@
-#include "fem/element_rest.hpp"
+#include "element/element_rest.hpp"
 
 #include <cmath>
 

@@ -3,7 +3,7 @@
 // matrices; the 14 numbers K_e is made of are enough (corotated_assembly.cpp), a tenth of the bytes.
 #include <vector>
 
-#include "fem/element_stiffness.hpp"
+#include "element/element_stiffness.hpp"
 
 namespace corofem {
 

@@ -1,4 +1,4 @@
-#include "core/context.hpp"
+#include "io/run_context.hpp"
 
 #include "core/threads.hpp"
 

@@ -1,8 +1,8 @@
 #include <optional>
 
-#include "cholmod_solver.hpp"
+#include "linalg/cholmod_factorization.hpp"
 #include "core/errors.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
@@ -36,7 +36,7 @@ class CholmodLinearSolver : public LinearSolver {
 
  private:
   std::optional<BrcToEigen> converter_;
-  reference::CholmodSolver solver_;
+  CholmodFactorization solver_;
 };
 
 }  // namespace

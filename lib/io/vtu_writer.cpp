@@ -1,4 +1,4 @@
-#include "report/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <functional>
 
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 

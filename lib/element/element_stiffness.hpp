@@ -3,13 +3,10 @@
 #include <Eigen/Core>
 #include <array>
 
-#include "fem/material.hpp"
+#include "core/types.hpp"
+#include "element/material.hpp"
 
 namespace corofem {
-
-using Mat3 = Eigen::Matrix3d;
-using Mat12 = Eigen::Matrix<double, 12, 12>;
-using Vec12 = Eigen::Matrix<double, 12, 1>;
 
 /// Inverse of the rest edge matrix Dm = [x1-x0, x2-x0, x3-x0]. Row i-1 is the gradient of the
 /// barycentric shape function N_i (i = 1..3); grad N_0 = -(sum of the rows). F = Ds * Dm^{-1}.

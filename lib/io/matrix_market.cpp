@@ -1,4 +1,4 @@
-#include "report/matrix_market.hpp"
+#include "io/matrix_market.hpp"
 
 #include <fstream>
 #include <sstream>

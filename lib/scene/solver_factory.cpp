@@ -1,7 +1,7 @@
-#include "solver/solver_factory.hpp"
+#include "scene/solver_factory.hpp"
 
 #include "solver/petsc_solver.hpp"
-#include "solver/preconditioned_cg.hpp"
+#include "linalg/preconditioned_cg.hpp"
 
 namespace corofem {
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "fem/element_stiffness.hpp"
+#include "element/element_stiffness.hpp"
 
 namespace corofem {
 

@@ -1,4 +1,4 @@
-#include "fem/material.hpp"
+#include "element/material.hpp"
 
 namespace corofem {
 

@@ -1,15 +1,15 @@
-#include "scene/run_scene.hpp"
+#include "cli/run_scene.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>
 #include <ostream>
 
-#include "core/context.hpp"
+#include "io/run_context.hpp"
 #include "core/memory_usage.hpp"
-#include "report/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
 #include "scene/scene_simulation.hpp"
-#include "solver/solver_factory.hpp"
+#include "scene/solver_factory.hpp"
 
 namespace corofem {
 

@@ -1,4 +1,4 @@
-#include "cholmod_solver.hpp"
+#include "linalg/cholmod_factorization.hpp"
 
 #include <Eigen/CholmodSupport>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 #include <omp.h>
 #endif
 
-namespace corofem::reference {
+namespace corofem {
 
 namespace {
 
@@ -27,7 +27,7 @@ class SerialOpenMp {
 
 }  // namespace
 
-struct CholmodSolver::Impl {
+struct CholmodFactorization::Impl {
   // CHOLMOD's own messages off: a failed factorization is reported by the exception below, with
   // the caller's context (and the multigrid coarsest level retries a semidefinite one).
   Impl() { llt.cholmod().print = 0; }
@@ -38,12 +38,12 @@ struct CholmodSolver::Impl {
   double lnz = 0, flops = 0;
 };
 
-CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
-CholmodSolver::~CholmodSolver() = default;
-CholmodSolver::CholmodSolver(CholmodSolver&&) noexcept = default;
-CholmodSolver& CholmodSolver::operator=(CholmodSolver&&) noexcept = default;
+CholmodFactorization::CholmodFactorization() : impl_(std::make_unique<Impl>()) {}
+CholmodFactorization::~CholmodFactorization() = default;
+CholmodFactorization::CholmodFactorization(CholmodFactorization&&) noexcept = default;
+CholmodFactorization& CholmodFactorization::operator=(CholmodFactorization&&) noexcept = default;
 
-void CholmodSolver::analyze(const Eigen::SparseMatrix<double>& a) {
+void CholmodFactorization::analyze(const Eigen::SparseMatrix<double>& a) {
   const SerialOpenMp serial;
   impl_->llt.analyzePattern(a);
   impl_->analyzed = true;
@@ -51,7 +51,7 @@ void CholmodSolver::analyze(const Eigen::SparseMatrix<double>& a) {
   impl_->flops = impl_->llt.cholmod().fl;
 }
 
-void CholmodSolver::factorize(const Eigen::SparseMatrix<double>& a) {
+void CholmodFactorization::factorize(const Eigen::SparseMatrix<double>& a) {
   if (!impl_->analyzed) analyze(a);
   const SerialOpenMp serial;
   impl_->llt.factorize(a);
@@ -59,20 +59,14 @@ void CholmodSolver::factorize(const Eigen::SparseMatrix<double>& a) {
     throw std::runtime_error("CHOLMOD: matrix is not positive definite (factorization failed)");
 }
 
-Eigen::VectorXd CholmodSolver::solve(const Eigen::VectorXd& b) const {
+Eigen::VectorXd CholmodFactorization::solve(const Eigen::VectorXd& b) const {
   const SerialOpenMp serial;
   Eigen::VectorXd x = impl_->llt.solve(b);
   if (impl_->llt.info() != Eigen::Success) throw std::runtime_error("CHOLMOD: solve failed");
   return x;
 }
 
-double CholmodSolver::factor_nonzeros() const { return impl_->lnz; }
-double CholmodSolver::factorization_flops() const { return impl_->flops; }
+double CholmodFactorization::factor_nonzeros() const { return impl_->lnz; }
+double CholmodFactorization::factorization_flops() const { return impl_->flops; }
 
-Eigen::VectorXd cholmod_solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b) {
-  CholmodSolver solver;
-  solver.factorize(a);
-  return solver.solve(b);
-}
-
-}  // namespace corofem::reference
+}  // namespace corofem

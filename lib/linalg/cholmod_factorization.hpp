@@ -1,17 +1,19 @@
 #pragma once
-// Direct sparse Cholesky by CHOLMOD (through Eigen's CholmodSupport): the oracle every iterative
-// solve is checked against, and the coarsest-level solver of multigrid.
+// Direct sparse Cholesky by CHOLMOD's supernodal factorization (through Eigen's CholmodSupport),
+// for the production path: the multigrid's coarsest level and the `cholmod` solver. The analysis is
+// kept for the pattern, only the upper triangle is read, and CHOLMOD's own OpenMP stays serial.
+// (The oracle the tests check solves against is reference/cholmod_oracle.hpp, a separate path.)
 #include <Eigen/SparseCore>
 #include <memory>
 
-namespace corofem::reference {
+namespace corofem {
 
-class CholmodSolver {
+class CholmodFactorization {
  public:
-  CholmodSolver();
-  ~CholmodSolver();
-  CholmodSolver(CholmodSolver&&) noexcept;
-  CholmodSolver& operator=(CholmodSolver&&) noexcept;
+  CholmodFactorization();
+  ~CholmodFactorization();
+  CholmodFactorization(CholmodFactorization&&) noexcept;
+  CholmodFactorization& operator=(CholmodFactorization&&) noexcept;
 
   /// Symbolic analysis (fill-reducing ordering); needed once per pattern.
   void analyze(const Eigen::SparseMatrix<double>& a);
@@ -29,7 +31,4 @@ class CholmodSolver {
   std::unique_ptr<Impl> impl_;
 };
 
-/// One-shot solve of A x = b (A symmetric positive definite).
-Eigen::VectorXd cholmod_solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b);
-
-}  // namespace corofem::reference
+}  // namespace corofem

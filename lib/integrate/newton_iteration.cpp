@@ -1,4 +1,4 @@
-#include "fem/newton_iteration.hpp"
+#include "integrate/newton_iteration.hpp"
 
 #include <Eigen/UmfPackSupport>
 

@@ -9,10 +9,10 @@
 #include <functional>
 
 #include "fem/fe_problem.hpp"
-#include "fem/newton_iteration.hpp"
+#include "integrate/newton_iteration.hpp"
 #include "fem/simulation_result.hpp"
 #include "rotation/rotation_extractor.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 

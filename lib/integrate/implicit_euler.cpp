@@ -1,4 +1,4 @@
-#include "fem/implicit_euler.hpp"
+#include "integrate/implicit_euler.hpp"
 
 #include <chrono>
 #include <memory>

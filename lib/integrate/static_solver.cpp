@@ -1,10 +1,10 @@
-#include "fem/static_solver.hpp"
+#include "integrate/static_solver.hpp"
 
 #include <memory>
 
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
-#include "fem/newton_iteration.hpp"
+#include "integrate/newton_iteration.hpp"
 #include "fem/rotation_tangent.hpp"
 #include "rotation/polar_decomposition.hpp"
 

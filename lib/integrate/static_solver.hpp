@@ -8,7 +8,7 @@
 #include "fem/fe_problem.hpp"
 #include "fem/simulation_result.hpp"
 #include "rotation/rotation_extractor.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 

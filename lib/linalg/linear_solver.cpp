@@ -1,4 +1,4 @@
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 #include <cstdio>
 
