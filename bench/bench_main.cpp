@@ -9,8 +9,8 @@
 
 #include "bench_support.hpp"
 #include "core/build_info.hpp"
-#include "io/run_context.hpp"
 #include "core/threads.hpp"
+#include "io/run_context.hpp"
 
 int main(int argc, char** argv) {
   std::vector<char*> args;

@@ -29,14 +29,16 @@ void BM_CorotatedAssembly(benchmark::State& state, const std::string& model, boo
   }
   const double blocks = 16.0 * p.mesh.num_tets();
   state.counters["tets"] = p.mesh.num_tets();
-  state.counters["blocks_per_s"] = benchmark::Counter(blocks, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["blocks_per_s"] =
+      benchmark::Counter(blocks, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_BrcSpmv(benchmark::State& state, const std::string& model) {
   FeProblem& p = paper_problem(model);
   std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd force;
-  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
+  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()),
+                     p.stiffness, force);
   Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs()), y;
   for (auto _ : state) {
     p.stiffness.multiply(x, y);
@@ -48,13 +50,18 @@ void BM_BrcSpmv(benchmark::State& state, const std::string& model) {
   const double bytes = 76 * nb + 4 * (nv + 1) + 2 * 24 * nv;
   state.counters["blocks"] = nb;
   state.counters["bytes_per_spmv"] = bytes;
-  state.counters["GB_per_s"] = benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["GB_per_s"] =
+      benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsIterationInvariantRate);
 }
 
-BENCHMARK_CAPTURE(BM_CorotatedAssembly, bunny, std::string("bunny"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_CorotatedAssembly, horse, std::string("horse"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_CorotatedAssembly, dragon, std::string("dragon"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_CorotatedAssembly, dragon_cold, std::string("dragon"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CorotatedAssembly, bunny, std::string("bunny"), false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CorotatedAssembly, horse, std::string("horse"), false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CorotatedAssembly, dragon, std::string("dragon"), false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CorotatedAssembly, dragon_cold, std::string("dragon"), true)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BrcSpmv, bunny, std::string("bunny"))->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BrcSpmv, horse, std::string("horse"))->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BrcSpmv, dragon, std::string("dragon"))->Unit(benchmark::kMicrosecond);

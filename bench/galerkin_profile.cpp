@@ -9,8 +9,8 @@
 
 #include "bench_support.hpp"
 #include "core/errors.hpp"
-#include "integrate/implicit_euler.hpp"
 #include "fem/loads.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -18,7 +18,8 @@
 int main(int argc, char** argv) {
   using namespace corofem;
   if (argc < 4) {
-    std::cerr << "usage: corofem_profile naive|stream|stream-full|reuse|gather|step bunny|horse|dragon N [--models DIR]\n";
+    std::cerr << "usage: corofem_profile naive|stream|stream-full|reuse|gather|step "
+                 "bunny|horse|dragon N [--models DIR]\n";
     return 2;
   }
   if (argc == 6 && std::strcmp(argv[4], "--models") == 0) bench::set_models_dir(argv[5]);
@@ -37,15 +38,17 @@ int main(int argc, char** argv) {
       params.hierarchy.kind = HierarchyKind::Meshes;
       params.hierarchy.levels = bench::hierarchy_levels(model, HierarchyKind::Meshes);
       params.tolerance = 1e-4;
-      MultigridSolver solver(problem.stiffness, bench::paper_transfers(model, HierarchyKind::Meshes),
-                             params, true);
+      MultigridSolver solver(problem.stiffness,
+                             bench::paper_transfers(model, HierarchyKind::Meshes), params, true);
       DynamicOptions options;
       options.steps = updates;
       solve_dynamic(problem, *rotations, solver, options);
-      std::cout << "fine_blocks " << system.matrix.num_blocks() << "\ntets " << p.mesh.num_tets() << "\n";
+      std::cout << "fine_blocks " << system.matrix.num_blocks() << "\ntets " << p.mesh.num_tets()
+                << "\n";
       return 0;
     }
-    MultigridHierarchy h(system.matrix, bench::paper_transfers(model, HierarchyKind::Meshes).transfers);
+    MultigridHierarchy h(system.matrix,
+                         bench::paper_transfers(model, HierarchyKind::Meshes).transfers);
     const GalerkinMethod m = galerkin_method(method);
     h.prepare(m);  // the method's streams, built before the profiled updates
     for (int i = 0; i < updates; ++i) h.update(system.matrix, m);

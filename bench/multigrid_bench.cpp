@@ -9,14 +9,14 @@
 #include <chrono>
 
 #include "bench_support.hpp"
-#include "galerkin_oracle.hpp"
+#include "core/machine_roofs.hpp"
 #include "core/statistics.hpp"
 #include "core/threads.hpp"
-#include "core/machine_roofs.hpp"
+#include "galerkin_oracle.hpp"
+#include "linalg/preconditioned_cg.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "solver/petsc_galerkin.hpp"
 #include "solver/petsc_solver.hpp"
-#include "linalg/preconditioned_cg.hpp"
 #include "sparse/block_kernels.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
@@ -28,10 +28,11 @@ MultigridHierarchy& paper_hierarchy(const std::string& model) {
   static std::map<std::string, std::unique_ptr<MultigridHierarchy>> cache;
   auto& slot = cache[model];
   if (!slot) {
-    slot = std::make_unique<MultigridHierarchy>(paper_system(model).matrix,
-                                                paper_transfers(model, HierarchyKind::Meshes).transfers);
+    slot = std::make_unique<MultigridHierarchy>(
+        paper_system(model).matrix, paper_transfers(model, HierarchyKind::Meshes).transfers);
     // Every method's streams before any timing (they are built on first use otherwise).
-    for (const GalerkinMethod m : {GalerkinMethod::Stream, GalerkinMethod::StreamFull, GalerkinMethod::Gather})
+    for (const GalerkinMethod m :
+         {GalerkinMethod::Stream, GalerkinMethod::StreamFull, GalerkinMethod::Gather})
       slot->prepare(m);
   }
   return *slot;
@@ -56,7 +57,8 @@ double stream_update_bytes(const MultigridHierarchy& h, GalerkinMethod format) {
   return bytes;
 }
 
-void BM_GalerkinUpdate(benchmark::State& state, const std::string& method, const std::string& model) {
+void BM_GalerkinUpdate(benchmark::State& state, const std::string& method,
+                       const std::string& model) {
   MultigridHierarchy& h = paper_hierarchy(model);
   const BrcMatrix& a = paper_system(model).matrix;
   std::vector<Eigen::SparseMatrix<double>> r;
@@ -67,7 +69,8 @@ void BM_GalerkinUpdate(benchmark::State& state, const std::string& method, const
       state.SkipWithError("this build has no PETSc");
       return;
     }
-    petsc = std::make_unique<PetscPtapHierarchy>(a, paper_transfers(model, HierarchyKind::Meshes).transfers);
+    petsc = std::make_unique<PetscPtapHierarchy>(
+        a, paper_transfers(model, HierarchyKind::Meshes).transfers);
     petsc->update(a);  // symbolic phase: once, outside the timing (numeric reuse is timed)
   }
   for (auto _ : state) {
@@ -85,7 +88,8 @@ void BM_GalerkinUpdate(benchmark::State& state, const std::string& method, const
     const double bytes = stream_update_bytes(h, galerkin_method(method));
     state.counters["stream_MB"] = h.stream_bytes(galerkin_method(method)) / 1e6;
     state.counters["bytes_per_update"] = bytes;
-    state.counters["GB_per_s"] = benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["GB_per_s"] =
+        benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsIterationInvariantRate);
   }
 }
 
@@ -98,7 +102,8 @@ void BM_GalerkinRatio(benchmark::State& state, const std::string& model) {
   double t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // ms
   std::unique_ptr<PetscPtapHierarchy> petsc;  // PETSc's MatPtAP in numeric-reuse mode
   if (have_petsc()) {
-    petsc = std::make_unique<PetscPtapHierarchy>(a, paper_transfers(model, HierarchyKind::Meshes).transfers);
+    petsc = std::make_unique<PetscPtapHierarchy>(
+        a, paper_transfers(model, HierarchyKind::Meshes).transfers);
     petsc->update(a);
   }
   // Each timed update follows untimed ones of the same method (warm_time_ms): timed right after
@@ -153,8 +158,10 @@ void BM_GalerkinLevels(benchmark::State& state, const std::string& model) {
   std::vector<std::vector<double>> stream_ms(levels), gather_ms(levels);
   for (auto _ : state)
     for (int l = 0; l < levels; ++l) {
-      stream_ms[l].push_back(warm_time_ms([&] { h.stream(l).apply(h.matrix(l), h.matrix(l + 1)); }));
-      gather_ms[l].push_back(warm_time_ms([&] { h.gather(l).apply(h.matrix(l), h.matrix(l + 1)); }));
+      stream_ms[l].push_back(
+          warm_time_ms([&] { h.stream(l).apply(h.matrix(l), h.matrix(l + 1)); }));
+      gather_ms[l].push_back(
+          warm_time_ms([&] { h.gather(l).apply(h.matrix(l), h.matrix(l + 1)); }));
     }
   for (int l = 0; l < levels; ++l) {
     const std::string level = "L" + std::to_string(l);
@@ -176,7 +183,8 @@ void BM_StreamTriad(benchmark::State& state) {
     stream_triad(a.data(), b.data(), c.data(), s, n);
     benchmark::DoNotOptimize(a.data());
   }
-  state.counters["GB_per_s"] = benchmark::Counter(24.0 * n / 1e9, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["GB_per_s"] =
+      benchmark::Counter(24.0 * n / 1e9, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 MultigridSolver& paper_solver(const std::string& model, bool pcg,
@@ -188,8 +196,8 @@ MultigridSolver& paper_solver(const std::string& model, bool pcg,
     params.hierarchy.kind = kind;
     params.hierarchy.levels = hierarchy_levels(model, kind);
     params.tolerance = 1e-6;
-    slot = std::make_unique<MultigridSolver>(paper_system(model).matrix, paper_transfers(model, kind),
-                                             params, pcg);
+    slot = std::make_unique<MultigridSolver>(paper_system(model).matrix,
+                                             paper_transfers(model, kind), params, pcg);
     slot->set_matrix(paper_system(model).matrix);
   }
   return *slot;
@@ -250,8 +258,8 @@ void BM_UpdateSolveOverlap(benchmark::State& state, const std::string& model) {
   std::vector<std::unique_ptr<MultigridSolver>> solvers;
   for (const bool overlap : {false, true}) {
     params.overlap_factorization = overlap;
-    solvers.push_back(std::make_unique<MultigridSolver>(system.matrix, paper_transfers(model, HierarchyKind::Meshes),
-                                                        params, true));
+    solvers.push_back(std::make_unique<MultigridSolver>(
+        system.matrix, paper_transfers(model, HierarchyKind::Meshes), params, true));
     solvers.back()->set_matrix(system.matrix);  // the first update analyses the pattern
   }
   std::vector<double> ms[2];
@@ -288,7 +296,8 @@ void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
   std::vector<double> product_ms, from_zero_ms;
   for (auto _ : state) {
     product_ms.push_back(warm_time_ms([&] { a.multiply(system.rhs, y); }));
-    from_zero_ms.push_back(warm_time_ms([&] { smoothers.back().forward_from_zero(a, system.rhs, y); }));
+    from_zero_ms.push_back(
+        warm_time_ms([&] { smoothers.back().forward_from_zero(a, system.rhs, y); }));
     for (std::size_t s = 0; s < smoothers.size(); ++s)
       sweep_ms[s].push_back(0.5 * warm_time_ms([&] {
                               smoothers[s].forward(a, system.rhs, x);
@@ -329,7 +338,8 @@ void BM_BlockKernels(benchmark::State& state, const std::string& model) {
       smoother.forward_from_zero(a, system.rhs, z);
       a.residual(system.rhs, z, y);
     }));
-    descent_ms[1].push_back(warm_time_ms([&] { smoother.forward_from_zero_with_residual(a, system.rhs, z, y); }));
+    descent_ms[1].push_back(
+        warm_time_ms([&] { smoother.forward_from_zero_with_residual(a, system.rhs, z, y); }));
     for (const bool vector : {false, true}) {
       set_vector_block_kernels(vector);
       product_ms[vector].push_back(warm_time_ms([&] { a.multiply(system.rhs, y); }));
@@ -365,7 +375,8 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   BuiltHierarchy built = paper_transfers(model, kind);
   MultigridParams stationary = params;
   stationary.vcycles = 12;
-  MultigridSolver vcycles(system.matrix, built, stationary, false), pcg(system.matrix, built, params, true);
+  MultigridSolver vcycles(system.matrix, built, stationary, false),
+      pcg(system.matrix, built, params, true);
   vcycles.set_matrix(system.matrix);
   pcg.set_matrix(system.matrix);
   auto jacobi = make_jacobi_pcg_solver(1e-4, 100000);
@@ -382,8 +393,12 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
        {SmootherOrdering::Multicolour, SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
     MultigridParams p = params, s = stationary;
     p.smoother = s.smoother = ordering;
-    Ordered o{smoother_ordering_name(ordering), std::make_unique<MultigridSolver>(system.matrix, built, s, false),
-              std::make_unique<MultigridSolver>(system.matrix, built, p, true), {}, {}, {}};
+    Ordered o{smoother_ordering_name(ordering),
+              std::make_unique<MultigridSolver>(system.matrix, built, s, false),
+              std::make_unique<MultigridSolver>(system.matrix, built, p, true),
+              {},
+              {},
+              {}};
     o.vcycles->set_matrix(system.matrix);
     o.pcg->set_matrix(system.matrix);
     ordered.push_back(std::move(o));
@@ -420,39 +435,50 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   state.counters["operator_complexity"] = d["operator_complexity"].get<double>();
 }
 
-#define GALERKIN_CASES(model)                                                                    \
-  BENCHMARK_CAPTURE(BM_GalerkinUpdate, naive/model, std::string("naive"), std::string(#model))    \
-      ->Unit(benchmark::kMillisecond);                                                           \
-  BENCHMARK_CAPTURE(BM_GalerkinUpdate, stream/model, std::string("stream"), std::string(#model)) \
-      ->Unit(benchmark::kMillisecond);                                                           \
-  BENCHMARK_CAPTURE(BM_GalerkinUpdate, stream_full/model, std::string("stream-full"),          \
-                    std::string(#model))->Unit(benchmark::kMillisecond);                         \
-  BENCHMARK_CAPTURE(BM_GalerkinUpdate, reuse/model, std::string("reuse"), std::string(#model))   \
-      ->Unit(benchmark::kMillisecond);                                                           \
-  BENCHMARK_CAPTURE(BM_GalerkinUpdate, gather/model, std::string("gather"), std::string(#model)) \
-      ->Unit(benchmark::kMillisecond);                                                           \
-  BENCHMARK_CAPTURE(BM_GalerkinUpdate, eigen/model, std::string("eigen"), std::string(#model))   \
-      ->Unit(benchmark::kMillisecond);                                                           \
-  BENCHMARK_CAPTURE(BM_GalerkinUpdate, petsc_ptap/model, std::string("petsc-ptap"),              \
-                    std::string(#model))->Unit(benchmark::kMillisecond);                         \
-  BENCHMARK_CAPTURE(BM_GalerkinRatio, model, std::string(#model))                                \
-      ->Unit(benchmark::kMillisecond)->Iterations(10);                                          \
-  BENCHMARK_CAPTURE(BM_GalerkinLevels, model, std::string(#model))                               \
-      ->Unit(benchmark::kMillisecond)->Iterations(5);                                            \
-  BENCHMARK_CAPTURE(BM_VCycle, model, std::string(#model))->Unit(benchmark::kMillisecond);       \
-  BENCHMARK_CAPTURE(BM_MgpcgSolve, model, std::string(#model))->Unit(benchmark::kMillisecond);   \
-  BENCHMARK_CAPTURE(BM_SmootherSweep, model, std::string(#model))                                \
-      ->Unit(benchmark::kMillisecond)->Iterations(20);                                          \
-  BENCHMARK_CAPTURE(BM_UpdateSolveOverlap, model, std::string(#model))                           \
-      ->Unit(benchmark::kMillisecond)->Iterations(15);                                           \
-  BENCHMARK_CAPTURE(BM_BlockKernels, model, std::string(#model))                                 \
-      ->Unit(benchmark::kMillisecond)->Iterations(20)
+#define GALERKIN_CASES(model)                                                                      \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, naive / model, std::string("naive"), std::string(#model))   \
+      ->Unit(benchmark::kMillisecond);                                                             \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, stream / model, std::string("stream"), std::string(#model)) \
+      ->Unit(benchmark::kMillisecond);                                                             \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, stream_full / model, std::string("stream-full"),            \
+                    std::string(#model))                                                           \
+      ->Unit(benchmark::kMillisecond);                                                             \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, reuse / model, std::string("reuse"), std::string(#model))   \
+      ->Unit(benchmark::kMillisecond);                                                             \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, gather / model, std::string("gather"), std::string(#model)) \
+      ->Unit(benchmark::kMillisecond);                                                             \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, eigen / model, std::string("eigen"), std::string(#model))   \
+      ->Unit(benchmark::kMillisecond);                                                             \
+  BENCHMARK_CAPTURE(BM_GalerkinUpdate, petsc_ptap / model, std::string("petsc-ptap"),              \
+                    std::string(#model))                                                           \
+      ->Unit(benchmark::kMillisecond);                                                             \
+  BENCHMARK_CAPTURE(BM_GalerkinRatio, model, std::string(#model))                                  \
+      ->Unit(benchmark::kMillisecond)                                                              \
+      ->Iterations(10);                                                                            \
+  BENCHMARK_CAPTURE(BM_GalerkinLevels, model, std::string(#model))                                 \
+      ->Unit(benchmark::kMillisecond)                                                              \
+      ->Iterations(5);                                                                             \
+  BENCHMARK_CAPTURE(BM_VCycle, model, std::string(#model))->Unit(benchmark::kMillisecond);         \
+  BENCHMARK_CAPTURE(BM_MgpcgSolve, model, std::string(#model))->Unit(benchmark::kMillisecond);     \
+  BENCHMARK_CAPTURE(BM_SmootherSweep, model, std::string(#model))                                  \
+      ->Unit(benchmark::kMillisecond)                                                              \
+      ->Iterations(20);                                                                            \
+  BENCHMARK_CAPTURE(BM_UpdateSolveOverlap, model, std::string(#model))                             \
+      ->Unit(benchmark::kMillisecond)                                                              \
+      ->Iterations(15);                                                                            \
+  BENCHMARK_CAPTURE(BM_BlockKernels, model, std::string(#model))                                   \
+      ->Unit(benchmark::kMillisecond)                                                              \
+      ->Iterations(20)
 
-#define QUALITY_CASES(model)                                                                      \
-  BENCHMARK_CAPTURE(BM_MultigridQuality, model/meshes, std::string(#model), HierarchyKind::Meshes)  \
-      ->Unit(benchmark::kMillisecond)->Iterations(3);                                               \
-  BENCHMARK_CAPTURE(BM_MultigridQuality, model/lattice, std::string(#model), HierarchyKind::Lattice) \
-      ->Unit(benchmark::kMillisecond)->Iterations(3)
+#define QUALITY_CASES(model)                                                   \
+  BENCHMARK_CAPTURE(BM_MultigridQuality, model / meshes, std::string(#model),  \
+                    HierarchyKind::Meshes)                                     \
+      ->Unit(benchmark::kMillisecond)                                          \
+      ->Iterations(3);                                                         \
+  BENCHMARK_CAPTURE(BM_MultigridQuality, model / lattice, std::string(#model), \
+                    HierarchyKind::Lattice)                                    \
+      ->Unit(benchmark::kMillisecond)                                          \
+      ->Iterations(3)
 
 QUALITY_CASES(bunny);
 QUALITY_CASES(horse);

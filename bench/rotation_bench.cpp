@@ -69,7 +69,8 @@ void BM_Rotation(benchmark::State& state, const std::string& method, bool warm) 
     change.push_back(angle_between(rotations[e], prep.warm[e]));
   std::sort(change.begin(), change.end());
   state.counters["frame_change_median_rad"] = change[change.size() / 2];
-  state.counters["frame_change_p99_rad"] = change[static_cast<std::size_t>(0.99 * (change.size() - 1))];
+  state.counters["frame_change_p99_rad"] =
+      change[static_cast<std::size_t>(0.99 * (change.size() - 1))];
 }
 
 /// energy-exact / polar and energy-newton(warm) / polar, timed alternately in the same run.
@@ -98,10 +99,10 @@ void BM_RotationRatio(benchmark::State& state) {
   state.counters["newton_over_polar"] = t_newton / t_polar;
 }
 
-#define ROTATION_CASES(name, method)                                              \
-  BENCHMARK_CAPTURE(BM_Rotation, name##_warm, std::string(method), true)           \
-      ->Unit(benchmark::kMillisecond);                                             \
-  BENCHMARK_CAPTURE(BM_Rotation, name##_cold, std::string(method), false)          \
+#define ROTATION_CASES(name, method)                                      \
+  BENCHMARK_CAPTURE(BM_Rotation, name##_warm, std::string(method), true)  \
+      ->Unit(benchmark::kMillisecond);                                    \
+  BENCHMARK_CAPTURE(BM_Rotation, name##_cold, std::string(method), false) \
       ->Unit(benchmark::kMillisecond)
 
 ROTATION_CASES(energy_newton, "energy-newton");

@@ -31,14 +31,23 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   MultigridParams params;
   params.hierarchy.levels = hierarchy_levels(model, HierarchyKind::Meshes);
   params.smoother = SmootherOrdering::Domains;  // the default ordering
-  MultigridSolver solver(system.matrix, paper_transfers(model, HierarchyKind::Meshes), params, true);
+  MultigridSolver solver(system.matrix, paper_transfers(model, HierarchyKind::Meshes), params,
+                         true);
   solver.set_matrix(system.matrix);
-  MultigridHierarchy hierarchy(system.matrix, paper_transfers(model, HierarchyKind::Meshes).transfers);
+  MultigridHierarchy hierarchy(system.matrix,
+                               paper_transfers(model, HierarchyKind::Meshes).transfers);
   hierarchy.prepare(GalerkinMethod::Gather);
   Eigen::VectorXd vx = Eigen::VectorXd::Zero(system.rhs.size());
   const std::vector<std::pair<std::string, std::function<void()>>> kernels = {
-      {"rotate", [&] { rotations = warm; rotate->extract(x, rotations); }},
-      {"assemble", [&] { assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, p.stiffness, force); }},
+      {"rotate",
+       [&] {
+         rotations = warm;
+         rotate->extract(x, rotations);
+       }},
+      {"assemble",
+       [&] {
+         assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, p.stiffness, force);
+       }},
       {"forces", [&] { force = internal_forces(p, rotations, u); }},  // Newton's residual pass
       {"spmv", [&] { system.matrix.multiply(system.rhs, y); }},
       {"galerkin", [&] { hierarchy.update(system.matrix, GalerkinMethod::Gather); }},
@@ -64,9 +73,15 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   state.counters["rotate_one_ns_per_element"] = 1e6 * median(one["rotate"]) / p.mesh.num_tets();
 }
 
-BENCHMARK_CAPTURE(BM_ThreadScaling, bunny, std::string("bunny"))->Unit(benchmark::kMillisecond)->Iterations(7);
-BENCHMARK_CAPTURE(BM_ThreadScaling, horse, std::string("horse"))->Unit(benchmark::kMillisecond)->Iterations(7);
-BENCHMARK_CAPTURE(BM_ThreadScaling, dragon, std::string("dragon"))->Unit(benchmark::kMillisecond)->Iterations(7);
+BENCHMARK_CAPTURE(BM_ThreadScaling, bunny, std::string("bunny"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(7);
+BENCHMARK_CAPTURE(BM_ThreadScaling, horse, std::string("horse"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(7);
+BENCHMARK_CAPTURE(BM_ThreadScaling, dragon, std::string("dragon"))
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(7);
 
 }  // namespace
 }  // namespace corofem::bench

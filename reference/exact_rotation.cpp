@@ -37,10 +37,9 @@ Eigen::Matrix3d brute_force_minimize(const std::function<double(const Eigen::Mat
   double best_energy = energy(best);
   for (int s = 0; s < samples; ++s) {
     const double u1 = u(rng), u2 = u(rng), u3 = u(rng);
-    const Eigen::Quaterniond q(std::sqrt(u1) * std::cos(two_pi * u3),
-                               std::sqrt(1 - u1) * std::sin(two_pi * u2),
-                               std::sqrt(1 - u1) * std::cos(two_pi * u2),
-                               std::sqrt(u1) * std::sin(two_pi * u3));
+    const Eigen::Quaterniond q(
+        std::sqrt(u1) * std::cos(two_pi * u3), std::sqrt(1 - u1) * std::sin(two_pi * u2),
+        std::sqrt(1 - u1) * std::cos(two_pi * u2), std::sqrt(u1) * std::sin(two_pi * u3));
     const Eigen::Matrix3d r = q.toRotationMatrix();
     const double e = energy(r);
     if (e < best_energy) {

@@ -17,8 +17,7 @@ struct Cantilever {
     FeProblem p = make_fe_problem(std::move(mesh), std::move(m));
     for (int v : vertices_in_box(p.mesh.rest, {Vec3::Zero(), Vec3(0, height, height)}))
       p.dirichlet.fix_vertex(v);
-    p.external_force =
-        gravity_load(p.mesh, p.materials, Vec3(0, 0, -gravity * gravity_scale));
+    p.external_force = gravity_load(p.mesh, p.materials, Vec3(0, 0, -gravity * gravity_scale));
     return p;
   }
 

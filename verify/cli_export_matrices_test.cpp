@@ -36,7 +36,8 @@ TEST(CliExportMatrices, LevelsAreGalerkinProductsOfTheFiles) {
     EXPECT_EQ(rh.cols(), below.rows());
     // 17 significant digits in the files: the product agrees to round-off.
     const Eigen::SparseMatrix<double> ref = reference::eigen_galerkin(rh, below);
-    EXPECT_LT((Eigen::MatrixXd(a) - Eigen::MatrixXd(ref)).norm(), 1e-13 * ref.norm()) << "level " << h;
+    EXPECT_LT((Eigen::MatrixXd(a) - Eigen::MatrixXd(ref)).norm(), 1e-13 * ref.norm())
+        << "level " << h;
   }
 }
 

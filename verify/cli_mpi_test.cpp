@@ -29,10 +29,14 @@ std::string mpirun_two_ranks() {
   return "mpirun -np 2";
 }
 
-bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") == 0; }
+bool have_mpirun() {
+  return std::system("command -v mpirun > /dev/null 2>&1") == 0;
+}
 
 /// Where the build has PETSc, mpirun must be there too (ci/setup installs it with petsc-dev).
-void require_mpirun() { ASSERT_TRUE(have_mpirun()) << "mpirun is missing (ci/setup installs it with petsc-dev)"; }
+void require_mpirun() {
+  ASSERT_TRUE(have_mpirun()) << "mpirun is missing (ci/setup installs it with petsc-dev)";
+}
 
 /// A cantilever bar under gravity, 6 implicit Euler steps, solved to a relative residual of
 /// 1e-12 by `solver` on a three-level hierarchy (petsc-mg's).
@@ -42,8 +46,13 @@ nlohmann::json dynamic_bar(const std::string& solver) {
           {"fixed", {{{"box", {{0, 0, 0}, {0, 0.2, 0.2}}}}}},
           {"gravity", {0, 0, -9.81}},
           {"analysis",
-           {{"type", "dynamic"}, {"rotation", "energy-newton"}, {"solver", solver}, {"levels", 3}, {"dt", 0.01},
-            {"steps", 6}, {"tolerance", 1e-12}}}};
+           {{"type", "dynamic"},
+            {"rotation", "energy-newton"},
+            {"solver", solver},
+            {"levels", 3},
+            {"dt", 0.01},
+            {"steps", 6},
+            {"tolerance", 1e-12}}}};
 }
 
 std::vector<double> displacements(const nlohmann::json& record) {
@@ -63,7 +72,8 @@ TEST(CliMpi, TwoRanksEqualOneRankOnADynamicScene) {
     const std::string scene = "'" + (dir / "bar.json").string() + "'";
     const auto one = run_cli("run " + scene + " --out '" + (dir / "one.json").string() + "'");
     ASSERT_EQ(one.exit_code, 0) << one.err;
-    const auto two = run_cli("run " + scene + " --out '" + (dir / "two.json").string() + "'", mpirun_two_ranks());
+    const auto two = run_cli("run " + scene + " --out '" + (dir / "two.json").string() + "'",
+                             mpirun_two_ranks());
     ASSERT_EQ(two.exit_code, 0) << two.err;
     const auto a = nlohmann::json::parse(test::read_text(dir / "one.json"));
     const auto b = nlohmann::json::parse(test::read_text(dir / "two.json"));
@@ -93,8 +103,9 @@ TEST(CliMpi, SerialSolverUnderMpirunIsBadInput) {
   ASSERT_NO_FATAL_FAILURE(require_mpirun());
   TempDir dir;
   write_text(dir / "bar.json", dynamic_bar("mgpcg").dump());
-  const auto r = run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "r.json").string() + "'",
-                         mpirun_two_ranks());
+  const auto r =
+      run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "r.json").string() + "'",
+              mpirun_two_ranks());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("analysis.solver 'mgpcg' under mpirun -np 2"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));
@@ -107,9 +118,10 @@ TEST(CliMpi, ScalingScriptRecordsEveryConfiguration) {
   ASSERT_NO_FATAL_FAILURE(require_mpirun());
   TempDir dir;
   const std::filesystem::path bin = std::filesystem::path(COROFEM_CLI).parent_path();
-  const std::string command = "python3 '" + (test::source_dir() / "bench" / "mpi_scaling.py").string() +
-                              "' --smoke --bin '" + bin.string() + "' --out '" + (dir / "s.json").string() +
-                              "' 2> '" + (dir / "err").string() + "'";
+  const std::string command = "python3 '" +
+                              (test::source_dir() / "bench" / "mpi_scaling.py").string() +
+                              "' --smoke --bin '" + bin.string() + "' --out '" +
+                              (dir / "s.json").string() + "' 2> '" + (dir / "err").string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0) << test::read_text(dir / "err");
   const auto s = nlohmann::json::parse(test::read_text(dir / "s.json"));
   EXPECT_TRUE(s["context"].contains("commit"));
@@ -136,7 +148,8 @@ TEST(CliMpi, ScalingScriptRecordsEveryConfiguration) {
     EXPECT_LE(phases, ms["step"].get<double>() * (1 + 1e-9));
     const int workers = r["solver"] == "mgpcg" ? r["threads"].get<int>() : r["ranks"].get<int>();
     EXPECT_EQ(r["solver"] == "mgpcg" ? r["ranks"].get<int>() : r["threads"].get<int>(), 1);
-    // The weak study's bar has `workers` times the base bar's cells along x: the tets scale with it.
+    // The weak study's bar has `workers` times the base bar's cells along x: the tets scale with
+    // it.
     const int tets = r["tets"].get<int>();
     EXPECT_EQ(tets, (r["study"] == "weak" ? workers : 1) * 6 * 8 * 4 * 4);
     const double u = r["displacement_norm"].get<double>();
@@ -148,12 +161,14 @@ TEST(CliMpi, ScalingScriptRecordsEveryConfiguration) {
 }
 
 TEST(CliMpi, TwoRanksNeedPetsc) {
-  if (have_petsc()) GTEST_SKIP() << "this build has PETSc: CliMpi.TwoRanksEqualOneRankOnADynamicScene covers it";
+  if (have_petsc())
+    GTEST_SKIP() << "this build has PETSc: CliMpi.TwoRanksEqualOneRankOnADynamicScene covers it";
   if (!have_mpirun()) GTEST_SKIP() << "no mpirun to launch two ranks with";
   TempDir dir;
   write_text(dir / "bar.json", dynamic_bar("petsc-gamg").dump());
-  const auto r = run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "r.json").string() + "'",
-                         mpirun_two_ranks());
+  const auto r =
+      run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "r.json").string() + "'",
+              mpirun_two_ranks());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("has no PETSc and so no MPI"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));

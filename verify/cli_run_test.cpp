@@ -4,8 +4,8 @@
 
 #include <Eigen/Geometry>
 #include <array>
-#include <vector>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "fem/corotated_assembly.hpp"
 #include "fem/dirichlet.hpp"
@@ -39,8 +39,9 @@ TEST(CliRun, WritesTheDocumentedRecord) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("converged"), std::string::npos);  // progress on stderr
   const auto j = nlohmann::json::parse(test::read_text(dir / "result.json"));
-  for (const char* key : {"node_tags", "rest", "displacement", "converged", "iterations", "residual",
-                          "timings_ms", "scene", "context", "element_tags", "rotations"})
+  for (const char* key :
+       {"node_tags", "rest", "displacement", "converged", "iterations", "residual", "timings_ms",
+        "scene", "context", "element_tags", "rotations"})
     EXPECT_TRUE(j.contains(key)) << key;
   for (const char* key : {"commit", "compiler", "flags", "cpu"})
     EXPECT_TRUE(j["context"].contains(key)) << key;
@@ -70,7 +71,8 @@ TEST(CliRun, WritesTheDocumentedRecord) {
   // method): unit, proper, and Q^T F symmetric to the rounding of F's entries (|F| ~ 1).
   for (int e = 0; e < p.mesh.num_tets(); ++e) {
     const auto& q = j["rotations"][e];
-    const Eigen::Quaterniond quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+    const Eigen::Quaterniond quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(),
+                                  q[3].get<double>());
     EXPECT_NEAR(quat.norm(), 1.0, 1e-12) << "element " << e;
     const Tet& t = p.mesh.tets[e];
     Mat3 rest_edges, edges;
@@ -89,8 +91,10 @@ TEST(CliRun, WritesTheDocumentedRecord) {
   std::vector<Mat3> polar(p.mesh.tets.size(), Mat3::Identity());
   make_rotation_extractor("polar", p.mesh)->extract(x, polar);
   Eigen::VectorXd gravity(p.num_dofs());
-  for (int v = 0; v < p.mesh.num_vertices(); ++v) gravity.segment<3>(3 * v) = p.mass.segment<3>(3 * v).cwiseProduct(Vec3(0, 0, -9.81));
-  const double imbalance = free_norm(p.dirichlet, gravity - internal_forces(p, polar, u)) / free_norm(p.dirichlet, gravity);
+  for (int v = 0; v < p.mesh.num_vertices(); ++v)
+    gravity.segment<3>(3 * v) = p.mass.segment<3>(3 * v).cwiseProduct(Vec3(0, 0, -9.81));
+  const double imbalance = free_norm(p.dirichlet, gravity - internal_forces(p, polar, u)) /
+                           free_norm(p.dirichlet, gravity);
   EXPECT_LT(imbalance, 1e-8);
   // And it is not the rest state: the free end hangs down.
   EXPECT_LT(u.minCoeff(), -1e-4);
@@ -98,11 +102,13 @@ TEST(CliRun, WritesTheDocumentedRecord) {
 
 struct BadRun {
   const char* name;
-  const char* scene;      // scene text; empty: no scene file
-  const char* fragment;   // in stderr
+  const char* scene;     // scene text; empty: no scene file
+  const char* fragment;  // in stderr
 };
 
-void PrintTo(const BadRun& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const BadRun& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class CliBadInput : public ::testing::TestWithParam<BadRun> {};
 
@@ -122,17 +128,25 @@ TEST_P(CliBadInput, ExitsTwoNamesTheFaultAndWritesNothing) {
 const BadRun kBadRuns[] = {
     {"MissingScene", "", "does not exist"},
     {"NotJson", "{ mesh: ", "is not valid JSON"},
-    {"UnknownKey", R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3}, "colour": 1})",
+    {"UnknownKey",
+     R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3}, "colour": 1})",
      "colour is not a known key"},
-    {"MissingMeshFile", R"({"mesh": {"file": "nope.msh"}, "material": {"young": 1, "poisson": 0.3}})",
+    {"MissingMeshFile",
+     R"({"mesh": {"file": "nope.msh"}, "material": {"young": 1, "poisson": 0.3}})",
      "nope.msh' does not exist"},
-    {"FixedSelectsNothing", R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3},
-       "fixed": [{"box": [[5,5,5],[6,6,6]]}]})", "fixed[0].box selects no vertex"},
-    {"RigidMotionFree", R"({"mesh": {"box": [1,1,1], "cells": [2,2,2]}, "material": {"young": 1, "poisson": 0.3},
-       "fixed": [{"box": [[0,0,0],[0,0,1]]}]})", "leaves rigid motions free"},
-    {"NumberOverflow", R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": -1e400, "poisson": 0.3}})",
+    {"FixedSelectsNothing",
+     R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3},
+       "fixed": [{"box": [[5,5,5],[6,6,6]]}]})",
+     "fixed[0].box selects no vertex"},
+    {"RigidMotionFree",
+     R"({"mesh": {"box": [1,1,1], "cells": [2,2,2]}, "material": {"young": 1, "poisson": 0.3},
+       "fixed": [{"box": [[0,0,0],[0,0,1]]}]})",
+     "leaves rigid motions free"},
+    {"NumberOverflow",
+     R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": -1e400, "poisson": 0.3}})",
      "key 'young' is outside the range of a double"},
-    {"NoSupportsStatic", R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3}})",
+    {"NoSupportsStatic",
+     R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3}})",
      "leaves rigid motions free"},
 };
 
@@ -173,7 +187,8 @@ TEST(CliRun, RivalSolverRunsWhereBuiltAndIsBadInputWhereNot) {
   scene["analysis"]["formulation"] = "linear";
   scene.erase("output");
   write_text(dir / "bar.json", scene.dump());
-  const auto r = run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "result.json").string() + "'");
+  const auto r = run_cli("run '" + (dir / "bar.json").string() + "' --out '" +
+                         (dir / "result.json").string() + "'");
   if (have_petsc()) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(test::read_text(dir / "result.json"));
@@ -193,27 +208,35 @@ nlohmann::json multigrid_cube(const nlohmann::json& coarse) {
           {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
           {"fixed", {{{"box", {{0, 0, 0}, {0, 1, 1}}}}}},
           {"gravity", {0, 0, -9.81}},
-          {"analysis", {{"type", "static"}, {"formulation", "linear"}, {"solver", "multigrid"}, {"levels", 2},
-                        {"tolerance", 1e-10}}}};
+          {"analysis",
+           {{"type", "static"},
+            {"formulation", "linear"},
+            {"solver", "multigrid"},
+            {"levels", 2},
+            {"tolerance", 1e-10}}}};
 }
 
 /// One ASCII gmsh 2.2 file with the given nodes (tags 1..n) and linear tets.
-std::string msh_v2(const std::vector<std::array<double, 3>>& nodes, const std::vector<std::array<int, 4>>& tets) {
-  std::string s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + std::to_string(nodes.size()) + "\n";
+std::string msh_v2(const std::vector<std::array<double, 3>>& nodes,
+                   const std::vector<std::array<int, 4>>& tets) {
+  std::string s =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + std::to_string(nodes.size()) + "\n";
   for (std::size_t i = 0; i < nodes.size(); ++i)
-    s += std::to_string(i + 1) + " " + std::to_string(nodes[i][0]) + " " + std::to_string(nodes[i][1]) + " " +
-         std::to_string(nodes[i][2]) + "\n";
+    s += std::to_string(i + 1) + " " + std::to_string(nodes[i][0]) + " " +
+         std::to_string(nodes[i][1]) + " " + std::to_string(nodes[i][2]) + "\n";
   s += "$EndNodes\n$Elements\n" + std::to_string(tets.size()) + "\n";
   for (std::size_t e = 0; e < tets.size(); ++e)
-    s += std::to_string(e + 1) + " 4 2 0 1 " + std::to_string(tets[e][0]) + " " + std::to_string(tets[e][1]) + " " +
-         std::to_string(tets[e][2]) + " " + std::to_string(tets[e][3]) + "\n";
+    s += std::to_string(e + 1) + " 4 2 0 1 " + std::to_string(tets[e][0]) + " " +
+         std::to_string(tets[e][1]) + " " + std::to_string(tets[e][2]) + " " +
+         std::to_string(tets[e][3]) + "\n";
   return s + "$EndElements\n";
 }
 
 TEST(CliRun, MultigridRecordDescribesTheHierarchy) {
   TempDir dir;
   write_text(dir / "cube.json", multigrid_cube({{"box", {1, 1, 1}}, {"cells", {2, 2, 2}}}).dump());
-  const auto r = run_cli("run '" + (dir / "cube.json").string() + "' --out '" + (dir / "r.json").string() + "'");
+  const auto r = run_cli("run '" + (dir / "cube.json").string() + "' --out '" +
+                         (dir / "r.json").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(test::read_text(dir / "r.json"));
   const auto& mg = j["multigrid"];
@@ -244,13 +267,16 @@ TEST(CliRun, BadCoarseMeshIsBadInput) {
   };
   const std::vector<std::array<int, 4>> one_tet{{1, 2, 3, 4}};
   std::vector<std::array<double, 3>> short_box;
-  for (int v = 0; v < 8; ++v) short_box.push_back({v & 1 ? 0.55 : 0.0, v & 2 ? 1.0 : 0.0, v & 4 ? 1.0 : 0.0});
+  for (int v = 0; v < 8; ++v)
+    short_box.push_back({v & 1 ? 0.55 : 0.0, v & 2 ? 1.0 : 0.0, v & 4 ? 1.0 : 0.0});
   const std::vector<std::array<int, 4>> kuhn_cube{{1, 2, 4, 8}, {1, 2, 6, 8}, {1, 3, 4, 8},
                                                   {1, 3, 7, 8}, {1, 5, 6, 8}, {1, 5, 7, 8}};
   const Case cases[] = {
-      {"away", msh_v2({{{10, 0, 0}}, {{11, 0, 0}}, {{10, 1, 0}}, {{10, 0, 1}}}, one_tet), "does not overlap"},
+      {"away", msh_v2({{{10, 0, 0}}, {{11, 0, 0}}, {{10, 1, 0}}, {{10, 0, 1}}}, one_tet),
+       "does not overlap"},
       {"flat", msh_v2({{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1, 1, 0}}}, one_tet), "degenerate"},
-      {"corner", msh_v2({{{0, 0, 0}}, {{0.3, 0, 0}}, {{0, 0.3, 0}}, {{0, 0, 0.3}}}, one_tet), "lie outside it"},
+      {"corner", msh_v2({{{0, 0, 0}}, {{0.3, 0, 0}}, {{0, 0.3, 0}}, {{0, 0, 0.3}}}, one_tet),
+       "lie outside it"},
       // [0, 0.55] x [0, 1]^2 in 6 tets: the fine vertices at x = 1 are 0.45 from it, more than
       // a quarter of the cube's diagonal.
       {"short", msh_v2(short_box, kuhn_cube), "does not cover"},
@@ -260,7 +286,8 @@ TEST(CliRun, BadCoarseMeshIsBadInput) {
     write_text(dir / "coarse.msh", c.msh);
     write_text(dir / "cube.json", multigrid_cube({{"file", "coarse.msh"}}).dump());
     const auto out = dir / "r.json";
-    const auto r = run_cli("run '" + (dir / "cube.json").string() + "' --out '" + out.string() + "'");
+    const auto r =
+        run_cli("run '" + (dir / "cube.json").string() + "' --out '" + out.string() + "'");
     EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.err;
     EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.name << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << c.name;

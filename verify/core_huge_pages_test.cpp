@@ -56,7 +56,8 @@ TEST(HugePages, LargeVectorsAreAlignedAndAdvisedSmallOnesAreNot) {
 TEST(HugePages, AnImpossibleSizeThrowsBadAlloc) {
   // Rounding up to 2 MB must not wrap around to a small block. (A sanitizer's allocator, which
   // replaces this one there, reports such a size as an error instead.)
-  if (huge_pages_setting().find("sanitizer") != std::string::npos) GTEST_SKIP() << "sanitizer build";
+  if (huge_pages_setting().find("sanitizer") != std::string::npos)
+    GTEST_SKIP() << "sanitizer build";
   volatile std::size_t huge = SIZE_MAX - 100;
   EXPECT_THROW(::operator delete(::operator new(huge)), std::bad_alloc);
   volatile std::size_t half = SIZE_MAX / 2;

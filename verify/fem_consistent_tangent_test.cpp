@@ -32,7 +32,8 @@ Eigen::VectorXd large_displacement(const FeProblem& p) {
   for (int v = 0; v < p.mesh.num_vertices(); ++v) {
     const Vec3 x = p.mesh.rest[v];
     const double bend = 0.8 * x.x(), twist = 0.6 * x.x();
-    Vec3 y(1.4 * std::sin(bend) / 0.8 * (1 + 0.3 * x.z()), x.y(), x.z() + (1 - std::cos(bend)) / 0.8);
+    Vec3 y(1.4 * std::sin(bend) / 0.8 * (1 + 0.3 * x.z()), x.y(),
+           x.z() + (1 - std::cos(bend)) / 0.8);
     y = Eigen::AngleAxisd(twist, Vec3::UnitX()).toRotationMatrix() * y;
     y += 0.02 * Vec3(std::sin(7.1 * v), std::cos(3.3 * v), std::sin(1.7 * v + 0.4));
     u.segment<3>(3 * v) = turn * y - x;
@@ -40,8 +41,8 @@ Eigen::VectorXd large_displacement(const FeProblem& p) {
   return u;
 }
 
-Eigen::VectorXd force_at(const FeProblem& p, RotationExtractor& method, const std::vector<Mat3>& warm,
-                         const Eigen::VectorXd& u) {
+Eigen::VectorXd force_at(const FeProblem& p, RotationExtractor& method,
+                         const std::vector<Mat3>& warm, const Eigen::VectorXd& u) {
   std::vector<Mat3> r = warm;
   method.extract(p.positions(u), r);
   return internal_forces(p, r, u);
@@ -80,7 +81,8 @@ Measured measure(const std::string& name) {
   Eigen::VectorXd force;
   assemble_corotated(p.elements, p.mesh, p.assembly, r, u, p.stiffness, force);
   const Eigen::MatrixXd ktilde = Eigen::MatrixXd(to_eigen(p.stiffness));
-  return {(analytic - fd).norm() / fd.norm(), (analytic - analytic.transpose()).norm() / analytic.norm(),
+  return {(analytic - fd).norm() / fd.norm(),
+          (analytic - analytic.transpose()).norm() / analytic.norm(),
           (ktilde - fd).norm() / fd.norm()};
 }
 
@@ -92,7 +94,9 @@ struct TangentCase {
   bool conservative;
 };
 
-void PrintTo(const TangentCase& c, std::ostream* os) { *os << c.method; }
+void PrintTo(const TangentCase& c, std::ostream* os) {
+  *os << c.method;
+}
 
 class ConsistentTangent : public ::testing::TestWithParam<TangentCase> {};
 
@@ -112,7 +116,8 @@ TEST_P(ConsistentTangent, EqualsFiniteDifferencesOfTheForce) {
   // (Q held constant) is at least 1e-2 from it (4.5e-2 to 8.8e-2 measured), 1e4 times the
   // tolerance below, so that check sees a missing or wrong term.
   if (name != "none") {
-    EXPECT_GT(m.ktilde_error, 1e-2) << name << ": the deformation no longer tests the rotation's terms";
+    EXPECT_GT(m.ktilde_error, 1e-2)
+        << name << ": the deformation no longer tests the rotation's terms";
   }
   if (RotationTangent(p, name).exact()) {
     // The differences' truncation (~1e-12) and rounding (~1e-10) bound what they can resolve.
@@ -130,7 +135,8 @@ TEST_P(ConsistentTangent, EqualsFiniteDifferencesOfTheForce) {
     EXPECT_LT(m.fd_error, 0.3) << name;
   }
   if (GetParam().conservative) {
-    // A gradient's Jacobian is symmetric; only the sums' rounding (|J| ~ 1e5, ulps ~ 1e-16) is left.
+    // A gradient's Jacobian is symmetric; only the sums' rounding (|J| ~ 1e5, ulps ~ 1e-16) is
+    // left.
     EXPECT_LT(m.asymmetry, 1e-12) << name;
   } else {
     // No potential: an asymmetry of the size of the rotation's terms, not of rounding.
@@ -138,17 +144,18 @@ TEST_P(ConsistentTangent, EqualsFiniteDifferencesOfTheForce) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, ConsistentTangent,
-                         ::testing::Values(TangentCase{"polar", true}, TangentCase{"polar-fixed", true},
-                                           TangentCase{"mueller2016", true}, TangentCase{"polar-smoothed", false},
-                                           TangentCase{"energy-newton", false}, TangentCase{"energy-exact", false},
-                                           TangentCase{"qr", false}, TangentCase{"none", true}),
-                         [](const auto& info) {
-                           std::string s = info.param.method;
-                           for (char& c : s)
-                             if (c == '-') c = '_';
-                           return s;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Methods, ConsistentTangent,
+    ::testing::Values(TangentCase{"polar", true}, TangentCase{"polar-fixed", true},
+                      TangentCase{"mueller2016", true}, TangentCase{"polar-smoothed", false},
+                      TangentCase{"energy-newton", false}, TangentCase{"energy-exact", false},
+                      TangentCase{"qr", false}, TangentCase{"none", true}),
+    [](const auto& info) {
+      std::string s = info.param.method;
+      for (char& c : s)
+        if (c == '-') c = '_';
+      return s;
+    });
 
 TEST(ConsistentTangent, PolarIsConservativeTheEnergyMinimizerIsNot) {
   // Polar's force is the gradient of the corotated energy: its tangent is symmetric to rounding.

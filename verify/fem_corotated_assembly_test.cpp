@@ -2,10 +2,9 @@
 // assembly against an Eigen matrix built from triplets.
 #include <gtest/gtest.h>
 
-#include <limits>
-
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
+#include <limits>
 #include <random>
 
 #include "fem/corotated_assembly.hpp"
@@ -39,7 +38,8 @@ std::vector<Mat3> polar_rotations(const FeProblem& p, const std::vector<Vec3>& p
 
 Eigen::VectorXd displacement(const FeProblem& p, const std::vector<Vec3>& positions) {
   Eigen::VectorXd u(p.num_dofs());
-  for (int v = 0; v < p.mesh.num_vertices(); ++v) u.segment<3>(3 * v) = positions[v] - p.mesh.rest[v];
+  for (int v = 0; v < p.mesh.num_vertices(); ++v)
+    u.segment<3>(3 * v) = positions[v] - p.mesh.rest[v];
   return u;
 }
 
@@ -47,7 +47,8 @@ TEST(CorotatedAssembly, RigidMotionGivesZeroForce) {
   FeProblem p = small_box();
   std::mt19937 rng(7);
   double scale = 0;  // force scale: |K_e| times the mesh size
-  for (int e = 0; e < p.mesh.num_tets(); ++e) scale = std::max(scale, test::dense_element_stiffness(p, e).norm());
+  for (int e = 0; e < p.mesh.num_tets(); ++e)
+    scale = std::max(scale, test::dense_element_stiffness(p, e).norm());
   for (int trial = 0; trial < 5; ++trial) {
     const Mat3 r = random_rotation(rng);
     const Vec3 t(3, -2, 5);
@@ -60,7 +61,8 @@ TEST(CorotatedAssembly, RigidMotionGivesZeroForce) {
     // The assembly's force (from K_e's columns instead of the gradients) too, in both forms.
     test::in_each_kernel_form([&] {
       Eigen::VectorXd fused;
-      assemble_corotated(p.elements, p.mesh, p.assembly, rotations, displacement(p, moved), p.stiffness, fused);
+      assemble_corotated(p.elements, p.mesh, p.assembly, rotations, displacement(p, moved),
+                         p.stiffness, fused);
       EXPECT_LT(fused.lpNorm<Eigen::Infinity>(), 1e-12 * scale * 6.0) << "trial " << trial;
     });
   }
@@ -124,7 +126,8 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
     Eigen::VectorXd force;
     // K is not zeroed first: each block's lowest-numbered element stores, the others add. NaN
     // in every entry beforehand shows a block no element wrote, or one added to a stale value.
-    std::fill(p.stiffness.values.begin(), p.stiffness.values.end(), std::numeric_limits<double>::quiet_NaN());
+    std::fill(p.stiffness.values.begin(), p.stiffness.values.end(),
+              std::numeric_limits<double>::quiet_NaN());
     assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, p.stiffness, force);
     const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
     // Same sums in a different order: round-off of a few ulps of |K|.
@@ -144,7 +147,8 @@ TEST(BrcAssembly, EqualsEigenTripletAssemblyAndSpmvInBothForms) {
     BrcMatrix scaled = p.stiffness;
     std::fill(scaled.values.begin(), scaled.values.end(), std::numeric_limits<double>::quiet_NaN());
     Eigen::VectorXd scaled_force;
-    assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, scaled, scaled_force, scale, &d);
+    assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, scaled, scaled_force, scale,
+                       &d);
     EXPECT_LT((to_eigen(scaled) - expected).norm(), 1e-14 * expected.norm());
     EXPECT_EQ((scaled_force - force).cwiseAbs().maxCoeff(), 0.0);
     Eigen::VectorXd x = Eigen::VectorXd::Random(p.num_dofs());
@@ -170,7 +174,8 @@ TEST(CorotatedAssembly, InternalForcesEqualTheDenseElementSum) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-0.1, 0.1);
   std::vector<Vec3> moved(p.mesh.rest.size());
-  for (std::size_t v = 0; v < moved.size(); ++v) moved[v] = p.mesh.rest[v] + Vec3(u(rng), u(rng), u(rng));
+  for (std::size_t v = 0; v < moved.size(); ++v)
+    moved[v] = p.mesh.rest[v] + Vec3(u(rng), u(rng), u(rng));
   std::vector<Mat3> rotations(p.mesh.tets.size());
   for (auto& q : rotations) q = random_rotation(rng);
   const Eigen::VectorXd f = internal_forces(p, rotations, displacement(p, moved));
@@ -178,9 +183,11 @@ TEST(CorotatedAssembly, InternalForcesEqualTheDenseElementSum) {
   for (int e = 0; e < p.mesh.num_tets(); ++e) {
     const Tet& t = p.mesh.tets[e];
     Vec12 s;
-    for (int a = 0; a < 4; ++a) s.segment<3>(3 * a) = rotations[e].transpose() * moved[t[a]] - p.mesh.rest[t[a]];
+    for (int a = 0; a < 4; ++a)
+      s.segment<3>(3 * a) = rotations[e].transpose() * moved[t[a]] - p.mesh.rest[t[a]];
     const Vec12 local = test::dense_element_stiffness(p, e) * s;
-    for (int a = 0; a < 4; ++a) expected.segment<3>(3 * t[a]) += rotations[e] * local.segment<3>(3 * a);
+    for (int a = 0; a < 4; ++a)
+      expected.segment<3>(3 * t[a]) += rotations[e] * local.segment<3>(3 * a);
   }
   // The same forces summed in another order (and s shifted by a translation K_e annihilates):
   // round-off relative to the element forces' size, |K_e| |p| ~ 1e2 times |f| here: 1e-12.

@@ -23,7 +23,8 @@ TEST(Dirichlet, EliminationEqualsReducedDenseSolve) {
   FeProblem p = make_fe_problem(std::move(mesh), std::move(m));
   std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd force;
-  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
+  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()),
+                     p.stiffness, force);
   const Eigen::MatrixXd k = Eigen::MatrixXd(to_eigen(p.stiffness));
   for (int v = 0; v < p.mesh.num_vertices(); ++v)
     if (p.mesh.rest[v].z() < 1e-12) p.dirichlet.fix_vertex(v, Vec3(0.01 * v, -0.02, 0.003 * v));
@@ -69,7 +70,8 @@ TEST(Dirichlet, EliminationIsTheDenseOneBitForBitWithSomeDofsOfAVertexFixed) {
   Eigen::VectorXd dense_b = b;
   for (int row = 0; row < dense.rows(); ++row)
     for (int col = 0; col < dense.cols(); ++col) {
-      if (dense(row, col) == 0 && row != col) continue;  // outside the pattern (no entry is 0 inside)
+      if (dense(row, col) == 0 && row != col)
+        continue;  // outside the pattern (no entry is 0 inside)
       if (!bc.fixed[row] && bc.fixed[col]) dense_b[row] -= dense(row, col) * bc.value[col];
       if (bc.fixed[row] || bc.fixed[col]) dense(row, col) = row == col ? 1.0 : 0.0;
     }

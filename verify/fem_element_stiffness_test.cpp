@@ -17,7 +17,8 @@ Mat12 unit_tet_stiffness(const Material& m) {
 }
 
 TEST(ElementStiffness, MatchesHandComputedUnitTet) {
-  // grad N1 = e1, grad N2 = e2, V = 1/6: K_11 = V diag(l + 2m, m, m), K_12 = V (l e1 e2^T + m e2 e1^T).
+  // grad N1 = e1, grad N2 = e2, V = 1/6: K_11 = V diag(l + 2m, m, m), K_12 = V (l e1 e2^T + m e2
+  // e1^T).
   const Material m{1000, 0.25, 1};
   const double l = m.lame_lambda(), mu = m.lame_mu(), v = 1.0 / 6;
   ASSERT_NEAR(l, 400, 1e-12);

@@ -9,11 +9,11 @@
 
 #include "cantilever_fixture.hpp"
 #include "fem/corotated_assembly.hpp"
-#include "integrate/implicit_euler.hpp"
 #include "fem/rotation_tangent.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "integrate/static_solver.hpp"
-#include "rotation/rotation_extractor.hpp"
 #include "linalg/linear_solver.hpp"
+#include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
 namespace {
@@ -25,7 +25,8 @@ test::Cantilever soft_cantilever() {
   return c;
 }
 
-SimulationResult static_solve(const std::string& method, bool newton, double tolerance, int max_iterations) {
+SimulationResult static_solve(const std::string& method, bool newton, double tolerance,
+                              int max_iterations) {
   FeProblem p = soft_cantilever().build(2);
   auto rotation = make_rotation_extractor(method, p.mesh);
   auto solver = make_cholmod_solver();
@@ -42,9 +43,11 @@ TEST_P(StaticNewton, ReachesTenToMinusTenInFewerThanTenIterationsPerIncrement) {
   const SimulationResult r = static_solve(GetParam(), true, 1e-10, exact ? 9 : 20);
   EXPECT_TRUE(r.converged) << r.message;
   EXPECT_LT(r.residual, 1e-10);
-  std::cout << GetParam() << ": " << r.iterations / 20.0 << " Newton iterations per increment, residual "
-            << r.residual << ", tip " << test::Cantilever::tip_displacement(soft_cantilever().build(2), r.displacement).transpose()
-            << "\n";
+  std::cout
+      << GetParam() << ": " << r.iterations / 20.0 << " Newton iterations per increment, residual "
+      << r.residual << ", tip "
+      << test::Cantilever::tip_displacement(soft_cantilever().build(2), r.displacement).transpose()
+      << "\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, StaticNewton,
@@ -72,8 +75,10 @@ TEST(StaticNewton, EqualsTheLaggedSolutionWhereBothConverge) {
   const SimulationResult newton = static_solve("polar", true, 1e-10, 9);
   ASSERT_TRUE(lagged.converged) << lagged.message;
   ASSERT_TRUE(newton.converged) << newton.message;
-  const double difference = (lagged.displacement - newton.displacement).norm() / newton.displacement.norm();
-  EXPECT_LT(difference, 1e-5) << "lagged: " << lagged.iterations << " iterations, Newton: " << newton.iterations;
+  const double difference =
+      (lagged.displacement - newton.displacement).norm() / newton.displacement.norm();
+  EXPECT_LT(difference, 1e-5) << "lagged: " << lagged.iterations
+                              << " iterations, Newton: " << newton.iterations;
 }
 
 struct EnergyTrace {
@@ -95,7 +100,9 @@ EnergyTrace free_vibration(const std::string& method, bool newton) {
   options.dt = 0.005;
   options.steps = 220;
   options.newton = newton;
-  options.before_step = [&](int step, FeProblem& q) { q.external_force = step <= release ? gravity : 0 * gravity; };
+  options.before_step = [&](int step, FeProblem& q) {
+    q.external_force = step <= release ? gravity : 0 * gravity;
+  };
   double at_release = 0, previous = 0, rise = 0, last = 0;
   solve_dynamic(p, *rotation, *solver, options, [&](const StepState& s) {
     std::vector<Mat3> r = s.rotations;

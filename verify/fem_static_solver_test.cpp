@@ -36,8 +36,8 @@ TEST(Cantilever, LinearDeflectionConvergesUnderRefinement) {
   const double beam = bar.beam_theory_deflection();
   const double rate = std::log2((w[1] - w[0]) / (w[2] - w[1]));
   std::cout << "[ cantilever ] tip deflection k=" << ks[0] << "," << ks[1] << "," << ks[2] << ": "
-            << w[0] << ", " << w[1] << ", " << w[2] << "; Timoshenko " << beam
-            << "; observed rate " << rate << "\n";
+            << w[0] << ", " << w[1] << ", " << w[2] << "; Timoshenko " << beam << "; observed rate "
+            << rate << "\n";
   // Stiff linear tets approach from below, monotonically; the observed rate of the successive
   // differences sits between O(h) (pre-asymptotic shear locking) and O(h^2) (asymptotic).
   EXPECT_LT(w[0], w[1]);
@@ -67,9 +67,9 @@ TEST(Cantilever, LargeLoadCorotatedShortensAndDropsLess) {
   std::cout << "[ cantilever ] 4g tip: linear " << lin.transpose() << ", corotated "
             << cor.transpose() << " (" << r.iterations << " iterations, residual " << r.residual
             << ")\n";
-  EXPECT_LT(cor.x(), -0.05 * bar.length);      // moves toward the root
+  EXPECT_LT(cor.x(), -0.05 * bar.length);           // moves toward the root
   EXPECT_LT(std::abs(lin.x()), 0.01 * bar.length);  // linear: no shortening to first order
-  EXPECT_LT(-cor.z(), -lin.z());               // drops less
+  EXPECT_LT(-cor.z(), -lin.z());                    // drops less
   EXPECT_GT(-cor.z(), 0.2 * bar.length);
   EXPECT_LT(r.residual, 1e-9);
 }

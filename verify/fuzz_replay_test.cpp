@@ -21,16 +21,23 @@ void replay(const std::string& target, void (*entry)(const std::uint8_t*, std::s
     const auto start = std::chrono::steady_clock::now();
     EXPECT_NO_THROW(entry(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()))
         << file.path();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_LT(seconds, 10.0) << file.path() << " took too long";
     ++files;
   }
   EXPECT_GT(files, 0) << "empty corpus " << dir;
 }
 
-TEST(FuzzReplay, SceneCorpus) { replay("scene", &fuzz::scene_input); }
-TEST(FuzzReplay, MshCorpus) { replay("msh", &fuzz::msh_input); }
-TEST(FuzzReplay, StlCorpus) { replay("stl", &fuzz::stl_input); }
+TEST(FuzzReplay, SceneCorpus) {
+  replay("scene", &fuzz::scene_input);
+}
+TEST(FuzzReplay, MshCorpus) {
+  replay("msh", &fuzz::msh_input);
+}
+TEST(FuzzReplay, StlCorpus) {
+  replay("stl", &fuzz::stl_input);
+}
 
 }  // namespace
 }  // namespace corofem

@@ -1,18 +1,18 @@
 // Binary .msh (v4.1 and v2.2): the same mesh written as ASCII and as binary reads to the same bits
 // and runs to the same bits; gmsh's own binary files read; every truncation and every corrupted
 // header of a binary file is refused with an error naming the file, never a crash.
+#include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <gmsh.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/run_scene.hpp"
 #include "core/errors.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_mesh.hpp"
-#include "cli/run_scene.hpp"
 #include "scene/scene.hpp"
 #include "test_support.hpp"
 
@@ -37,7 +37,8 @@ std::string exact(double x) {
 /// `mesh` as a .msh file of `version` (4.1 or 2.2), one volume entity, tags kept.
 std::string msh_file(const TetMesh& mesh, double version, bool binary) {
   const bool v41 = version == 4.1;
-  std::string s = std::string("$MeshFormat\n") + (v41 ? "4.1" : "2.2") + (binary ? " 1 8\n" : " 0 8\n");
+  std::string s =
+      std::string("$MeshFormat\n") + (v41 ? "4.1" : "2.2") + (binary ? " 1 8\n" : " 0 8\n");
   if (binary) {
     put<std::int32_t>(s, 1);
     s += "\n";
@@ -56,8 +57,8 @@ std::string msh_file(const TetMesh& mesh, double version, bool binary) {
       put<std::uint64_t>(s, 0);
       s += "\n";
     } else {
-      s += "0 0 0 1\n1 " + exact(lo.x()) + " " + exact(lo.y()) + " " + exact(lo.z()) + " " + exact(hi.x()) + " " +
-           exact(hi.y()) + " " + exact(hi.z()) + " 0 0\n";
+      s += "0 0 0 1\n1 " + exact(lo.x()) + " " + exact(lo.y()) + " " + exact(lo.z()) + " " +
+           exact(hi.x()) + " " + exact(hi.y()) + " " + exact(hi.z()) + " 0 0\n";
     }
     s += "$EndEntities\n$Nodes\n";
     const std::uint64_t min_node = *std::min_element(mesh.node_tags.begin(), mesh.node_tags.end());
@@ -70,14 +71,17 @@ std::string msh_file(const TetMesh& mesh, double version, bool binary) {
       for (const Vec3& x : mesh.rest) put(s, x.x()), put(s, x.y()), put(s, x.z());
       s += "\n";
     } else {
-      s += "1 " + std::to_string(nv) + " " + std::to_string(min_node) + " " + std::to_string(max_node) +
-           "\n3 1 0 " + std::to_string(nv) + "\n";
+      s += "1 " + std::to_string(nv) + " " + std::to_string(min_node) + " " +
+           std::to_string(max_node) + "\n3 1 0 " + std::to_string(nv) + "\n";
       for (std::size_t v = 0; v < nv; ++v) s += std::to_string(node_tag(v)) + "\n";
-      for (const Vec3& x : mesh.rest) s += exact(x.x()) + " " + exact(x.y()) + " " + exact(x.z()) + "\n";
+      for (const Vec3& x : mesh.rest)
+        s += exact(x.x()) + " " + exact(x.y()) + " " + exact(x.z()) + "\n";
     }
     s += "$EndNodes\n$Elements\n";
-    const std::uint64_t min_elem = *std::min_element(mesh.element_tags.begin(), mesh.element_tags.end());
-    const std::uint64_t max_elem = *std::max_element(mesh.element_tags.begin(), mesh.element_tags.end());
+    const std::uint64_t min_elem =
+        *std::min_element(mesh.element_tags.begin(), mesh.element_tags.end());
+    const std::uint64_t max_elem =
+        *std::max_element(mesh.element_tags.begin(), mesh.element_tags.end());
     if (binary) {
       for (std::uint64_t c : {std::uint64_t{1}, std::uint64_t{nt}, min_elem, max_elem}) put(s, c);
       for (std::int32_t c : {3, 1, 4}) put(s, c);
@@ -88,8 +92,8 @@ std::string msh_file(const TetMesh& mesh, double version, bool binary) {
       }
       s += "\n";
     } else {
-      s += "1 " + std::to_string(nt) + " " + std::to_string(min_elem) + " " + std::to_string(max_elem) +
-           "\n3 1 4 " + std::to_string(nt) + "\n";
+      s += "1 " + std::to_string(nt) + " " + std::to_string(min_elem) + " " +
+           std::to_string(max_elem) + "\n3 1 4 " + std::to_string(nt) + "\n";
       for (std::size_t e = 0; e < nt; ++e) {
         s += std::to_string(mesh.element_tags[e]);
         for (int a = 0; a < 4; ++a) s += " " + std::to_string(node_tag(mesh.tets[e][a]));
@@ -105,7 +109,8 @@ std::string msh_file(const TetMesh& mesh, double version, bool binary) {
       put(s, static_cast<std::int32_t>(node_tag(v)));
       put(s, x.x()), put(s, x.y()), put(s, x.z());
     } else {
-      s += std::to_string(node_tag(v)) + " " + exact(x.x()) + " " + exact(x.y()) + " " + exact(x.z()) + "\n";
+      s += std::to_string(node_tag(v)) + " " + exact(x.x()) + " " + exact(x.y()) + " " +
+           exact(x.z()) + "\n";
     }
   }
   s += std::string(binary ? "\n" : "") + "$EndNodes\n$Elements\n" + std::to_string(nt) + "\n";
@@ -195,7 +200,9 @@ TEST(BinaryMsh, GmshWrittenBinaryFilesRead) {
       for (int binary : {0, 1}) {
         gmsh::option::setNumber("Mesh.MshFileVersion", version);
         gmsh::option::setNumber("Mesh.Binary", binary);
-        gmsh::write((dir / ((version == 4.1 ? "v41" : "v22") + std::string(binary ? "b" : "a") + ".msh")).string());
+        gmsh::write(
+            (dir / ((version == 4.1 ? "v41" : "v22") + std::string(binary ? "b" : "a") + ".msh"))
+                .string());
       }
     gmsh::finalize();
   }
@@ -209,7 +216,8 @@ TEST(BinaryMsh, GmshWrittenBinaryFilesRead) {
   EXPECT_EQ(b41.tets, b22.tets);
   ASSERT_EQ(a41.rest.size(), b41.rest.size());
   EXPECT_EQ(a41.tets, b41.tets);
-  for (std::size_t v = 0; v < a41.rest.size(); ++v) EXPECT_LE((a41.rest[v] - b41.rest[v]).norm(), 1e-15);
+  for (std::size_t v = 0; v < a41.rest.size(); ++v)
+    EXPECT_LE((a41.rest[v] - b41.rest[v]).norm(), 1e-15);
 }
 
 void expect_refused(const std::filesystem::path& file, const std::string& fragment) {
@@ -260,15 +268,20 @@ TEST(BinaryMsh, CorruptedHeadersAreRefusedNamingTheFault) {
       {"node_twice", patched<std::uint64_t>(v41, node_block + 20 + 8, 1), "defined twice"},
       {"element_type", patched<std::int32_t>(v41, element_block + 8, 99), "element type 99"},
       {"element_total", patched(v41, elements + 8, huge), "the item count declares"},
-      {"element_node", patched<std::uint64_t>(v41, element_block + 20 + 8, 77), "refers to node 77"},
+      {"element_node", patched<std::uint64_t>(v41, element_block + 20 + 8, 77),
+       "refers to node 77"},
       {"entities", patched(v41, after(v41, "$Entities\n") + 24, huge), "dimension-3 count"},
-      {"unknown_section", std::string(v41).insert(after(v41, "$EndEntities\n"), "$Periodic\n0\n$EndPeriodic\n"),
+      {"unknown_section",
+       std::string(v41).insert(after(v41, "$EndEntities\n"), "$Periodic\n0\n$EndPeriodic\n"),
        "unexpected '$Periodic'"},
       {"garbage_after", v41 + "junk\n", "unexpected 'junk'"},
       {"end_marker", std::string(v41).replace(v41.find("$EndNodes"), 9, "$EndNodez"), "expected"},
-      {"v22_count", std::string(v22).replace(after(v22, "$Nodes\n"), 1, "99999"), "the header declares"},
-      {"v22_block", patched<std::int32_t>(v22, after(v22, "$Elements\n6\n") + 4, 1 << 30), "bad block header"},
-      {"v22_node_ref", patched<std::int32_t>(v22, after(v22, "$Elements\n6\n") + 12 + 12, 77), "refers to node 77"},
+      {"v22_count", std::string(v22).replace(after(v22, "$Nodes\n"), 1, "99999"),
+       "the header declares"},
+      {"v22_block", patched<std::int32_t>(v22, after(v22, "$Elements\n6\n") + 4, 1 << 30),
+       "bad block header"},
+      {"v22_node_ref", patched<std::int32_t>(v22, after(v22, "$Elements\n6\n") + 12 + 12, 77),
+       "refers to node 77"},
   };
   for (const Case& c : cases) {
     const auto file = dir / (std::string(c.name) + ".msh");
@@ -287,7 +300,8 @@ TEST(BinaryMsh, EveryTruncationIsRefused) {
     const auto file = dir / "cut.msh";
     for (std::size_t n = 1; n + 1 < whole.size(); ++n) {
       write_text(file, whole.substr(0, n));
-      EXPECT_THROW(read_volume_mesh(file), InputError) << "v" << version << " cut at " << n << " of " << whole.size();
+      EXPECT_THROW(read_volume_mesh(file), InputError)
+          << "v" << version << " cut at " << n << " of " << whole.size();
     }
     write_text(file, whole);
     EXPECT_EQ(read_volume_mesh(file).num_tets(), 6);

@@ -16,7 +16,8 @@ TEST(BoxMesh, VolumeOrientationAndConformity) {
   double volume = 0;
   std::map<std::array<int, 3>, int> faces;
   for (const Tet& t : mesh.tets) {
-    const double v = signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]);
+    const double v =
+        signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]);
     EXPECT_GT(v, 0);
     volume += v;
     for (int skip = 0; skip < 4; ++skip) {

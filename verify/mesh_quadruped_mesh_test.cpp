@@ -22,7 +22,8 @@ TEST(QuadrupedMesh, HasTheDocumentedShape) {
   EXPECT_NEAR(hi.z(), 2.08, 1e-9);
   double volume = 0;
   for (const Tet& t : mesh.tets) {
-    const double v = signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]);
+    const double v =
+        signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]);
     EXPECT_GT(v, 0);
     volume += v;
   }
@@ -35,7 +36,9 @@ TEST(QuadrupedMesh, HasTheDocumentedShape) {
   EXPECT_LT(volume, upper);
   for (double x : {0.15, 1.45})
     for (double y : {-0.15, 0.15})
-      EXPECT_FALSE(vertices_in_box(mesh.rest, {Vec3(x - 0.09, y - 0.09, -1e-9), Vec3(x + 0.09, y + 0.09, 1e-9)}).empty())
+      EXPECT_FALSE(vertices_in_box(
+                       mesh.rest, {Vec3(x - 0.09, y - 0.09, -1e-9), Vec3(x + 0.09, y + 0.09, 1e-9)})
+                       .empty())
           << "hoof at " << x << ", " << y;
 }
 

@@ -1,26 +1,25 @@
-// Galerkin products: stream = gather = naive = reuse = Eigen = dense on random small hierarchies and a box
-// hierarchy, again after A's values change, and with an entry of A scattered more than 127 times
-// (continuation control bytes).
+// Galerkin products: stream = gather = naive = reuse = Eigen = dense on random small hierarchies
+// and a box hierarchy, again after A's values change, and with an entry of A scattered more than
+// 127 times (continuation control bytes).
 #include <gtest/gtest.h>
 
 #include <limits>
 #include <random>
 
+#include "core/errors.hpp"
+#include "fem/assembly_map.hpp"
 #include "galerkin_oracle.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/gmsh_mesh.hpp"
 #include "multigrid/galerkin.hpp"
 #include "multigrid/galerkin_gather.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 #include "multigrid/lattice_level.hpp"
-#include "mesh/gmsh_mesh.hpp"
 #include "solver/petsc_galerkin.hpp"
 #include "solver/petsc_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
-#include "core/errors.hpp"
 #include "test_support.hpp"
-#include "sparse/brc_to_eigen.hpp"
-#include "fem/assembly_map.hpp"
 
 namespace corofem {
 namespace {
@@ -55,7 +54,8 @@ double relative_frobenius(const Eigen::MatrixXd& x, const Eigen::MatrixXd& ref) 
 void check_all_methods(const BrcMatrix& a, const Transfer& t) {
   BrcMatrix e = galerkin_pattern(a, t);
   const Eigen::SparseMatrix<double> r = restriction_matrix(t);
-  const Eigen::MatrixXd dense = reference::dense_galerkin(Eigen::MatrixXd(r), Eigen::MatrixXd(to_eigen(a)));
+  const Eigen::MatrixXd dense =
+      reference::dense_galerkin(Eigen::MatrixXd(r), Eigen::MatrixXd(to_eigen(a)));
   const Eigen::MatrixXd eigen = Eigen::MatrixXd(reference::eigen_galerkin(r, to_eigen(a)));
   // Sums of a few dozen products in different orders: round-off ~1e-16 relative.
   EXPECT_LT(relative_frobenius(eigen, dense), 1e-13);
@@ -110,7 +110,8 @@ TEST(Galerkin, RandomSmallHierarchies) {
     for (auto& p : jittered) p += Vec3(u(rng), u(rng), u(rng));
     std::vector<char> fixed(mesh.rest.size(), 0);
     fixed[0] = 1;  // a fixed vertex: empty prolongation row
-    const CoarseLevel coarse = make_lattice_level(jittered, fixed, std::uniform_real_distribution<double>(0.3, 0.7)(rng));
+    const CoarseLevel coarse =
+        make_lattice_level(jittered, fixed, std::uniform_real_distribution<double>(0.3, 0.7)(rng));
     check_all_methods(a, coarse.transfer);
   }
 }
@@ -137,7 +138,8 @@ TEST(Galerkin, ContinuationBytesBeyond127Pairs) {
   }
   t.transpose_prolongation();
   const BrcMatrix e = galerkin_pattern(a, t);
-  const GalerkinStream stream(a, t, e, GalerkinStream::Symmetry::Full, 1);  // one stream: the paper's
+  const GalerkinStream stream(a, t, e, GalerkinStream::Symmetry::Full,
+                              1);  // one stream: the paper's
   int continuation = 0;
   for (std::uint8_t c : stream.control()) continuation += !(c & 0x80);
   EXPECT_GT(continuation, 0);
@@ -148,14 +150,16 @@ TEST(Galerkin, ContinuationBytesBeyond127Pairs) {
 void check_hierarchy(const BrcMatrix& a, std::vector<Transfer> transfers, int levels) {
   MultigridHierarchy hierarchy(a, std::move(transfers));
   ASSERT_EQ(hierarchy.num_levels(), levels);
-  for (GalerkinMethod m : {GalerkinMethod::Naive, GalerkinMethod::Stream, GalerkinMethod::StreamFull,
-                           GalerkinMethod::Reuse, GalerkinMethod::Gather}) {
+  for (GalerkinMethod m :
+       {GalerkinMethod::Naive, GalerkinMethod::Stream, GalerkinMethod::StreamFull,
+        GalerkinMethod::Reuse, GalerkinMethod::Gather}) {
     hierarchy.update(a, m);
     for (int h = 0; h + 1 < hierarchy.num_levels(); ++h) {
       const Eigen::SparseMatrix<double> r = restriction_matrix(hierarchy.transfer(h));
       const Eigen::MatrixXd fine = Eigen::MatrixXd(to_eigen(hierarchy.matrix(h)));
       const Eigen::MatrixXd dense = reference::dense_galerkin(Eigen::MatrixXd(r), fine);
-      const Eigen::MatrixXd eigen = Eigen::MatrixXd(reference::eigen_galerkin(r, to_eigen(hierarchy.matrix(h))));
+      const Eigen::MatrixXd eigen =
+          Eigen::MatrixXd(reference::eigen_galerkin(r, to_eigen(hierarchy.matrix(h))));
       const Eigen::MatrixXd got = Eigen::MatrixXd(to_eigen(hierarchy.matrix(h + 1)));
       // Sums of a few hundred products in different orders: round-off ~1e-15 relative.
       EXPECT_LT(relative_frobenius(got, dense), 1e-13) << "level " << h + 1;
@@ -187,7 +191,8 @@ TEST(Galerkin, StreamsBuiltOnFirstUseGiveThePreparedBits) {
   std::mt19937 rng(8);
   BrcMatrix a = random_symmetric(mesh, rng);
   const std::vector<Transfer> transfers = lattice_transfers(mesh, 0.3);
-  for (const GalerkinMethod m : {GalerkinMethod::Stream, GalerkinMethod::StreamFull, GalerkinMethod::Gather}) {
+  for (const GalerkinMethod m :
+       {GalerkinMethod::Stream, GalerkinMethod::StreamFull, GalerkinMethod::Gather}) {
     MultigridHierarchy prepared(a, transfers), lazy(a, transfers);
     prepared.prepare(m);
     prepared.update(a, m);
@@ -225,7 +230,8 @@ TEST(Galerkin, TakenFineValuesGiveTheCopiedUpdateBits) {
     EXPECT_EQ(handed.col_index, a.col_index);
     ASSERT_EQ(taken.num_levels(), copied.num_levels());
     for (int h = 0; h < copied.num_levels(); ++h)
-      EXPECT_TRUE(taken.matrix(h).values == copied.matrix(h).values) << "level " << h << ", round " << round;
+      EXPECT_TRUE(taken.matrix(h).values == copied.matrix(h).values)
+          << "level " << h << ", round " << round;
   }
   BrcMatrix other = random_symmetric(make_box_mesh({1, 1, 1}, {2, 2, 2}), rng);
   EXPECT_THROW(taken.take_update(other), std::logic_error);
@@ -236,7 +242,8 @@ TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
   // fine one with some vertices fixed (no weights) and a jittered copy of the middle level,
   // so that fine vertices fall outside it and are extrapolated.
   test::TempDir dir;
-  for (int n : {2, 4, 8}) test::write_text(dir / ("cube" + std::to_string(n) + ".stl"), test::cube_stl(n));
+  for (int n : {2, 4, 8})
+    test::write_text(dir / ("cube" + std::to_string(n) + ".stl"), test::cube_stl(n));
   const TetMesh fine = tetrahedralize_surface(dir / "cube8.stl", 0.15);
   std::vector<TetMesh> coarse = {tetrahedralize_surface(dir / "cube4.stl", 0.3),
                                  tetrahedralize_surface(dir / "cube2.stl", 0.6)};
@@ -249,7 +256,8 @@ TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
   HierarchyParams params;
   params.kind = HierarchyKind::Meshes;
   const BuiltHierarchy built = build_hierarchy(fine, fixed, params, coarse);
-  EXPECT_GT(built.levels[0]["outside_points"].get<int>(), 0) << "the jitter should leave points outside";
+  EXPECT_GT(built.levels[0]["outside_points"].get<int>(), 0)
+      << "the jitter should leave points outside";
   check_hierarchy(a, built.transfers, 3);
   // PETSc's MatPtAP (issue 14's rival product) on the same matrices: symbolic + numeric, then
   // numeric reuse with new values, each level against our stream's (both exact sums of the

@@ -27,7 +27,8 @@ double sampled_distance(const TetMesh& m, int t, const Vec3& p) {
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) {
         const double u = double(i) / n, v = double(j) / n;
-        const Vec3 q = (1 - u - v) * m.rest[tet[f[0]]] + u * m.rest[tet[f[1]]] + v * m.rest[tet[f[2]]];
+        const Vec3 q =
+            (1 - u - v) * m.rest[tet[f[0]]] + u * m.rest[tet[f[1]]] + v * m.rest[tet[f[2]]];
         best = std::min(best, (p - q).norm());
       }
   return best;
@@ -71,7 +72,8 @@ TEST(PointLocation, OutsidePointsGetTheNearestTet) {
     // The nearest tet: no tet is closer than the located one (sampled faces: within 2% of an
     // edge of 1/3, the sampling step).
     double best = std::numeric_limits<double>::infinity();
-    for (int t = 0; t < coarse.num_tets(); ++t) best = std::min(best, sampled_distance(coarse, t, p));
+    for (int t = 0; t < coarse.num_tets(); ++t)
+      best = std::min(best, sampled_distance(coarse, t, p));
     EXPECT_LE(where.distance, best + 1e-12);
     EXPECT_GE(where.distance, best - 0.01);
     // The distance is that of the box (the mesh is the whole box).
@@ -123,7 +125,8 @@ TEST(MeshLevel, RowsSumToOneAndReproduceAffineFieldsInsideAndOutside) {
     EXPECT_GT(negative, 0);  // extrapolation happened and was exact
   }
   // Restriction and prolongation are transposes: <R x, y> = <x, R^T y>.
-  Eigen::VectorXd x = Eigen::VectorXd::Random(3 * t.fine), y = Eigen::VectorXd::Random(3 * t.coarse);
+  Eigen::VectorXd x = Eigen::VectorXd::Random(3 * t.fine),
+                  y = Eigen::VectorXd::Random(3 * t.coarse);
   Eigen::VectorXd rx, pty = Eigen::VectorXd::Zero(3 * t.fine);
   t.restrict_to(x, rx);
   t.prolongate_add(y, pty);

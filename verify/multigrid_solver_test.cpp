@@ -10,18 +10,18 @@
 #include "core/errors.hpp"
 #include "core/threads.hpp"
 #include "fem/corotated_assembly.hpp"
-#include "integrate/implicit_euler.hpp"
 #include "fem/loads.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "integrate/static_solver.hpp"
+#include "linalg/preconditioned_cg.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_problem.hpp"
-#include "solver/petsc_solver.hpp"
-#include "linalg/preconditioned_cg.hpp"
 #include "scene/solver_factory.hpp"
+#include "solver/petsc_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
 #include "test_support.hpp"
 
@@ -101,7 +101,8 @@ BrcMatrix small_strain_system(FeProblem& p, Eigen::VectorXd& b) {
   const std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd force;
   b = p.external_force;
-  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
+  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()),
+                     p.stiffness, force);
   BrcMatrix system = p.stiffness;
   apply_dirichlet(p.dirichlet, system, b);
   return system;
@@ -117,8 +118,10 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
     bool setup_reuse;
     int coarsest_max_vertices = 0;
   };
-  std::vector<Solver> solvers = {{"multigrid", "meshes", false}, {"mgpcg", "meshes", false},
-                                 {"multigrid", "lattice", false}, {"mgpcg", "lattice", false},
+  std::vector<Solver> solvers = {{"multigrid", "meshes", false},
+                                 {"mgpcg", "meshes", false},
+                                 {"multigrid", "lattice", false},
+                                 {"mgpcg", "lattice", false},
                                  {"jacobi-pcg", "lattice", false},
                                  // Lattice levels below the meshes, down to 20 vertices.
                                  {"mgpcg", "meshes", false, 20}};
@@ -131,7 +134,13 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
     solvers.push_back({"hypre-boomeramg", "lattice", true});
   }
   for (const auto& [name, hierarchy, setup_reuse, coarsest_max] : solvers) {
-    const std::string what = c.name + ": " + name + (std::string(name).find('-') == std::string::npos || std::string(name) == "jacobi-pcg" ? std::string(" on ") + hierarchy : "") + (setup_reuse ? " (setup reused)" : "") + (coarsest_max > 0 ? " (coarsest <= " + std::to_string(coarsest_max) + " vertices)" : "");
+    const std::string what =
+        c.name + ": " + name +
+        (std::string(name).find('-') == std::string::npos || std::string(name) == "jacobi-pcg"
+             ? std::string(" on ") + hierarchy
+             : "") +
+        (setup_reuse ? " (setup reused)" : "") +
+        (coarsest_max > 0 ? " (coarsest <= " + std::to_string(coarsest_max) + " vertices)" : "");
     try {
       // Static linear: one solve of K u = f to relative residual 1e-10, which leaves a solution
       // error of ~cond(K) x 1e-10 / 1e4 << 1e-8 for these meshes.
@@ -139,14 +148,17 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       auto none = make_rotation_extractor("none", p.mesh);
       auto direct = make_cholmod_solver();
       const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
-      auto mg = make_linear_solver(analysis(name, 1e-10, hierarchy, false, coarsest_max), p, coarse);
-      if (c.lattice_vcycles_stall && std::string(name) == "multigrid" && std::string(hierarchy) == "lattice") {
+      auto mg =
+          make_linear_solver(analysis(name, 1e-10, hierarchy, false, coarsest_max), p, coarse);
+      if (c.lattice_vcycles_stall && std::string(name) == "multigrid" &&
+          std::string(hierarchy) == "lattice") {
         // Says so instead of returning a solution that misses its tolerance.
         EXPECT_THROW(solve_static(p, *none, *mg, {false, 1, 1e-8, 1}), NotConverged) << what;
         continue;
       }
       const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
-      EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm()) << what;
+      EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm())
+          << what;
       // Fixed DOFs exactly fixed (the transfer never touches them).
       for (int d = 0; d < p.num_dofs(); ++d)
         if (p.dirichlet.fixed[d]) {
@@ -160,7 +172,8 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       o.rayleigh_alpha = 0.5;
       o.rayleigh_beta = 0.001;
       const SimulationResult dref = solve_dynamic(p, *polar_a, *direct, o);
-      auto mg_dyn = make_linear_solver(analysis(name, 1e-12, hierarchy, setup_reuse, coarsest_max), p, coarse);
+      auto mg_dyn = make_linear_solver(analysis(name, 1e-12, hierarchy, setup_reuse, coarsest_max),
+                                       p, coarse);
       const SimulationResult dgot = solve_dynamic(p, *polar_b, *mg_dyn, o);
       EXPECT_LT((dgot.displacement - dref.displacement).norm(), 1e-8 * dref.displacement.norm())
           << what << " dynamic";
@@ -239,8 +252,8 @@ TEST(MultigridSolver, IterationCapAboveToleranceIsNotConverged) {
       MultigridParams params = multigrid_params(analysis(name, 1e-14, "lattice"));
       params.max_iterations = 2;
       solver = std::make_unique<MultigridSolver>(
-          p.stiffness, build_hierarchy(p.mesh, fixed_vertices(p.dirichlet), params.hierarchy, {}), params,
-          name == std::string("mgpcg"));
+          p.stiffness, build_hierarchy(p.mesh, fixed_vertices(p.dirichlet), params.hierarchy, {}),
+          params, name == std::string("mgpcg"));
     }
     solver->set_matrix(system);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
@@ -269,8 +282,9 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
       solver->set_matrix(system);
       Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
       rho[k] = solver->solve(b, x).convergence_factor;
-      std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, " << a.hierarchy
-                << " hierarchy, " << a.smoother << " Gauss-Seidel, rho = " << rho[k] << " over 12 V(1,1) cycles\n";
+      std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, "
+                << a.hierarchy << " hierarchy, " << a.smoother << " Gauss-Seidel, rho = " << rho[k]
+                << " over 12 V(1,1) cycles\n";
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius
     // of 0.51 (nu = 0) to 0.57 (nu = 0.3) even on nested meshes (TwoGridEqualsDenseOperator);
@@ -287,7 +301,8 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
 /// last of `cycles` cycles.
 double asymptotic_rho(MultigridSolver& mg, const BrcMatrix& a, const std::vector<char>& fixed_dofs,
                       int cycles) {
-  Eigen::VectorXd x = Eigen::VectorXd::Random(3 * a.block_rows), zero = Eigen::VectorXd::Zero(x.size()), r;
+  Eigen::VectorXd x = Eigen::VectorXd::Random(3 * a.block_rows),
+                  zero = Eigen::VectorXd::Zero(x.size()), r;
   for (int d = 0; d < x.size(); ++d)
     if (fixed_dofs[d]) x[d] = 0;
   double previous = 0, ratio = 0;
@@ -306,7 +321,8 @@ TEST(MultigridSolver, OverlappedFactorizationIsTheInUpdateBits) {
   // on the same data, so the same bits as one thread (where nothing is deferred: every kernel
   // gives the same bits at any count). Also through vcycle(), with a start that is already
   // converged (CG never uses the descent), and with a factorization that fails.
-  const MeshCase c{"box", box_spec(Vec3(1, 0.4, 0.4), {10, 4, 4}), make_box_mesh({1, 0.4, 0.4}, {10, 4, 4}), {}};
+  const MeshCase c{
+      "box", box_spec(Vec3(1, 0.4, 0.4), {10, 4, 4}), make_box_mesh({1, 0.4, 0.4}, {10, 4, 4}), {}};
   FeProblem p = problem_for(c);
   Eigen::VectorXd b;
   const BrcMatrix system = small_strain_system(p, b);
@@ -389,12 +405,14 @@ TEST(MultigridSolver, TwoGridEqualsDenseOperator) {
       if (j / 3 >= i / 3) U(i, j) = A(i, j);
     }
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
-  const Eigen::MatrixXd coarse_correction = I - R.transpose() * (R * A * R.transpose()).ldlt().solve(R * A);
+  const Eigen::MatrixXd coarse_correction =
+      I - R.transpose() * (R * A * R.transpose()).ldlt().solve(R * A);
   // Row-major LU: libgmsh carries its own PartialPivLU<MatrixXd>, and one instantiation of it in
   // this binary would be bound into gmsh's calls too (ASan: bad-free inside gmsh's Eigen).
   using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const Eigen::PartialPivLU<RowMajorMatrix> lu_u{RowMajorMatrix(U)}, lu_l{RowMajorMatrix(L)};
-  const Eigen::MatrixXd E = (I - Eigen::MatrixXd(lu_u.solve(RowMajorMatrix(A)))) * coarse_correction *
+  const Eigen::MatrixXd E = (I - Eigen::MatrixXd(lu_u.solve(RowMajorMatrix(A)))) *
+                            coarse_correction *
                             (I - Eigen::MatrixXd(lu_l.solve(RowMajorMatrix(A))));
   Eigen::VectorXd x = Eigen::VectorXd::Random(n);
   for (int d = 0; d < n; ++d)
@@ -406,7 +424,8 @@ TEST(MultigridSolver, TwoGridEqualsDenseOperator) {
   const Eigen::VectorXcd eigenvalues = Eigen::EigenSolver<Eigen::MatrixXd>(E, false).eigenvalues();
   const double radius = eigenvalues.cwiseAbs().maxCoeff();
   const double measured = asymptotic_rho(*mg, system, p.dirichlet.fixed, 60);
-  std::cout << "[ multigrid ] two-grid V(1,1) spectral radius " << radius << ", measured " << measured << "\n";
+  std::cout << "[ multigrid ] two-grid V(1,1) spectral radius " << radius << ", measured "
+            << measured << "\n";
   // 60 cycles: the ratio has converged to the dominant eigenvalue within a fraction of a percent
   // unless two eigenvalues of nearly equal modulus compete (then it oscillates by a few %).
   EXPECT_NEAR(measured, radius, 0.03 * radius);

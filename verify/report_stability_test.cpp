@@ -20,9 +20,11 @@ TEST(Stability, EnergyMethodsStayStableOnEverySmallScene) {
   quick.mode = ReportConfig::Mode::Quick;
   const FlutterThresholds thresholds;
   for (const std::string& id : stability_scene_ids(false)) {
-    const json scene = stability_scene(id, SceneSize::Small, quick.stability_ramp(), quick.stability_hold());
+    const json scene =
+        stability_scene(id, SceneSize::Small, quick.stability_ramp(), quick.stability_hold());
     for (const char* method : {"energy-newton", "energy-exact"}) {
-      const json run = run_stability_case(scene, id, {method}, quick.stability_ramp(), quick.stability_hold());
+      const json run =
+          run_stability_case(scene, id, {method}, quick.stability_ramp(), quick.stability_hold());
       SCOPED_TRACE(id + " " + method);
       ASSERT_TRUE(run["completed"].get<bool>()) << run.dump();
       ASSERT_NE(run["status"], "diverged") << run.dump();
@@ -31,7 +33,8 @@ TEST(Stability, EnergyMethodsStayStableOnEverySmallScene) {
       // methods (kinetic energy ~400 J after the hold, against ~1 J under polar): the paper's
       // claim does not hold there, and stability.json records it. Everywhere else it holds.
       if (id == "quadruped-stretched-far") continue;
-      EXPECT_EQ(run["status"], "stable") << "rms " << run["flutter_rms_rad"] << " max " << run["flutter_max_rad"];
+      EXPECT_EQ(run["status"], "stable")
+          << "rms " << run["flutter_rms_rad"] << " max " << run["flutter_max_rad"];
       EXPECT_LT(run["flutter_max_rad"].get<double>(), thresholds.max_rad);
       EXPECT_LT(run["flutter_rms_rad"].get<double>(), thresholds.rms_rad);
     }
@@ -42,7 +45,8 @@ TEST(Stability, BlowUpIsRecordedAsDivergedWithItsStep) {
   // A bar pulled by 1e12 N: the displacement leaves any physical range within a few steps.
   json scene = stability_scene("bar-stretch", SceneSize::Small, 2, 4);
   scene.erase("moves");
-  scene["forces"] = json::array({{{"box", {{1 - 1e-6, 0, 0}, {1, 0.2, 0.2}}}, {"total", {1e12, 0, 0}}}});
+  scene["forces"] =
+      json::array({{{"box", {{1 - 1e-6, 0, 0}, {1, 0.2, 0.2}}}, {"total", {1e12, 0, 0}}}});
   const json run = run_stability_case(scene, "bar-pulled-apart", {"polar"}, 2, 4);
   ASSERT_TRUE(run["completed"].get<bool>()) << run.dump();
   EXPECT_EQ(run["status"], "diverged");
@@ -55,7 +59,8 @@ TEST(Stability, BlowUpIsRecordedAsDivergedWithItsStep) {
 TEST(Stability, RunsRecordIntegratorStepEnergyAndAsymmetry) {
   // bar-twist, small: polar is conservative (asymmetry at rounding level) and, under Newton,
   // creates no energy; energy-exact's element Jacobians are measurably asymmetric.
-  // 450 degrees over 30 steps (15 per step; the smoke report's 75 per step makes every method flutter).
+  // 450 degrees over 30 steps (15 per step; the smoke report's 75 per step makes every method
+  // flutter).
   const json scene = stability_scene("bar-twist", SceneSize::Small, 30, 6);
   const json polar = run_stability_case(scene, "bar-twist", {"polar", "newton", 2}, 30, 6);
   ASSERT_TRUE(polar["completed"].get<bool>()) << polar.dump();
@@ -71,19 +76,24 @@ TEST(Stability, RunsRecordIntegratorStepEnergyAndAsymmetry) {
 }
 
 json fake_run(const std::string& integrator, double dt, const std::string& status) {
-  return {{"integrator", integrator}, {"dt", dt}, {"status", status},
-          {"flutter_max_rad", status == "flutter" ? json(0.8) : json(0.001)}, {"diverged_step", nullptr}};
+  return {{"integrator", integrator},
+          {"dt", dt},
+          {"status", status},
+          {"flutter_max_rad", status == "flutter" ? json(0.8) : json(0.001)},
+          {"diverged_step", nullptr}};
 }
 
 TEST(Stability, CausesComeFromTheOtherIntegratorAndTheSmallerStep) {
   // Not stable under linear-implicit, stable under Newton: the integrator.
-  std::vector<json> runs = {fake_run("linear-implicit", 0.01, "flutter"), fake_run("newton", 0.01, "stable"),
-                            fake_run("linear-implicit", 0.005, "stable"), fake_run("newton", 0.005, "stable")};
+  std::vector<json> runs = {
+      fake_run("linear-implicit", 0.01, "flutter"), fake_run("newton", 0.01, "stable"),
+      fake_run("linear-implicit", 0.005, "stable"), fake_run("newton", 0.005, "stable")};
   std::vector<json*> group;
   for (json& r : runs) group.push_back(&r);
   attribute_causes(group);
   EXPECT_EQ(runs[0]["cause"], "integrator");
-  EXPECT_NE(runs[0]["cause_detail"].get<std::string>().find("but newton at dt 0.01: stable"), std::string::npos)
+  EXPECT_NE(runs[0]["cause_detail"].get<std::string>().find("but newton at dt 0.01: stable"),
+            std::string::npos)
       << runs[0]["cause_detail"];
   // Failing under both integrators at dt, stable under linear-implicit at dt/2: the step size, an
   // integrator matter too.
@@ -136,7 +146,8 @@ TEST(Stability, PoseIsTheClosedOutwardBoundarySurface) {
   }
   for (const auto& [edge, count] : directed) {
     EXPECT_EQ(count, 1) << edge.first << "->" << edge.second;
-    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u) << edge.first << "-" << edge.second << " is open";
+    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u)
+        << edge.first << "-" << edge.second << " is open";
   }
   EXPECT_NEAR(volume, 0.04, 1e-12);
 }

@@ -19,8 +19,14 @@ nlohmann::json box_scene() {
   return {{"mesh", {{"box", {1, 1, 1}}, {"cells", {4, 4, 4}}}},
           {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
           {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 1, 1}}}}}},
-          {"analysis", {{"type", "dynamic"}, {"solver", "mgpcg"}, {"levels", 2}, {"hierarchy", "lattice"},
-                        {"rotation", "energy-newton"}, {"steps", 1}, {"dt", 0.01}}}};
+          {"analysis",
+           {{"type", "dynamic"},
+            {"solver", "mgpcg"},
+            {"levels", 2},
+            {"hierarchy", "lattice"},
+            {"rotation", "energy-newton"},
+            {"steps", 1},
+            {"dt", 0.01}}}};
 }
 
 TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
@@ -43,14 +49,18 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   // written, 72 B, with its 4 B index), b in and out. The fixed face x = 0 has 25 vertices.
   double supported = 0;
   for (int i = 0; i < problem.mesh.num_vertices(); ++i)
-    if (problem.mesh.rest[i].x() < 1e-9) supported += 2 * (problem.stiffness.row_start[i + 1] - problem.stiffness.row_start[i]);
+    if (problem.mesh.rest[i].x() < 1e-9)
+      supported += 2 * (problem.stiffness.row_start[i + 1] - problem.stiffness.row_start[i]);
   EXPECT_GT(supported, 0);
   EXPECT_DOUBLE_EQ(t.at("system").bytes, n + 24 * n + n + 148 * supported + 16 * n);
-  // rotate: positions built (rest, u in; p out) and gathered, tets, quadrature offsets, rotations in and out.
-  EXPECT_DOUBLE_EQ(t.at("rotate").bytes, 72 * v + 16 * e + 24 * v + sizeof(MomentArms) * e + 144 * e);
-  // assemble: A written once, the mass and u read, the force written, the rest positions, 16 targets and
-  // 4 vertex ids per tet, Q, and the gradients with V lambda, V mu (112 B in 2 lines).
-  EXPECT_DOUBLE_EQ(t.at("assemble").bytes, 72 * blocks + 8 * n + 8 * n + 8 * n + 24 * v + e * (72 + 128 + 64 + 16));
+  // rotate: positions built (rest, u in; p out) and gathered, tets, quadrature offsets, rotations
+  // in and out.
+  EXPECT_DOUBLE_EQ(t.at("rotate").bytes,
+                   72 * v + 16 * e + 24 * v + sizeof(MomentArms) * e + 144 * e);
+  // assemble: A written once, the mass and u read, the force written, the rest positions, 16
+  // targets and 4 vertex ids per tet, Q, and the gradients with V lambda, V mu (112 B in 2 lines).
+  EXPECT_DOUBLE_EQ(t.at("assemble").bytes,
+                   72 * blocks + 8 * n + 8 * n + 8 * n + 24 * v + e * (72 + 128 + 64 + 16));
   // forces: b = M v + dt (f_ext - f_int), four vectors read and one written.
   EXPECT_DOUBLE_EQ(t.at("forces").bytes, 40 * n);
   // update: the gather stream (the default method), A read, E written (the fine values are swapped
@@ -62,8 +72,8 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
             static_cast<double>(h.gather(0).bytes()) + 72 * blocks + 72 * coarse_blocks);
   ASSERT_EQ(solver.params().galerkin, GalerkinMethod::Gather);
   EXPECT_GT(solver.coarsest_factorization_flops(), 0);
-  EXPECT_DOUBLE_EQ(t.at("update").flops, 18.0 * static_cast<double>(h.gather(0).num_pairs()) + 50 * v +
-                                             solver.coarsest_factorization_flops());
+  EXPECT_DOUBLE_EQ(t.at("update").flops, 18.0 * static_cast<double>(h.gather(0).num_pairs()) +
+                                             50 * v + solver.coarsest_factorization_flops());
   // solve: one more iteration adds one fine product, one V-cycle and 15 vector passes; a V-cycle
   // reads the fine matrix one and a half times at least (the post-smoothing sweep, and the sweep
   // from zero, which reads the blocks below the diagonal and forms the residual from them).
@@ -72,7 +82,8 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   const double per_iteration = t6.at("solve").bytes - t.at("solve").bytes;
   // At most: the smoother's inverse diagonal and row data, the transfers and vectors (under 200 B
   // a DOF on a lattice of 8 weights a vertex) and the coarsest substitutions (L read twice).
-  const double coarsest = 16 * solver.coarsest_factor_nonzeros() + 32 * 3.0 * h.matrix(1).block_rows;
+  const double coarsest =
+      16 * solver.coarsest_factor_nonzeros() + 32 * 3.0 * h.matrix(1).block_rows;
   EXPECT_LE(per_iteration, 4 * fine_matrix + 15 * 8 * n + 3 * (72 + 4) * v + 200 * n + coarsest);
   EXPECT_GE(per_iteration, 2.5 * fine_matrix + 15 * 8 * n + 16 * solver.coarsest_factor_nonzeros());
   // rotate's flops grow by 250 per tet per Newton iteration.
@@ -86,13 +97,14 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   const double moved = solver.coarsest_factorization_flops() + 50 * v;
   EXPECT_DOUBLE_EQ(t2.at("update").flops, t.at("update").flops - moved);
   EXPECT_DOUBLE_EQ(t2.at("solve").flops, t.at("solve").flops + moved);
-  EXPECT_DOUBLE_EQ(t2.at("update").bytes + t2.at("solve").bytes, t.at("update").bytes + t.at("solve").bytes);
+  EXPECT_DOUBLE_EQ(t2.at("update").bytes + t2.at("solve").bytes,
+                   t.at("update").bytes + t.at("solve").bytes);
 }
 
 TEST(StepRoofline, RecordComparesEachPhaseWithItsFloor) {
   const std::map<std::string, Traffic> traffic = {{"rotate", {2e9, 1e9}}, {"solve", {1e9, 4e10}}};
-  const auto record =
-      roofline_record(traffic, {{"rotate", 400.0}, {"solve", 50.0}, {"step", 500.0}}, {10.0, 200.0}, 3e8);
+  const auto record = roofline_record(
+      traffic, {{"rotate", 400.0}, {"solve", 50.0}, {"step", 500.0}}, {10.0, 200.0}, 3e8);
   // rotate: 2e9 B at 10 GB/s is 200 ms, 1e9 flop at 200 Gflop/s 5 ms: memory bound, 200 ms.
   EXPECT_DOUBLE_EQ(record["phases"]["rotate"]["floor_ms"].get<double>(), 200.0);
   EXPECT_EQ(record["phases"]["rotate"]["bound"], "memory");

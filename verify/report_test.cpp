@@ -28,7 +28,8 @@ using test::TempDir;
 /// What the smoke report depends on: the corofem binary and the renderer, by size and time.
 std::string smoke_report_stamp() {
   std::ostringstream stamp;
-  for (const fs::path& file : {fs::path(COROFEM_CLI), test::source_dir() / "reports" / "render_report.py"})
+  for (const fs::path& file :
+       {fs::path(COROFEM_CLI), test::source_dir() / "reports" / "render_report.py"})
     stamp << file.string() << " " << fs::file_size(file) << " "
           << fs::last_write_time(file).time_since_epoch().count() << "\n";
   return stamp.str();
@@ -59,7 +60,9 @@ const fs::path& smoke_report() {
   return out;
 }
 
-json load(const fs::path& file) { return json::parse(read_text(file)); }
+json load(const fs::path& file) {
+  return json::parse(read_text(file));
+}
 
 bool renderer_usable() {
   return run_cli("help").exit_code == 0 &&
@@ -72,7 +75,8 @@ void expect_keys(const json& j, std::initializer_list<const char*> keys, const s
 
 void expect_context(const json& record, const std::string& file) {
   expect_keys(record, {"producer", "context", "parameters"}, file);
-  expect_keys(record["context"], {"commit", "compiler", "flags", "cpu", "caches", "threads_used", "date"}, file);
+  expect_keys(record["context"],
+              {"commit", "compiler", "flags", "cpu", "caches", "threads_used", "date"}, file);
 }
 
 TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
@@ -81,11 +85,13 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
   ASSERT_FALSE(t["table1"].empty());
   for (const json& row : t["table1"]) {
     ASSERT_TRUE(row["completed"].get<bool>()) << row.dump();
-    expect_keys(row, {"model", "tets", "vertices", "levels", "rotate_ms", "assemble_ms", "update_ms",
-                      "update_naive_ms", "solve_ms", "tps", "solve_accuracy", "cholmod_step_ms", "paper"},
-                "table1 row");
-    for (const char* key : {"rotate_ms", "assemble_ms", "update_ms", "update_naive_ms", "solve_ms", "tps",
-                            "cholmod_step_ms"})
+    expect_keys(
+        row,
+        {"model", "tets", "vertices", "levels", "rotate_ms", "assemble_ms", "update_ms",
+         "update_naive_ms", "solve_ms", "tps", "solve_accuracy", "cholmod_step_ms", "paper"},
+        "table1 row");
+    for (const char* key : {"rotate_ms", "assemble_ms", "update_ms", "update_naive_ms", "solve_ms",
+                            "tps", "cholmod_step_ms"})
       EXPECT_GT(row[key].get<double>(), 0) << key;
     // MG-PCG stops at relative residual 1e-4; its error against CHOLMOD on the same system is at
     // most cond-bounded, and for these well-shaped meshes stays below 1e-2.
@@ -98,16 +104,19 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     EXPECT_DOUBLE_EQ(gbps, t["stream_triad_GBps"].get<double>());
     EXPECT_GT(gbps, 0.1);  // any machine of this century
     double floor_sum = 0;
-    for (const char* phase : {"checks", "rotate", "assemble", "forces", "system", "update", "solve"}) {
+    for (const char* phase :
+         {"checks", "rotate", "assemble", "forces", "system", "update", "solve"}) {
       SCOPED_TRACE(phase);
       const json& p = roofline["phases"][phase];
       ASSERT_TRUE(p.is_object()) << roofline.dump();
       EXPECT_GT(p["bytes"].get<double>(), 0);
       EXPECT_GT(p["flops"].get<double>(), 0);
-      const double floor_ms = std::max(p["bytes"].get<double>() / (gbps * 1e6),
-                                       p["flops"].get<double>() / (roofline["dense_gflops"].get<double>() * 1e6));
+      const double floor_ms =
+          std::max(p["bytes"].get<double>() / (gbps * 1e6),
+                   p["flops"].get<double>() / (roofline["dense_gflops"].get<double>() * 1e6));
       EXPECT_NEAR(p["floor_ms"].get<double>(), floor_ms, 1e-12 * floor_ms);
-      EXPECT_NEAR(p["over_floor"].get<double>(), p["measured_ms"].get<double>() / p["floor_ms"].get<double>(),
+      EXPECT_NEAR(p["over_floor"].get<double>(),
+                  p["measured_ms"].get<double>() / p["floor_ms"].get<double>(),
                   1e-9 * p["over_floor"].get<double>());
       floor_sum += p["floor_ms"].get<double>();
     }
@@ -124,19 +133,22 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
       const double bytes = roofline["update_parts"][part]["bytes"].get<double>();
       (deferred && std::string(part) != "galerkin" ? deferred_bytes : update_bytes) += bytes;
     }
-    EXPECT_NEAR(update_bytes, roofline["phases"]["update"]["bytes"].get<double>(), 1e-12 * update_bytes);
+    EXPECT_NEAR(update_bytes, roofline["phases"]["update"]["bytes"].get<double>(),
+                1e-12 * update_bytes);
     if (deferred) {
       EXPECT_GT(roofline["phases"]["solve"]["bytes"].get<double>(), deferred_bytes);
     }
     EXPECT_DOUBLE_EQ(roofline["step_ms"].get<double>(), row["step_ms"].get<double>());
-    // Every phase runs inside the step's clock: each step's remainder, and so their median, is >= 0.
+    // Every phase runs inside the step's clock: each step's remainder, and so their median, is >=
+    // 0.
     EXPECT_GE(roofline["untimed_ms"].get<double>(), 0.0);
     // Table 1 at one thread and at the run's count: the same phases, each with its roofline; at
     // one thread the record's own columns are the one-thread ones.
     EXPECT_EQ(row["threads"], t["threads"]);
     EXPECT_EQ(t["threads"].get<int>(), t["context"]["threads_used"].get<int>());
     for (const char* set : {"phases_ms", "one_thread"})
-      for (const char* phase : {"checks", "rotate", "assemble", "forces", "system", "update", "solve", "step", "tps"})
+      for (const char* phase :
+           {"checks", "rotate", "assemble", "forces", "system", "update", "solve", "step", "tps"})
         EXPECT_GT(row[set][phase].get<double>(), 0) << set << " " << phase;
     EXPECT_DOUBLE_EQ(row["phases_ms"]["step"].get<double>(), row["step_ms"].get<double>());
     EXPECT_TRUE(row["one_thread"]["roofline"]["phases"].is_object());
@@ -178,17 +190,20 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
       ASSERT_TRUE(row["completed"].get<bool>()) << row.dump();
       EXPECT_GE(row["iterations"].get<double>(), 1.0);
       EXPECT_GT(row["update_ms"].get<double>(), 0);
-      EXPECT_NEAR(row["step_over_mgpcg"].get<double>(), row["step_ms"].get<double>() / row["mgpcg_step_ms"].get<double>(),
+      EXPECT_NEAR(row["step_over_mgpcg"].get<double>(),
+                  row["step_ms"].get<double>() / row["mgpcg_step_ms"].get<double>(),
                   1e-9 * row["step_over_mgpcg"].get<double>());
     } else {
       EXPECT_FALSE(row["completed"].get<bool>());
-      EXPECT_NE(row["error"]["message"].get<std::string>().find("needs PETSc"), std::string::npos) << row.dump();
+      EXPECT_NE(row["error"]["message"].get<std::string>().find("needs PETSc"), std::string::npos)
+          << row.dump();
     }
   }
   EXPECT_EQ(reused, 2 * static_cast<int>(t["table1"].size()));
   for (const char* section : {"table2", "small_strain", "jacobi_pcg"}) {
     ASSERT_FALSE(t[section].empty()) << section;
-    for (const json& row : t[section]) EXPECT_TRUE(row["completed"].get<bool>()) << section << row.dump();
+    for (const json& row : t[section])
+      EXPECT_TRUE(row["completed"].get<bool>()) << section << row.dump();
   }
   // Jacobi-PCG on each scene and 100x stiffer: its CG iterations grow as the condition number's
   // square root (10x in theory for 100x E, once K dominates M / dt^2), MG-PCG's far less.
@@ -198,8 +213,10 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     const json& stiff = t["jacobi_pcg"][k + 1];
     ASSERT_EQ(soft["young_scale"].get<double>(), 1.0);
     ASSERT_EQ(stiff["young_scale"].get<double>(), 100.0);
-    const double jacobi_growth = stiff["iterations"].get<double>() / soft["iterations"].get<double>();
-    const double mgpcg_growth = stiff["mgpcg_iterations"].get<double>() / soft["mgpcg_iterations"].get<double>();
+    const double jacobi_growth =
+        stiff["iterations"].get<double>() / soft["iterations"].get<double>();
+    const double mgpcg_growth =
+        stiff["mgpcg_iterations"].get<double>() / soft["mgpcg_iterations"].get<double>();
     EXPECT_GT(jacobi_growth, 2.0) << stiff.dump();
     EXPECT_GT(jacobi_growth, 1.5 * mgpcg_growth) << stiff.dump();
   }
@@ -210,8 +227,9 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
   std::set<std::string> hierarchies;
   for (const json& row : t["multigrid"]) {
     ASSERT_TRUE(row["completed"].get<bool>()) << row.dump();
-    expect_keys(row, {"hierarchy", "levels", "level_vertices", "operator_complexity", "rho", "vcycles",
-                      "mgpcg_iterations", "setup_ms", "update_ms", "solve_ms", "step_ms"},
+    expect_keys(row,
+                {"hierarchy", "levels", "level_vertices", "operator_complexity", "rho", "vcycles",
+                 "mgpcg_iterations", "setup_ms", "update_ms", "solve_ms", "step_ms"},
                 "multigrid row");
     hierarchies.insert(row["hierarchy"].get<std::string>());
     const json& sizes = row["level_vertices"];
@@ -224,7 +242,8 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     EXPECT_GE(row["mgpcg_iterations"].get<double>(), 1.0);
   }
   EXPECT_EQ(hierarchies, (std::set<std::string>{"meshes", "lattice"}));
-  expect_keys(t["small_strain"][0], {"tps", "volume_change", "corotated_volume_change"}, "small_strain row");
+  expect_keys(t["small_strain"][0], {"tps", "volume_change", "corotated_volume_change"},
+              "small_strain row");
   // The verification summary: the same oracles as the gates, on the report's own states.
   ASSERT_FALSE(t["verification"].empty());
   for (const json& check : t["verification"][0]["checks"]) {
@@ -282,9 +301,11 @@ TEST(Report, StabilityRunsHaveTheDocumentedSchema) {
   ASSERT_FALSE(st["runs"].empty());
   std::set<std::string> methods, integrators;
   for (const json& run : st["runs"]) {
-    expect_keys(run, {"scene", "method", "integrator", "dt", "status", "flutter_rms_rad", "flutter_max_rad",
-                      "inverted_max", "diverged_step", "asymmetry", "energy_error", "cause", "series"},
-                "run");
+    expect_keys(
+        run,
+        {"scene", "method", "integrator", "dt", "status", "flutter_rms_rad", "flutter_max_rad",
+         "inverted_max", "diverged_step", "asymmetry", "energy_error", "cause", "series"},
+        "run");
     const std::string status = run["status"];
     EXPECT_TRUE(status == "stable" || status == "flutter" || status == "diverged") << status;
     EXPECT_EQ(run["diverged_step"].is_null(), status != "diverged");
@@ -320,28 +341,35 @@ TEST(Report, MarkdownIsRedrawnFromTheJsonAlone) {
   const fs::path& out = smoke_report();
   ASSERT_TRUE(fs::exists(out / "REPORT.md"));
   TempDir copy;
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json"})
+  for (const char* file :
+       {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json"})
     fs::copy_file(out / file, copy / file);
   const std::string script = (test::source_dir() / "reports" / "render").string();
-  ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>/dev/null").c_str()), 0);
+  ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>/dev/null").c_str()),
+            0);
   EXPECT_EQ(read_text(copy / "REPORT.md"), read_text(out / "REPORT.md"));
   // The same charts, drawn from the copy.
   std::set<std::string> original, redrawn;
   if (fs::exists(out / "charts"))
-    for (const auto& e : fs::directory_iterator(out / "charts")) original.insert(e.path().filename());
+    for (const auto& e : fs::directory_iterator(out / "charts"))
+      original.insert(e.path().filename());
   if (fs::exists(copy / "charts"))
-    for (const auto& e : fs::directory_iterator(copy / "charts")) redrawn.insert(e.path().filename());
+    for (const auto& e : fs::directory_iterator(copy / "charts"))
+      redrawn.insert(e.path().filename());
   EXPECT_EQ(original, redrawn);
 }
 
-fs::path golden_dir() { return test::source_dir() / "verify" / "golden" / "report"; }
+fs::path golden_dir() {
+  return test::source_dir() / "verify" / "golden" / "report";
+}
 
 /// Copies the golden JSON records into `dir` (`edit_tables` may change tables.json first) and
 /// runs the renderer on them with `options`, its stderr to `stderr_file`; returns its exit status.
-int render_golden_fixture(const TempDir& dir, const std::string& options, const std::string& stderr_file,
+int render_golden_fixture(const TempDir& dir, const std::string& options,
+                          const std::string& stderr_file,
                           const std::function<void(json&)>& edit_tables = {}) {
-  for (const char* file :
-       {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json", "mpi_scaling.json"})
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json",
+                           "model_accuracy.json", "mpi_scaling.json"})
     fs::copy_file(golden_dir() / file, dir / file);
   if (edit_tables) {
     json tables = json::parse(read_text(dir / "tables.json"));
@@ -349,8 +377,9 @@ int render_golden_fixture(const TempDir& dir, const std::string& options, const 
     test::write_text(dir / "tables.json", tables.dump());
   }
   const std::string script = (test::source_dir() / "reports" / "render").string();
-  return std::system(("'" + script + "' '" + dir.path().string() + "' " + options + " 2>'" + stderr_file +
-                      "' >/dev/null").c_str());
+  return std::system(("'" + script + "' '" + dir.path().string() + "' " + options + " 2>'" +
+                      stderr_file + "' >/dev/null")
+                         .c_str());
 }
 
 TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
@@ -372,15 +401,17 @@ TEST(Report, GoldenFixturesHaveTheSchemaTheCodeWrites) {
   // drawn today. On a failure: reports/regenerate_golden (from a clean commit), review the diff.
   if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
   if (!have_petsc())
-    GTEST_SKIP() << "the golden records come from a build with PETSc (its rival solvers and MatPtAP "
-                    "fields); this build has none, so its records differ there by design";
+    GTEST_SKIP()
+        << "the golden records come from a build with PETSc (its rival solvers and MatPtAP "
+           "fields); this build has none, so its records differ there by design";
   const fs::path& out = smoke_report();
   TempDir dir;
-  const std::string command = "python3 '" + (test::source_dir() / "reports" / "schema_check.py").string() + "' '" +
-                              golden_dir().string() + "' '" + out.string() + "' > '" + (dir / "drift").string() +
-                              "' 2>&1";
+  const std::string command =
+      "python3 '" + (test::source_dir() / "reports" / "schema_check.py").string() + "' '" +
+      golden_dir().string() + "' '" + out.string() + "' > '" + (dir / "drift").string() + "' 2>&1";
   EXPECT_EQ(std::system(command.c_str()), 0) << read_text(dir / "drift");
-  EXPECT_NE(read_text(dir / "drift").find("4 record file(s) compared"), std::string::npos) << read_text(dir / "drift");
+  EXPECT_NE(read_text(dir / "drift").find("4 record file(s) compared"), std::string::npos)
+      << read_text(dir / "drift");
 }
 
 TEST(Report, SaysWhenTheSolveCarriedTheCoarsestFactorization) {
@@ -396,7 +427,8 @@ TEST(Report, SaysWhenTheSolveCarriedTheCoarsestFactorization) {
   };
   TempDir plain, deferred;
   ASSERT_EQ(render_golden_fixture(plain, "--blank-times", "/dev/null", factorized_in("update")), 0);
-  ASSERT_EQ(render_golden_fixture(deferred, "--blank-times", "/dev/null", factorized_in("solve")), 0);
+  ASSERT_EQ(render_golden_fixture(deferred, "--blank-times", "/dev/null", factorized_in("solve")),
+            0);
   EXPECT_EQ(read_text(plain / "REPORT.md").find(note), std::string::npos);
   EXPECT_NE(read_text(deferred / "REPORT.md").find(note), std::string::npos);
 }
@@ -408,7 +440,8 @@ TEST(Report, RendererDrawsEveryChartOfTheFixtureWithoutWarnings) {
   ASSERT_EQ(render_golden_fixture(copy, "", err.string()), 0);
   const std::string messages = read_text(err);
   const std::string report = read_text(copy / "REPORT.md");
-  if (report.find("matplotlib was not available") != std::string::npos) GTEST_SKIP() << "no matplotlib";
+  if (report.find("matplotlib was not available") != std::string::npos)
+    GTEST_SKIP() << "no matplotlib";
   EXPECT_EQ(messages.find("Warning"), std::string::npos) << messages;
   // Every chart REPORT.md links to exists.
   std::size_t at = 0, links = 0;
@@ -429,29 +462,33 @@ TEST(Report, FailingCasesAreRecordedAndTheReportGoesOn) {
   for (const char* m : {"bunny", "horse", "dragon"})
     for (const char* level : {"_L0.stl", "_L1.stl"})
       test::write_text(models / (std::string(m) + level), "solid broken\nthis is not an stl\n");
-  const auto r = run_cli("report --smoke --no-render --tables-only --models '" + models.path().string() +
-                         "' --out '" + out.path().string() + "'");
+  const auto r = run_cli("report --smoke --no-render --tables-only --models '" +
+                         models.path().string() + "' --out '" + out.path().string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json t = load(out / "tables.json");
   ASSERT_EQ(t["table1"].size(), 3u);
   for (const json& row : t["table1"]) {
     EXPECT_FALSE(row["completed"].get<bool>());
     EXPECT_EQ(row["error"]["kind"], "input");
-    EXPECT_NE(row["error"]["message"].get<std::string>().find("_L1.stl"), std::string::npos) << row.dump();
+    EXPECT_NE(row["error"]["message"].get<std::string>().find("_L1.stl"), std::string::npos)
+        << row.dump();
   }
 }
 
 TEST(Report, VtuFramesOnRequest) {
   TempDir out;
-  const auto r = run_cli("report --smoke --stability-only --only bar-twist --vtu --no-render --out '" +
-                         out.path().string() + "'");
+  const auto r =
+      run_cli("report --smoke --stability-only --only bar-twist --vtu --no-render --out '" +
+              out.path().string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Every 10th step of every extractor's run (smoke: 12 steps, so frame 10), as VTK XML.
-  for (const char* method : {"energy-newton", "energy-exact", "polar", "polar-fixed", "polar-smoothed", "qr",
-                             "mueller2016"}) {
-    const fs::path frame = out / "vtu" / "bar-twist" / (std::string(method) + "-linear-implicit") / "frame_00010.vtu";
+  for (const char* method : {"energy-newton", "energy-exact", "polar", "polar-fixed",
+                             "polar-smoothed", "qr", "mueller2016"}) {
+    const fs::path frame =
+        out / "vtu" / "bar-twist" / (std::string(method) + "-linear-implicit") / "frame_00010.vtu";
     ASSERT_TRUE(fs::exists(frame)) << frame;
-    EXPECT_NE(read_text(frame).find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos) << frame;
+    EXPECT_NE(read_text(frame).find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos)
+        << frame;
   }
 }
 
@@ -459,7 +496,8 @@ TEST(Report, RecordCaseKeepsTheErrorKind) {
   const json ok = record_case({{"id", 1}}, [] { return json{{"value", 2}}; });
   EXPECT_TRUE(ok["completed"].get<bool>());
   EXPECT_EQ(ok["value"], 2);
-  const json bad = record_case({{"id", 1}}, []() -> json { throw NumericalFault("NaN at step 3"); });
+  const json bad =
+      record_case({{"id", 1}}, []() -> json { throw NumericalFault("NaN at step 3"); });
   EXPECT_FALSE(bad["completed"].get<bool>());
   EXPECT_EQ(bad["error"]["kind"], "numerical");
   EXPECT_EQ(bad["id"], 1);

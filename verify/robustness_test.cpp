@@ -1,12 +1,13 @@
-// Faults during runs: NaN/inf stops with NumericalFault (exit 1) naming the step and element; inverted elements
-// are counted, not fatal; a full disk is a clear error with no partial file; SIGINT leaves no
-// partial file; a 10,000-step run keeps constant memory.
+// Faults during runs: NaN/inf stops with NumericalFault (exit 1) naming the step and element;
+// inverted elements are counted, not fatal; a full disk is a clear error with no partial file;
+// SIGINT leaves no partial file; a 10,000-step run keeps constant memory.
 #include <gtest/gtest.h>
 
 #include <csignal>
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/run_scene.hpp"
 #include "core/errors.hpp"
 #include "core/memory_usage.hpp"
 #include "fem/corotated_system.hpp"
@@ -14,7 +15,6 @@
 #include "integrate/implicit_euler.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
-#include "cli/run_scene.hpp"
 #include "scene/scene.hpp"
 #include "test_support.hpp"
 
@@ -36,14 +36,15 @@ using test::write_text;
 std::string bar_scene(const std::string& gravity, const std::string& analysis) {
   return R"({"mesh": {"box": [1, 0.1, 0.1], "cells": [10, 1, 1]},
     "material": {"young": 1e5, "poisson": 0.3, "density": 1000},
-    "fixed": [{"box": [[0, 0, 0], [0, 0.1, 0.1]]}], "gravity": )" + gravity +
-         R"(, "analysis": )" + analysis + "}";
+    "fixed": [{"box": [[0, 0, 0], [0, 0.1, 0.1]]}], "gravity": )" +
+         gravity + R"(, "analysis": )" + analysis + "}";
 }
 
 TEST(Robustness, OverflowingLoadStopsNamingStepAndElement) {
   // rho g overflows to inf: the first solve produces inf/NaN displacements. The scene format
   // refuses gravity beyond 1e9 (exit 2), so the load is set past the parser, as a bug would.
-  Scene scene = parse_scene(nlohmann::json::parse(bar_scene("[0, 0, -9.81]", R"({"type": "dynamic", "dt": 0.01, "steps": 5})")),
+  Scene scene = parse_scene(nlohmann::json::parse(bar_scene(
+                                "[0, 0, -9.81]", R"({"type": "dynamic", "dt": 0.01, "steps": 5})")),
                             ".", "bar.json");
   scene.gravity = Vec3(0, 0, -1e308);
   try {
@@ -73,7 +74,9 @@ TEST(Robustness, FiniteForcesWhoseNormOverflowsAreAFault) {
   } catch (const NumericalFault& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("non-finite force norm at step 1"), std::string::npos) << what;
-    EXPECT_NE(what.find("(node " + std::to_string(problem.mesh.node_tags[node]) + ")"), std::string::npos) << what;
+    EXPECT_NE(what.find("(node " + std::to_string(problem.mesh.node_tags[node]) + ")"),
+              std::string::npos)
+        << what;
   }
 }
 
@@ -85,7 +88,8 @@ TEST(Robustness, InvertedElementsAreCountedNotFatal) {
     "fixed": [{"box": [[0, 0, 0], [1, 1, 0]]}],
     "forces": [{"box": [[0, 0, 1], [1, 1, 1]], "total": [0, 0, -5e4]}],
     "analysis": {"type": "dynamic", "rotation": "polar-fixed", "dt": 0.05, "steps": 20}})");
-  const auto r = run_cli("run '" + (dir / "s.json").string() + "' --out '" + (dir / "r.json").string() + "'");
+  const auto r =
+      run_cli("run '" + (dir / "s.json").string() + "' --out '" + (dir / "r.json").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(test::read_text(dir / "r.json"));
   EXPECT_GT(j["inverted_max"].get<int>(), 0);
@@ -100,17 +104,20 @@ TEST(Robustness, FullDiskIsAClearErrorWithoutPartialFile) {
                               (dir / "r.json").string() + "'\"";
   const int status = std::system((command + " 2> '" + (dir / "err").string() + "'").c_str());
   EXPECT_EQ(WEXITSTATUS(status), 2);
-  EXPECT_NE(test::read_text(dir / "err").find("disk full"), std::string::npos) << test::read_text(dir / "err");
+  EXPECT_NE(test::read_text(dir / "err").find("disk full"), std::string::npos)
+      << test::read_text(dir / "err");
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
     EXPECT_EQ(entry.path().filename().string().find("r.json"), std::string::npos) << entry.path();
 }
 
 TEST(Robustness, InterruptLeavesNoPartialFile) {
   TempDir dir;
-  write_text(dir / "s.json", bar_scene("[0, 0, -9.81]", R"({"type": "dynamic", "dt": 0.001, "steps": 10000000})"));
-  write_text(dir / "interrupt.sh", "'" + std::string(COROFEM_CLI) + "' run '" + (dir / "s.json").string() +
-                                       "' --out '" + (dir / "r.json").string() +
-                                       "' 2>/dev/null &\npid=$!\nsleep 1\nkill -INT $pid\nwait $pid\n");
+  write_text(dir / "s.json",
+             bar_scene("[0, 0, -9.81]", R"({"type": "dynamic", "dt": 0.001, "steps": 10000000})"));
+  write_text(dir / "interrupt.sh",
+             "'" + std::string(COROFEM_CLI) + "' run '" + (dir / "s.json").string() + "' --out '" +
+                 (dir / "r.json").string() +
+                 "' 2>/dev/null &\npid=$!\nsleep 1\nkill -INT $pid\nwait $pid\n");
   const int status = std::system(("bash '" + (dir / "interrupt.sh").string() + "'").c_str());
   EXPECT_NE(WEXITSTATUS(status), 0);
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))

@@ -8,11 +8,11 @@
 #include <random>
 
 #include "exact_rotation.hpp"
-#include "rotation/quaternion.hpp"
-#include "rotation/rotation_factor.hpp"
+#include "mesh/box_mesh.hpp"
 #include "rotation/energy_newton_batch.hpp"
 #include "rotation/energy_rotation.hpp"
-#include "mesh/box_mesh.hpp"
+#include "rotation/quaternion.hpp"
+#include "rotation/rotation_factor.hpp"
 #include "sparse/block_kernels.hpp"
 
 namespace corofem {
@@ -37,7 +37,8 @@ std::vector<Case> catalogue(int per_kind, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1), pos(0.2, 1);
   std::vector<Case> cases;
-  const char* kinds[] = {"regular", "skinny", "flat", "stretched", "compressed", "sheared", "inverted", "inverted-symmetric"};
+  const char* kinds[] = {"regular",    "skinny",  "flat",     "stretched",
+                         "compressed", "sheared", "inverted", "inverted-symmetric"};
   for (const char* kind : kinds) {
     for (int i = 0; i < per_kind; ++i) {
       Case c;
@@ -53,7 +54,8 @@ std::vector<Case> catalogue(int per_kind, unsigned seed) {
       const double noise = c.kind == "inverted-symmetric" ? 0.0 : 0.2;
       for (int a = 0; a < 4; ++a)
         c.rest[a] = orient * shape.cwiseProduct(base[a] + noise * Vec3(u(rng), u(rng), u(rng)));
-      if (signed_volume(c.rest[0], c.rest[1], c.rest[2], c.rest[3]) < 0) std::swap(c.rest[2], c.rest[3]);
+      if (signed_volume(c.rest[0], c.rest[1], c.rest[2], c.rest[3]) < 0)
+        std::swap(c.rest[2], c.rest[3]);
       // Deformation: a random rotation times a stretch of the requested kind.
       const Mat3 r = random_rotation(rng), v = random_rotation(rng);
       Vec3 stretch(pos(rng) + 0.5, pos(rng) + 0.5, pos(rng) + 0.5);
@@ -85,7 +87,8 @@ TEST(HornMatrix, QuadraticFormIsTraceOfRotatedMatrix) {
     for (int k = 0; k < 9; ++k) m(k / 3, k % 3) = n(rng);
     const Eigen::Quaterniond q = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
     const Eigen::Vector4d c(q.w(), q.x(), q.y(), q.z());
-    EXPECT_NEAR(c.dot(horn_matrix(m) * c), (q.toRotationMatrix().transpose() * m).trace(), 1e-13 * m.norm());
+    EXPECT_NEAR(c.dot(horn_matrix(m) * c), (q.toRotationMatrix().transpose() * m).trace(),
+                1e-13 * m.norm());
   }
 }
 
@@ -103,7 +106,8 @@ TEST(RotationEnergy, QuadratureEqualsClosedForm) {
     std::mt19937 rng(3);
     for (int trial = 0; trial < 5; ++trial) {
       const Mat3 q = random_rotation(rng);
-      const double closed = (c.f * cm * c.f.transpose()).trace() + cm.trace() - 2 * (q.transpose() * c.f * cm).trace();
+      const double closed = (c.f * cm * c.f.transpose()).trace() + cm.trace() -
+                            2 * (q.transpose() * c.f * cm).trace();
       const double quadrature = rotation_energy(q, rest, deformed);
       const double scale = (c.f * cm * c.f.transpose()).trace() + cm.trace();
       EXPECT_NEAR(quadrature, closed, 1e-13 * scale) << c.kind;
@@ -129,7 +133,8 @@ TEST(RotationEnergy, NewtonExactSvdHornAndBruteForceAgree) {
     const Mat3 s = deformed_moment(moment_arms(rest), Tet{0, 1, 2, 3}, positions, a);
     const Mat3 exact = energy_exact_rotation(s);
     // Warm start within 0.3 rad of the answer, as from a previous time step.
-    const Mat3 warm = Eigen::AngleAxisd(0.3, Vec3::Random().normalized()).toRotationMatrix() * exact;
+    const Mat3 warm =
+        Eigen::AngleAxisd(0.3, Vec3::Random().normalized()).toRotationMatrix() * exact;
     const NewtonOutcome newton = energy_newton_rotation(s, a, warm, 1e-14, 30);
     newton_fallbacks += newton.fell_back;
     const Mat3 svd = rotation_factor(s);
@@ -152,7 +157,8 @@ TEST(RotationEnergy, NewtonExactSvdHornAndBruteForceAgree) {
     } else {
       ++ambiguous;
       for (const Mat3& q : {newton.rotation, svd, horn})
-        worst_ambiguous_energy = std::max(worst_ambiguous_energy, std::abs(energy(q) - e_exact) / e_scale);
+        worst_ambiguous_energy =
+            std::max(worst_ambiguous_energy, std::abs(energy(q) - e_exact) / e_scale);
     }
   }
   std::cout << "[ energy ] " << unique << " unique, " << ambiguous << " ambiguous; newton-exact "
@@ -178,13 +184,18 @@ TEST(RotationEnergy, BatchedNewtonIsTheElementwiseNewtonInEveryLane) {
   std::vector<Mat3> s(cases.size()), warm(cases.size());
   std::vector<double> a(cases.size());
   for (std::size_t c = 0; c < cases.size(); ++c) {
-    const double volume = signed_volume(cases[c].rest[0], cases[c].rest[1], cases[c].rest[2], cases[c].rest[3]);
+    const double volume =
+        signed_volume(cases[c].rest[0], cases[c].rest[1], cases[c].rest[2], cases[c].rest[3]);
     const std::array<Vec3, 4> moved = deform(cases[c]);
     const std::vector<Vec3> positions(moved.begin(), moved.end());
-    s[c] = deformed_moment(moment_arms(quadrature_points(cases[c].rest, volume)), Tet{0, 1, 2, 3}, positions, a[c]);
+    s[c] = deformed_moment(moment_arms(quadrature_points(cases[c].rest, volume)), Tet{0, 1, 2, 3},
+                           positions, a[c]);
     const double off = c % 7 == 0 ? 0.0 : 0.2 * static_cast<double>(c % 7);
     const Mat3 exact = energy_exact_rotation(s[c]);
-    warm[c] = off == 0 ? exact : Mat3(Eigen::AngleAxisd(off, Vec3::Random().normalized()).toRotationMatrix() * exact);
+    warm[c] =
+        off == 0
+            ? exact
+            : Mat3(Eigen::AngleAxisd(off, Vec3::Random().normalized()).toRotationMatrix() * exact);
   }
   int fallbacks = 0, steps_differ = 0, unstepped = 0;
   double worst = 0;
@@ -207,8 +218,8 @@ TEST(RotationEnergy, BatchedNewtonIsTheElementwiseNewtonInEveryLane) {
       worst = std::max(worst, (batch[l].rotation - one.rotation).norm());
     }
   }
-  std::cout << "[ energy ] batched Newton against elementwise: worst |dR| " << worst << ", fallbacks "
-            << fallbacks << ", converged without a step " << unstepped << "\n";
+  std::cout << "[ energy ] batched Newton against elementwise: worst |dR| " << worst
+            << ", fallbacks " << fallbacks << ", converged without a step " << unstepped << "\n";
   EXPECT_LT(worst, 1e-12);
   // A lane may take one step more or less only where the test sits at round-off of the tolerance.
   EXPECT_LE(steps_differ, 2);
@@ -221,7 +232,8 @@ TEST(RotationEnergy, QuaternionOfRotationRoundTrips) {
   // the identity), where a formula that divides by the wrong component loses every digit.
   std::mt19937 rng(5);
   std::vector<Mat3> rotations{Mat3::Identity()};
-  for (int axis = 0; axis < 3; ++axis) rotations.push_back(Eigen::AngleAxisd(M_PI, Vec3::Unit(axis)).toRotationMatrix());
+  for (int axis = 0; axis < 3; ++axis)
+    rotations.push_back(Eigen::AngleAxisd(M_PI, Vec3::Unit(axis)).toRotationMatrix());
   for (int i = 0; i < 1000; ++i) rotations.push_back(random_rotation(rng));
   double worst_q = 0, worst_m = 0;
   for (const Mat3& r : rotations) {
@@ -233,7 +245,8 @@ TEST(RotationEnergy, QuaternionOfRotationRoundTrips) {
     const double sign = q[0] * e.w() + q[1] * e.x() + q[2] * e.y() + q[3] * e.z() < 0 ? -1 : 1;
     worst_q = std::max({worst_q, std::abs(sign * q[0] - e.w()), std::abs(sign * q[1] - e.x()),
                         std::abs(sign * q[2] - e.y()), std::abs(sign * q[3] - e.z())});
-    const double scaled[4] = {3 * q[0], 3 * q[1], 3 * q[2], 3 * q[3]};  // not unit: the 2 / |q|^2 form
+    const double scaled[4] = {3 * q[0], 3 * q[1], 3 * q[2],
+                              3 * q[3]};  // not unit: the 2 / |q|^2 form
     rotation_of_quaternion(scaled, back);
     for (int k = 0; k < 9; ++k) worst_m = std::max(worst_m, std::abs(back[k] - m[k]));
   }
@@ -256,7 +269,8 @@ TEST(RotationEnergy, ExtractorMatchesTheExactMinimizerInBothKernelForms) {
   std::vector<std::vector<Vec3>> frames(2);
   for (int f = 0; f < 2; ++f)
     for (const Vec3& x : mesh.rest)
-      frames[f].push_back((f + 1) * 0.5 * spin * Vec3(1.4 * x.x(), x.y() + 0.5 * x.x() * x.x(), 0.8 * x.z()) +
+      frames[f].push_back((f + 1) * 0.5 * spin *
+                              Vec3(1.4 * x.x(), x.y() + 0.5 * x.x() * x.x(), 0.8 * x.z()) +
                           (1 - (f + 1) * 0.5) * x + Vec3(u(rng), u(rng), u(rng)));
   RotationParams params;
   params.newton_tolerance = 1e-13;
@@ -275,9 +289,12 @@ TEST(RotationEnergy, ExtractorMatchesTheExactMinimizerInBothKernelForms) {
       EXPECT_EQ(newton->stats().fallbacks, 0);
       EXPECT_EQ(newton->stats().inverted, 0);
       double worst = 0;
-      for (int e = 0; e < mesh.num_tets(); ++e) worst = std::max(worst, (rotations[e] - oracle[e]).norm());
+      for (int e = 0; e < mesh.num_tets(); ++e)
+        worst = std::max(worst, (rotations[e] - oracle[e]).norm());
       EXPECT_LT(worst, 1e-10) << (vector ? "vector" : "portable") << " form";
-      EXPECT_GT(*std::max_element(newton->stats().iterations.begin(), newton->stats().iterations.end()), 0);
+      EXPECT_GT(
+          *std::max_element(newton->stats().iterations.begin(), newton->stats().iterations.end()),
+          0);
     }
     forms.push_back(rotations);
     iterations.push_back(newton->stats().iterations);
@@ -289,7 +306,8 @@ TEST(RotationEnergy, ExtractorMatchesTheExactMinimizerInBothKernelForms) {
     apart = std::max(apart, (forms[0][e] - forms[1][e]).norm());
     steps_differ += iterations[0][e] != iterations[1][e];
   }
-  if (vector_block_kernels()) std::cout << "[ energy ] extractor, AVX2 against portable form: |dQ| " << apart << "\n";
+  if (vector_block_kernels())
+    std::cout << "[ energy ] extractor, AVX2 against portable form: |dQ| " << apart << "\n";
   EXPECT_LT(apart, 1e-13);  // FMA against two roundings, a few Newton steps of O(1) numbers
   EXPECT_LE(steps_differ, 2);
 }
@@ -301,7 +319,8 @@ TEST(RotationEnergy, NewtonDetectsSingularHessianAndFallsBack) {
   const NewtonOutcome out = energy_newton_rotation(s, 2.75, Mat3::Identity(), 1e-12, 20);
   EXPECT_TRUE(out.rotation.allFinite());
   EXPECT_NEAR(out.rotation.determinant(), 1.0, 1e-12);
-  EXPECT_NEAR((out.rotation.transpose() * s).trace(), (rotation_factor(s).transpose() * s).trace(), 1e-12);
+  EXPECT_NEAR((out.rotation.transpose() * s).trace(), (rotation_factor(s).transpose() * s).trace(),
+              1e-12);
 }
 
 }  // namespace

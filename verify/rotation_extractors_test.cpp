@@ -7,9 +7,9 @@
 #include <random>
 
 #include "cantilever_fixture.hpp"
-#include "rotation/quaternion.hpp"
 #include "integrate/static_solver.hpp"
 #include "mesh/box_mesh.hpp"
+#include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
@@ -34,7 +34,8 @@ TEST_P(EachExtractor, RecoversRigidMotions) {
   std::mt19937 rng(13);
   std::normal_distribution<double> n;
   for (int trial = 0; trial < 5; ++trial) {
-    const Mat3 r = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+    const Mat3 r =
+        Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
     std::vector<Vec3> moved;
     for (const Vec3& x : mesh.rest) moved.push_back(r * x + Vec3(1, -2, 0.5));
     std::vector<Mat3> rotations(mesh.tets.size(), Mat3::Identity());
@@ -52,7 +53,8 @@ TEST_P(EachExtractor, ReturnsProperRotationsUnderLargeDeformation) {
   std::uniform_real_distribution<double> u(-0.4, 0.4);
   std::vector<Vec3> positions;
   for (const Vec3& x : mesh.rest)
-    positions.push_back(Vec3(2 * x.x(), 0.5 * x.y() + 0.8 * x.x(), x.z()) + Vec3(u(rng), u(rng), u(rng)));
+    positions.push_back(Vec3(2 * x.x(), 0.5 * x.y() + 0.8 * x.x(), x.z()) +
+                        Vec3(u(rng), u(rng), u(rng)));
   std::vector<Mat3> rotations(mesh.tets.size(), Mat3::Identity());
   extractor->extract(positions, rotations);
   int reflections = 0;
@@ -87,7 +89,8 @@ TEST_P(EachExtractor, ReturnsProperRotationsUnderLargeDeformation) {
   ASSERT_GT(inverted, 0);
   ASSERT_LT(inverted, mesh.num_tets());
   const int counted = extractor->stats().inverted;
-  if (GetParam().rfind("energy", 0) == 0) EXPECT_GE(counted, 0) << "the energy methods count on their way";
+  if (GetParam().rfind("energy", 0) == 0)
+    EXPECT_GE(counted, 0) << "the energy methods count on their way";
   if (counted >= 0) EXPECT_EQ(counted, inverted);
 }
 

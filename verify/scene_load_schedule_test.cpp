@@ -13,17 +13,22 @@ namespace corofem {
 namespace {
 
 nlohmann::json twisted_bar(int ramp, int release) {
-  nlohmann::json move = {{"box", {{1 - 1e-9, 0, 0}, {1, 0.2, 0.2}}},
-                         {"rotate", {{"axis", {1, 0, 0}}, {"center", {1, 0.1, 0.1}}, {"degrees", 90}}},
-                         {"translate", {0.1, 0, 0}},
-                         {"ramp_steps", ramp}};
+  nlohmann::json move = {
+      {"box", {{1 - 1e-9, 0, 0}, {1, 0.2, 0.2}}},
+      {"rotate", {{"axis", {1, 0, 0}}, {"center", {1, 0.1, 0.1}}, {"degrees", 90}}},
+      {"translate", {0.1, 0, 0}},
+      {"ramp_steps", ramp}};
   if (release > 0) move["release_step"] = release;
   return {{"mesh", {{"box", {1, 0.2, 0.2}}, {"cells", {10, 2, 2}}}},
           {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
           {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 0.2, 0.2}}}}}},
           {"moves", {move}},
-          {"analysis", {{"type", "dynamic"}, {"solver", "cholmod"}, {"rotation", "energy-newton"},
-                        {"steps", 6}, {"dt", 0.01}}}};
+          {"analysis",
+           {{"type", "dynamic"},
+            {"solver", "cholmod"},
+            {"rotation", "energy-newton"},
+            {"steps", 6},
+            {"dt", 0.01}}}};
 }
 
 TEST(LoadSchedule, PrescribedVerticesFollowTheRampedRigidMotionExactly) {
@@ -85,7 +90,8 @@ TEST(LoadSchedule, BadTimingAndMovesAreNamed) {
     SceneSimulation sim(parse_scene(scene, ".", "empty.json"));
     FAIL() << "accepted a move selecting no vertex";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("moves[0].box selects no vertex"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("moves[0].box selects no vertex"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -39,8 +39,8 @@ nlohmann::json full_scene() {
 }
 
 struct NumericKey {
-  std::string pointer;  ///< JSON pointer of the value replaced
-  std::string path;     ///< the key path the error must name
+  std::string pointer;                         ///< JSON pointer of the value replaced
+  std::string path;                            ///< the key path the error must name
   std::vector<std::string> accepted, refused;  ///< the range's ends and just beyond them
 };
 
@@ -53,8 +53,14 @@ const std::vector<NumericKey>& numeric_keys() {
       {"/material/poisson", "material.poisson", {"-0.99", "0", "0.49"}, {"-1", "0.5"}},
       {"/material/density", "material.density", {"1e-9", "1e9"}, {"0", "-1", "1.1e9"}},
       {"/material/regions/0/young", "material.regions[0].young", {"1e-9", "1e15"}, {"0", "1.1e15"}},
-      {"/material/regions/0/poisson", "material.regions[0].poisson", {"-0.99", "0.49"}, {"-1", "0.5"}},
-      {"/material/regions/0/density", "material.regions[0].density", {"1e-9", "1e9"}, {"0", "1.1e9"}},
+      {"/material/regions/0/poisson",
+       "material.regions[0].poisson",
+       {"-0.99", "0.49"},
+       {"-1", "0.5"}},
+      {"/material/regions/0/density",
+       "material.regions[0].density",
+       {"1e-9", "1e9"},
+       {"0", "1.1e9"}},
       {"/material/regions/0/box/1/0", "material.regions[0].box", {"1e9"}, {"1.1e9"}},
       {"/fixed/0/box/0/0", "fixed[0].box", {"-1e9"}, {"-1.1e9"}},
       {"/gravity/2", "gravity", {"-1e9", "1e9"}, {"-1.1e9", "1.1e9"}},
@@ -79,22 +85,33 @@ const std::vector<NumericKey>& numeric_keys() {
       {"/analysis/max_iterations", "analysis.max_iterations", {"1", "100000"}, {"0", "100001"}},
       {"/analysis/rayleigh/alpha", "analysis.rayleigh.alpha", {"0", "1e9"}, {"-1e-9", "1.1e9"}},
       {"/analysis/rayleigh/beta", "analysis.rayleigh.beta", {"0", "1e9"}, {"-1e-9", "1.1e9"}},
-      {"/analysis/rotation_params/newton_tolerance", "analysis.rotation_params.newton_tolerance",
-       {"1e-15", "0.5"}, {"0", "0.6"}},
-      {"/analysis/rotation_params/newton_max_iterations", "analysis.rotation_params.newton_max_iterations",
-       {"1", "100"}, {"0", "101"}},
-      {"/analysis/rotation_params/mueller_iterations", "analysis.rotation_params.mueller_iterations",
-       {"1", "200"}, {"0", "201"}},
-      {"/analysis/rotation_params/mueller_tolerance", "analysis.rotation_params.mueller_tolerance",
-       {"1e-15", "0.5"}, {"0", "0.6"}},
-      {"/analysis/rotation_params/smoothing_passes", "analysis.rotation_params.smoothing_passes",
-       {"0", "100"}, {"-1", "101"}},
+      {"/analysis/rotation_params/newton_tolerance",
+       "analysis.rotation_params.newton_tolerance",
+       {"1e-15", "0.5"},
+       {"0", "0.6"}},
+      {"/analysis/rotation_params/newton_max_iterations",
+       "analysis.rotation_params.newton_max_iterations",
+       {"1", "100"},
+       {"0", "101"}},
+      {"/analysis/rotation_params/mueller_iterations",
+       "analysis.rotation_params.mueller_iterations",
+       {"1", "200"},
+       {"0", "201"}},
+      {"/analysis/rotation_params/mueller_tolerance",
+       "analysis.rotation_params.mueller_tolerance",
+       {"1e-15", "0.5"},
+       {"0", "0.6"}},
+      {"/analysis/rotation_params/smoothing_passes",
+       "analysis.rotation_params.smoothing_passes",
+       {"0", "100"},
+       {"-1", "101"}},
   };
   return keys;
 }
 
 /// The scene with the value at `pointer` replaced by the raw JSON text `value`, written to `file`.
-void write_scene_with(const std::filesystem::path& file, const std::string& pointer, const std::string& value) {
+void write_scene_with(const std::filesystem::path& file, const std::string& pointer,
+                      const std::string& value) {
   nlohmann::json scene = full_scene();
   if (pointer == "/mesh/size") scene["mesh"] = {{"surface", "a.stl"}, {"size", 0.1}};
   const std::string marker = "@@value@@";
@@ -169,7 +186,8 @@ TEST(SceneNumberLimits, CliExitsTwoNamingTheKey) {
   for (const auto& [pointer, value] : cases) {
     write_scene_with(dir / "scene.json", pointer, value);
     const auto out = dir / "r.json";
-    const auto r = test::run_cli("run '" + (dir / "scene.json").string() + "' --out '" + out.string() + "'");
+    const auto r =
+        test::run_cli("run '" + (dir / "scene.json").string() + "' --out '" + out.string() + "'");
     EXPECT_EQ(r.exit_code, 2) << pointer << " = " << value << ": " << r.err;
     EXPECT_NE(r.err.find(last_key(pointer)), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));

@@ -1,11 +1,12 @@
 // Scene parsing: defaults, path resolution, and an error naming the key for every kind of bad
 // value.
+#include "scene/scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "core/errors.hpp"
-#include "scene/scene.hpp"
 
 namespace corofem {
 namespace {
@@ -39,13 +40,17 @@ TEST(Scene, RelativePathsResolveAgainstSceneFolder) {
 TEST(Scene, MultigridKeysOfAnotherSolverAreIgnoredWithAWarning) {
   // A scene that sweeps solvers keeps its multigrid settings when it switches to CHOLMOD.
   auto j = minimal();
-  j["analysis"] = {{"solver", "cholmod"}, {"levels", 4}, {"smoothing", 2}, {"hierarchy", "lattice"}};
+  j["analysis"] = {
+      {"solver", "cholmod"}, {"levels", 4}, {"smoothing", 2}, {"hierarchy", "lattice"}};
   testing::internal::CaptureStderr();
   const Scene s = parse_scene(j, "/", "s.json");
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_EQ(s.analysis.levels, 1);
-  EXPECT_NE(err.find("analysis.levels, analysis.smoothing, analysis.hierarchy belong to multigrid solvers"),
-            std::string::npos) << err;
+  EXPECT_NE(
+      err.find(
+          "analysis.levels, analysis.smoothing, analysis.hierarchy belong to multigrid solvers"),
+      std::string::npos)
+      << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;  // one line
 }
 
@@ -69,11 +74,13 @@ TEST(Scene, CoarseMeshesAndHierarchy) {
 
 struct BadCase {
   const char* name;
-  const char* patch;    // JSON merge patch applied to the minimal scene
-  const char* fragment; // must appear in the message
+  const char* patch;     // JSON merge patch applied to the minimal scene
+  const char* fragment;  // must appear in the message
 };
 
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const BadCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BadScenes : public ::testing::TestWithParam<BadCase> {};
 
@@ -93,31 +100,43 @@ TEST_P(BadScenes, ErrorNamesTheKey) {
 const BadCase kBadCases[] = {
     {"UnknownTopKey", R"({"meshh": 1})", "meshh is not a known key"},
     {"UnknownNestedKey", R"({"analysis": {"dtt": 1}})", "analysis.dtt is not a known key"},
-    {"YoungNotPositive", R"({"material": {"young": 0}})", "material.young must be in [1e-09, 1e+15]"},
-    {"PoissonTooHigh", R"({"material": {"poisson": 0.5}})", "material.poisson must be in (-1, 0.5)"},
-    {"PoissonWrongType", R"({"material": {"poisson": "0.3"}})", "material.poisson must be a number"},
-    {"DensityNegative", R"({"material": {"density": -1}})", "material.density must be in [1e-09, 1e+09]"},
+    {"YoungNotPositive", R"({"material": {"young": 0}})",
+     "material.young must be in [1e-09, 1e+15]"},
+    {"PoissonTooHigh", R"({"material": {"poisson": 0.5}})",
+     "material.poisson must be in (-1, 0.5)"},
+    {"PoissonWrongType", R"({"material": {"poisson": "0.3"}})",
+     "material.poisson must be a number"},
+    {"DensityNegative", R"({"material": {"density": -1}})",
+     "material.density must be in [1e-09, 1e+09]"},
     {"DtZero", R"({"analysis": {"dt": 0}})", "analysis.dt must be in [1e-09, 1e+06]"},
     {"StepsNotInteger", R"({"analysis": {"steps": 1.5}})", "analysis.steps must be an integer"},
     {"UnknownType", R"({"analysis": {"type": "modal"}})", "analysis.type must be one of"},
-    {"UnknownRotation", R"({"analysis": {"rotation": "magic"}})", "analysis.rotation must be one of"},
+    {"UnknownRotation", R"({"analysis": {"rotation": "magic"}})",
+     "analysis.rotation must be one of"},
     {"UnknownSolver", R"({"analysis": {"solver": "magic"}})", "analysis.solver must be one of"},
-    {"BoxInverted", R"({"fixed": [{"box": [[1, 0, 0], [0, 1, 1]]}]})", "fixed[0].box has a lower corner"},
-    {"ForceWithoutTotal", R"({"forces": [{"box": [[0, 0, 0], [1, 1, 1]]}]})", "forces[0].total is required"},
+    {"BoxInverted", R"({"fixed": [{"box": [[1, 0, 0], [0, 1, 1]]}]})",
+     "fixed[0].box has a lower corner"},
+    {"ForceWithoutTotal", R"({"forces": [{"box": [[0, 0, 0], [1, 1, 1]]}]})",
+     "forces[0].total is required"},
     {"GravityShort", R"({"gravity": [0, -9.81]})", "gravity must be an array of 3 numbers"},
     {"CellsZero", R"({"mesh": {"cells": [0, 1, 1]}})", "mesh.cells must be 3 integers"},
-    {"CellsHuge", R"({"mesh": {"cells": [100000, 100000, 100000]}})", "mesh.cells would give about 6e+15 tets"},
+    {"CellsHuge", R"({"mesh": {"cells": [100000, 100000, 100000]}})",
+     "mesh.cells would give about 6e+15 tets"},
     {"TwoMeshSources", R"({"mesh": {"file": "a.msh"}})", "mesh.file must be given alone"},
-    {"SurfaceWithoutSize", R"({"mesh": {"box": null, "cells": null, "surface": "a.stl"}})", "mesh.size is required"},
+    {"SurfaceWithoutSize", R"({"mesh": {"box": null, "cells": null, "surface": "a.stl"}})",
+     "mesh.size is required"},
     {"GravityNeedsDensity", R"({"gravity": [0, 0, -9.81]})", "material.density is required"},
     {"DynamicNeedsDensity", R"({"analysis": {"type": "dynamic"}})", "material.density is required"},
-    {"OutputRotationsType", R"({"output": {"rotations": 1}})", "output.rotations must be true or false"},
+    {"OutputRotationsType", R"({"output": {"rotations": 1}})",
+     "output.rotations must be true or false"},
     {"LevelsOutOfRange", R"({"analysis": {"levels": 17}})", "analysis.levels must be in [1, 16]"},
     {"UnknownHierarchy", R"({"analysis": {"solver": "mgpcg", "hierarchy": "octree"}})",
      "analysis.hierarchy must be one of"},
-    {"CoarseMeshUnknownKey", R"({"mesh": {"levels": [{"box": [1, 1, 1], "cells": [2, 1, 1], "colour": 1}]}})",
+    {"CoarseMeshUnknownKey",
+     R"({"mesh": {"levels": [{"box": [1, 1, 1], "cells": [2, 1, 1], "colour": 1}]}})",
      "mesh.levels[0].colour is not a known key"},
-    {"CoarseMeshTwoSources", R"({"mesh": {"levels": [{"box": [1, 1, 1], "cells": [2, 1, 1], "file": "c.msh"}]}})",
+    {"CoarseMeshTwoSources",
+     R"({"mesh": {"levels": [{"box": [1, 1, 1], "cells": [2, 1, 1], "file": "c.msh"}]}})",
      "mesh.levels[0].file must be given alone"},
 };
 

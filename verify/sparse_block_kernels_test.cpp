@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-#include <limits>
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "core/threads.hpp"
@@ -53,7 +53,8 @@ TEST(BlockKernels, BothFormsMatchTheDenseProductAtEveryThreadCount) {
       ScopedThreadCount threads(1);
       a.multiply(x, one);
     }
-    for (int i = 0; i < 3 * n; ++i) ASSERT_LE(std::abs(one[i] - expected[i]), 130 * u * scale[i]) << "entry " << i;
+    for (int i = 0; i < 3 * n; ++i)
+      ASSERT_LE(std::abs(one[i] - expected[i]), 130 * u * scale[i]) << "entry " << i;
     // The fused residual is b minus the product, rounded once more: the same bits.
     const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(3 * n, -1, 1), r_expected = b - one;
     for (const int t : {1, 2, 3}) {
@@ -62,7 +63,8 @@ TEST(BlockKernels, BothFormsMatchTheDenseProductAtEveryThreadCount) {
       a.multiply(x, y);
       EXPECT_EQ(0, std::memcmp(y.data(), one.data(), sizeof(double) * y.size())) << t << " threads";
       a.residual(b, x, r);
-      EXPECT_EQ(0, std::memcmp(r.data(), r_expected.data(), sizeof(double) * r.size())) << t << " threads";
+      EXPECT_EQ(0, std::memcmp(r.data(), r_expected.data(), sizeof(double) * r.size()))
+          << t << " threads";
     }
   });
 }

@@ -1,11 +1,11 @@
 #pragma once
 // Helpers shared by the gates: temporary folders, running the CLI, small meshes, tolerances.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <iostream>
 #include <random>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "fem/fe_problem.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -69,7 +69,8 @@ void in_each_kernel_form(const F& body) {
   for (const bool vector : {false, true}) {
     set_vector_block_kernels(vector);
     if (vector != vector_block_kernels()) {
-      std::cout << "[   NOTE   ] this CPU has no AVX2/FMA: only the scalar block kernels are checked\n";
+      std::cout
+          << "[   NOTE   ] this CPU has no AVX2/FMA: only the scalar block kernels are checked\n";
       continue;
     }
     SCOPED_TRACE(block_kernels_name());

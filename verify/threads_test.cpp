@@ -2,6 +2,8 @@
 // against its oracle (Eigen products, the dense Galerkin product, CHOLMOD), and whole dynamic
 // runs bit-identical at every thread count and run to run. Every kernel writes each output from
 // one thread and sums in a fixed order, so "equal" here means equal bits, not a tolerance.
+#include "core/threads.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -11,14 +13,13 @@
 #include <random>
 
 #include "core/errors.hpp"
-#include "core/threads.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/fe_problem.hpp"
-#include "multigrid/galerkin.hpp"
+#include "galerkin_oracle.hpp"
 #include "linalg/gauss_seidel.hpp"
+#include "multigrid/galerkin.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/mesh_level.hpp"
-#include "galerkin_oracle.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene_simulation.hpp"
 #include "sparse/brc_to_eigen.hpp"
@@ -37,7 +38,9 @@ class ThreadsTest : public ::testing::Test {
   void TearDown() override { set_items_per_thread(2048); }
 };
 
-bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
+bool same_bits(const double* a, const double* b, std::size_t n) {
+  return std::memcmp(a, b, n * sizeof(double)) == 0;
+}
 bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return a.size() == b.size() && same_bits(a.data(), b.data(), a.size());
 }
@@ -52,8 +55,14 @@ SceneSimulation quadruped(double size, const std::string& smoother = "multicolou
       {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
       {"fixed", {{{"box", {{0, -0.3, -0.01}, {0.3, 0.3, 0.05}}}}}},
       {"gravity", {0, 0, -9.81}},
-      {"analysis", {{"type", "dynamic"}, {"rotation", "energy-newton"}, {"solver", "mgpcg"},
-                    {"smoother", smoother}, {"dt", 0.01}, {"steps", 6}, {"tolerance", 1e-6}}}};
+      {"analysis",
+       {{"type", "dynamic"},
+        {"rotation", "energy-newton"},
+        {"solver", "mgpcg"},
+        {"smoother", smoother},
+        {"dt", 0.01},
+        {"steps", 6},
+        {"tolerance", 1e-6}}}};
   return SceneSimulation(parse_scene(scene, ".", "threads"));
 }
 
@@ -77,7 +86,8 @@ std::vector<Vec3> deformed(const TetMesh& mesh, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> d(-0.02, 0.02);
   std::vector<Vec3> p = mesh.rest;
-  for (Vec3& x : p) x = Eigen::AngleAxisd(0.6, Vec3(0.3, 1, 0.2).normalized()) * x + Vec3(d(rng), d(rng), d(rng));
+  for (Vec3& x : p)
+    x = Eigen::AngleAxisd(0.6, Vec3(0.3, 1, 0.2).normalized()) * x + Vec3(d(rng), d(rng), d(rng));
   return p;
 }
 
@@ -117,7 +127,8 @@ TEST_F(ThreadsTest, RotationsAssemblyAndForcesAreTheOneThreadBits) {
       if (n == 1) rotations_one[method] = r;
       const std::vector<Mat3>& one = rotations_one[method];
       for (std::size_t e = 0; e < r.size(); ++e)
-        ASSERT_TRUE(same_bits(r[e].data(), one[e].data(), 9)) << method << " element " << e << " at " << n;
+        ASSERT_TRUE(same_bits(r[e].data(), one[e].data(), 9))
+            << method << " element " << e << " at " << n;
     }
     std::vector<Mat3> r(p.mesh.tets.size(), Mat3::Identity());
     make_rotation_extractor("energy-newton", p.mesh)->extract(x, r);
@@ -141,7 +152,8 @@ TEST_F(ThreadsTest, RotationsAssemblyAndForcesAreTheOneThreadBits) {
             const Mat3 blk = r[e] * ke.block<3, 3>(3 * a, 3 * b) * r[e].transpose();
             for (int i = 0; i < 3; ++i)
               for (int j = 0; j < 3; ++j)
-                triplets.emplace_back(3 * p.mesh.tets[e][a] + i, 3 * p.mesh.tets[e][b] + j, blk(i, j));
+                triplets.emplace_back(3 * p.mesh.tets[e][a] + i, 3 * p.mesh.tets[e][b] + j,
+                                      blk(i, j));
           }
         }
       }
@@ -149,7 +161,8 @@ TEST_F(ThreadsTest, RotationsAssemblyAndForcesAreTheOneThreadBits) {
       k.setFromTriplets(triplets.begin(), triplets.end());
       // Summation order differs from the oracle's: a few ulps of the largest entry.
       const Eigen::SparseMatrix<double> ours = to_eigen(p.stiffness);
-      EXPECT_LT((Eigen::MatrixXd(ours) - Eigen::MatrixXd(k)).norm(), 1e-13 * Eigen::MatrixXd(k).norm());
+      EXPECT_LT((Eigen::MatrixXd(ours) - Eigen::MatrixXd(k)).norm(),
+                1e-13 * Eigen::MatrixXd(k).norm());
       // Ktilde p - f0 is the force (cancellation: |K||x| / |f| ~ 1e3 here, so 1e-9 relative).
       Eigen::VectorXd positions(p.num_dofs());
       for (int v = 0; v < p.mesh.num_vertices(); ++v) positions.segment<3>(3 * v) = x[v];
@@ -177,10 +190,12 @@ TEST_F(ThreadsTest, StreamProductIsTheOneThreadBitsAndTheOracle) {
   SceneSimulation coarse_sim = quadruped(0.24);
   const TetMesh& coarse = coarse_sim.problem().mesh;
   const Transfer t =
-      make_mesh_level(p.mesh.rest, std::vector<char>(p.mesh.rest.size(), 0), coarse, "coarse").transfer;
+      make_mesh_level(p.mesh.rest, std::vector<char>(p.mesh.rest.size(), 0), coarse, "coarse")
+          .transfer;
   const BrcMatrix pattern = galerkin_pattern(a, t);
   const Eigen::SparseMatrix<double> r = restriction_matrix(t);
-  const Eigen::MatrixXd oracle = reference::dense_galerkin(Eigen::MatrixXd(r), Eigen::MatrixXd(to_eigen(a)));
+  const Eigen::MatrixXd oracle =
+      reference::dense_galerkin(Eigen::MatrixXd(r), Eigen::MatrixXd(to_eigen(a)));
   std::vector<double> one;
   for (const auto symmetry : {GalerkinStream::Symmetry::Symmetric, GalerkinStream::Symmetry::Full})
     for (const int n : kThreadCounts) {
@@ -208,8 +223,9 @@ TEST_F(ThreadsTest, EveryGalerkinMethodIsTheOneThreadBitsOnEveryLevel) {
   SceneSimulation coarse_sim = quadruped(0.24), coarsest_sim = quadruped(0.4);
   const CoarseLevel first = make_mesh_level(p.mesh.rest, std::vector<char>(p.mesh.rest.size(), 0),
                                             coarse_sim.problem().mesh, "coarse");
-  const CoarseLevel second = make_mesh_level(first.points, std::vector<char>(first.points.size(), 0),
-                                             coarsest_sim.problem().mesh, "coarsest");
+  const CoarseLevel second =
+      make_mesh_level(first.points, std::vector<char>(first.points.size(), 0),
+                      coarsest_sim.problem().mesh, "coarsest");
   for (const char* name : {"naive", "stream", "stream-full", "reuse", "gather"}) {
     SCOPED_TRACE(name);
     std::vector<std::vector<double>> one;
@@ -221,7 +237,8 @@ TEST_F(ThreadsTest, EveryGalerkinMethodIsTheOneThreadBitsOnEveryLevel) {
       hierarchy.update(a, galerkin_method(name));  // reuse's second update differs from its first
       for (int h = 1; h < hierarchy.num_levels(); ++h) {
         if (n == 1) one.push_back(hierarchy.matrix(h).values);
-        EXPECT_TRUE(same_bits(hierarchy.matrix(h).values, one[h - 1])) << "level " << h << " at " << n << " threads";
+        EXPECT_TRUE(same_bits(hierarchy.matrix(h).values, one[h - 1]))
+            << "level " << h << " at " << n << " threads";
       }
     }
   }
@@ -241,9 +258,11 @@ SmootherSystem smoother_system() {
   FeProblem& p = sim.problem();
   const std::vector<Mat3> identity(p.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd force;
-  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
+  assemble_corotated(p.elements, p.mesh, p.assembly, identity, Eigen::VectorXd::Zero(p.num_dofs()),
+                     p.stiffness, force);
   SmootherSystem s{p.stiffness, {}, {}, {}};
-  for (int i = 0; i < s.a.block_rows; ++i) s.a.block(s.a.find(i, i)) += 1e3 * Mat3::Identity();  // + M/dt^2
+  for (int i = 0; i < s.a.block_rows; ++i)
+    s.a.block(s.a.find(i, i)) += 1e3 * Mat3::Identity();  // + M/dt^2
   s.b = Eigen::VectorXd::LinSpaced(3 * s.a.block_rows, -1, 1);
   s.dense = Eigen::MatrixXd(to_eigen(s.a));
   s.exact = s.dense.ldlt().solve(s.b);
@@ -263,7 +282,8 @@ TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
   const Eigen::MatrixXd& dense = system.dense;
   const Eigen::VectorXd& exact = system.exact;
   // Domains of 200 rows: this small mesh gets several, with boundaries between them.
-  for (const SmootherOrdering ordering : {SmootherOrdering::Multicolour, SmootherOrdering::Domains}) {
+  for (const SmootherOrdering ordering :
+       {SmootherOrdering::Multicolour, SmootherOrdering::Domains}) {
     SCOPED_TRACE(smoother_ordering_name(ordering));
     Eigen::VectorXd one;
     for (const int n : kThreadCounts) {
@@ -302,7 +322,8 @@ TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
 /// substitution on the dense matrix. (No Eigen factorization of a dynamic matrix here: in the
 /// sanitizer build its template instance would interpose libgmsh's own, built with another
 /// allocator.)
-Eigen::VectorXd block_triangular_solve(const Eigen::MatrixXd& m, const Eigen::VectorXd& r, bool transposed) {
+Eigen::VectorXd block_triangular_solve(const Eigen::MatrixXd& m, const Eigen::VectorXd& r,
+                                       bool transposed) {
   const int n = static_cast<int>(r.size()) / 3;
   Eigen::VectorXd y = Eigen::VectorXd::Zero(r.size());
   for (int step = 0; step < n; ++step) {
@@ -310,12 +331,14 @@ Eigen::VectorXd block_triangular_solve(const Eigen::MatrixXd& m, const Eigen::Ve
     Eigen::Vector3d rhs = r.segment<3>(3 * i);
     for (int j = 0; j < n; ++j) {
       if (j == i || (transposed ? j < i : j > i)) continue;
-      const Eigen::Matrix3d block = transposed ? Eigen::Matrix3d(m.block<3, 3>(3 * j, 3 * i).transpose())
-                                               : Eigen::Matrix3d(m.block<3, 3>(3 * i, 3 * j));
+      const Eigen::Matrix3d block = transposed
+                                        ? Eigen::Matrix3d(m.block<3, 3>(3 * j, 3 * i).transpose())
+                                        : Eigen::Matrix3d(m.block<3, 3>(3 * i, 3 * j));
       rhs -= block * y.segment<3>(3 * j);
     }
-    const Eigen::Matrix3d diagonal = transposed ? Eigen::Matrix3d(m.block<3, 3>(3 * i, 3 * i).transpose())
-                                                : Eigen::Matrix3d(m.block<3, 3>(3 * i, 3 * i));
+    const Eigen::Matrix3d diagonal = transposed
+                                         ? Eigen::Matrix3d(m.block<3, 3>(3 * i, 3 * i).transpose())
+                                         : Eigen::Matrix3d(m.block<3, 3>(3 * i, 3 * i));
     y.segment<3>(3 * i) = diagonal.inverse() * rhs;
   }
   return y;
@@ -372,7 +395,8 @@ TEST_F(ThreadsTest, HybridSmootherIsItsDenseSplittingAtEveryCount) {
       EXPECT_TRUE(same_bits(x, one)) << n << " threads";
     }
     // One domain: exactly the sequential smoother.
-    BlockGaussSeidel hybrid(SmootherOrdering::Hybrid, static_cast<int>(a.num_blocks()) + 1), sequential;
+    BlockGaussSeidel hybrid(SmootherOrdering::Hybrid, static_cast<int>(a.num_blocks()) + 1),
+        sequential;
     hybrid.set_matrix(a);
     sequential.set_matrix(a);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), y = x;
@@ -395,10 +419,12 @@ TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks
   const Eigen::VectorXd& b = system.b;
   const int domain_blocks = static_cast<int>(a.num_blocks() / 5);
   test::in_each_kernel_form([&] {
-    for (const SmootherOrdering ordering : {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
-                                            SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
+    for (const SmootherOrdering ordering :
+         {SmootherOrdering::Sequential, SmootherOrdering::Multicolour, SmootherOrdering::Domains,
+          SmootherOrdering::Hybrid}) {
       SCOPED_TRACE(smoother_ordering_name(ordering));
-      const bool lower_only = ordering == SmootherOrdering::Sequential || ordering == SmootherOrdering::Hybrid;
+      const bool lower_only =
+          ordering == SmootherOrdering::Sequential || ordering == SmootherOrdering::Hybrid;
       for (const int n : kThreadCounts) {
         ScopedThreadCount threads(n);
         BlockGaussSeidel gs(ordering, ordering == SmootherOrdering::Domains ? 200 : domain_blocks);
@@ -412,7 +438,9 @@ TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks
         // The sequential ordering is one domain of all rows.
         const bool hybrid = ordering == SmootherOrdering::Hybrid;
         const int domains = hybrid ? gs.num_domains() : 1;
-        const auto begin = [&](int d) { return hybrid ? gs.domain_rows_begin(d) : d * a.block_rows; };
+        const auto begin = [&](int d) {
+          return hybrid ? gs.domain_rows_begin(d) : d * a.block_rows;
+        };
         BrcMatrix poisoned = a;
         int kept = 0;
         for (int d = 0; d < domains; ++d)
@@ -447,8 +475,9 @@ TEST_F(ThreadsTest, SweepFromZeroWithResidualIsTheSweepAndItsResidual) {
   for (double& v : abs_a.values) v = std::abs(v);
   const int domain_blocks = static_cast<int>(a.num_blocks() / 5);
   test::in_each_kernel_form([&] {
-    for (const SmootherOrdering ordering : {SmootherOrdering::Sequential, SmootherOrdering::Multicolour,
-                                            SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
+    for (const SmootherOrdering ordering :
+         {SmootherOrdering::Sequential, SmootherOrdering::Multicolour, SmootherOrdering::Domains,
+          SmootherOrdering::Hybrid}) {
       SCOPED_TRACE(smoother_ordering_name(ordering));
       Eigen::VectorXd first_r;
       for (const int n : kThreadCounts) {
@@ -464,7 +493,8 @@ TEST_F(ThreadsTest, SweepFromZeroWithResidualIsTheSweepAndItsResidual) {
         a.residual(b, x, full);
         const Eigen::ArrayXd scale = (b.cwiseAbs() + abs_a * x.cwiseAbs()).array();
         EXPECT_LT(((r - full).cwiseAbs().array() / scale).maxCoeff(), 1e-13) << n << " threads";
-        EXPECT_GT((full.cwiseAbs().array() / scale).maxCoeff(), 1e-3) << "a residual that is not round-off";
+        EXPECT_GT((full.cwiseAbs().array() / scale).maxCoeff(), 1e-3)
+            << "a residual that is not round-off";
         if (first_r.size() == 0) first_r = r;
         EXPECT_TRUE(same_bits(r, first_r)) << n << " threads";
       }
@@ -486,10 +516,12 @@ TEST_F(ThreadsTest, SideBySideRunsBothAndRethrowsAfterBoth) {
 #pragma omp parallel for num_threads(threads_for(5000))
           for (int i = 0; i < 5000; ++i) right[i] = 2 * i;
         });
-    for (int i = 0; i < 5000; ++i) ASSERT_TRUE(left[i] == i && right[i] == 2 * i) << n << " threads, " << i;
+    for (int i = 0; i < 5000; ++i)
+      ASSERT_TRUE(left[i] == i && right[i] == 2 * i) << n << " threads, " << i;
     // A failure in either comes out after both ran, the first task's first.
     bool b_ran = false;
-    EXPECT_THROW(run_side_by_side([] { throw NumericalFault("a"); }, [&] { b_ran = true; }), NumericalFault);
+    EXPECT_THROW(run_side_by_side([] { throw NumericalFault("a"); }, [&] { b_ran = true; }),
+                 NumericalFault);
     EXPECT_TRUE(b_ran) << n << " threads";
     try {
       run_side_by_side([] { throw InputError("a"); }, [] { throw NumericalFault("b"); });
@@ -528,14 +560,24 @@ TEST_F(ThreadsTest, NewtonSolvesAreBitIdenticalAtEveryThreadCount) {
             {"material", {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}}},
             {"fixed", {{{"box", {{0, 0, 0}, {0, 0.2, 0.2}}}}}},
             {"gravity", {0, 0, -9.81}},
-            {"analysis", {{"type", type}, {"integrator", "newton"}, {"rotation", rotation}, {"solver", "mgpcg"},
-                          {"smoother", "hybrid"}, {"levels", 2}, {"dt", 0.01}, {"steps", 3}, {"load_steps", 2},
-                          {"tolerance", 1e-8}}}};
+            {"analysis",
+             {{"type", type},
+              {"integrator", "newton"},
+              {"rotation", rotation},
+              {"solver", "mgpcg"},
+              {"smoother", "hybrid"},
+              {"levels", 2},
+              {"dt", 0.01},
+              {"steps", 3},
+              {"load_steps", 2},
+              {"tolerance", 1e-8}}}};
         SceneSimulation sim(parse_scene(scene, ".", "threads"));
         const SimulationResult result = sim.run();
-        ASSERT_TRUE(result.converged) << type << " " << rotation << " at " << n << " threads: " << result.message;
+        ASSERT_TRUE(result.converged)
+            << type << " " << rotation << " at " << n << " threads: " << result.message;
         if (n == 1) one = result.displacement;
-        EXPECT_TRUE(same_bits(result.displacement, one)) << type << " " << rotation << " at " << n << " threads";
+        EXPECT_TRUE(same_bits(result.displacement, one))
+            << type << " " << rotation << " at " << n << " threads";
         EXPECT_GT(result.displacement.norm(), 0);
       }
     }

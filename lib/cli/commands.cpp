@@ -5,18 +5,19 @@
 #include <iostream>
 #include <map>
 
+#include "cli/export_matrices.hpp"
+#include "cli/run_scene.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/threads.hpp"
 #include "report/report_driver.hpp"
-#include "cli/export_matrices.hpp"
-#include "cli/run_scene.hpp"
 #include "solver/mpi_launch.hpp"
 
 namespace corofem {
 namespace {
 
-const char* kToolHelp = R"(corofem: corotated finite elements with Galerkin multigrid (Georgii and Westermann 2008)
+const char* kToolHelp =
+    R"(corofem: corotated finite elements with Galerkin multigrid (Georgii and Westermann 2008)
 
 Usage: corofem <command> [options]
 
@@ -57,7 +58,8 @@ level h to h+1) in Matrix Market coordinate real general, DOF index 3*vertex+com
 levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver computed it.
 )";
 
-const char* kReportHelp = R"(Usage: corofem report [--out DIR] [--quick | --smoke] [--models DIR] [--only NAME]
+const char* kReportHelp =
+    R"(Usage: corofem report [--out DIR] [--quick | --smoke] [--models DIR] [--only NAME]
                       [--tables-only | --speed-accuracy-only | --stability-only | --model-accuracy-only]
                       [--vtu] [--no-render] [--threads N]
 
@@ -124,16 +126,19 @@ ParsedArgs parse_args(const std::vector<std::string>& args, const std::vector<st
 void require_distributed_solver(const Scene& scene, int ranks) {
   const std::string& solver = scene.analysis.solver;
   const bool distributed = is_petsc_solver(solver);
-  if (!distributed || (scene.analysis.integrator == "newton" && scene.analysis.formulation == "corotational"))
-    throw InputError(scene.name + ": analysis.solver '" + solver + "'" +
-                     (distributed ? " with integrator 'newton' (a serial sparse LU)" : "") + " under mpirun -np " +
-                     std::to_string(ranks) +
-                     ": only petsc-gamg, hypre-boomeramg and petsc-mg distribute their solves over ranks");
+  if (!distributed ||
+      (scene.analysis.integrator == "newton" && scene.analysis.formulation == "corotational"))
+    throw InputError(
+        scene.name + ": analysis.solver '" + solver + "'" +
+        (distributed ? " with integrator 'newton' (a serial sparse LU)" : "") +
+        " under mpirun -np " + std::to_string(ranks) +
+        ": only petsc-gamg, hypre-boomeramg and petsc-mg distribute their solves over ranks");
 }
 
 /// --threads N (or "all"): the count every parallel kernel uses from here on.
 void apply_threads_option(const ParsedArgs& parsed) {
-  if (parsed.options.count("--threads")) set_thread_count(parse_thread_count(parsed.options.at("--threads")));
+  if (parsed.options.count("--threads"))
+    set_thread_count(parse_thread_count(parsed.options.at("--threads")));
 }
 
 int run_command(const std::vector<std::string>& args) {
@@ -145,8 +150,10 @@ int run_command(const std::vector<std::string>& args) {
   const MpiLaunch mpi = mpi_launch();
   apply_threads_option(parsed);
   if (mpi.size > 1 && !parsed.options.count("--threads") && !std::getenv("OMP_NUM_THREADS"))
-    set_thread_count(std::max(1, available_cores() / mpi.ranks_on_this_machine));  // the ranks share the cores
-  if (parsed.positional.size() != 1) throw InputError("run needs exactly one SCENE.json (see --help)");
+    set_thread_count(
+        std::max(1, available_cores() / mpi.ranks_on_this_machine));  // the ranks share the cores
+  if (parsed.positional.size() != 1)
+    throw InputError("run needs exactly one SCENE.json (see --help)");
   if (!parsed.options.count("--out")) throw InputError("run needs --out RESULT.json");
   const std::filesystem::path out = parsed.options["--out"];
   const bool writer = mpi.rank == 0;
@@ -156,9 +163,10 @@ int run_command(const std::vector<std::string>& args) {
   if (!writer) scene.output.vtu.reset();
   if (scene.output.vtu) check_writable(*scene.output.vtu);
   SceneRun run = run_scene(scene, writer ? &std::cerr : nullptr);
-  run.record["mpi"] = {{"ranks", mpi.size},
-                       {"distributed", mpi.size > 1 ? "the linear solves (PETSc); assembly replicated on every rank"
-                                                    : "nothing (one rank)"}};
+  run.record["mpi"] = {
+      {"ranks", mpi.size},
+      {"distributed", mpi.size > 1 ? "the linear solves (PETSc); assembly replicated on every rank"
+                                   : "nothing (one rank)"}};
   if (writer) write_file_atomically(out, [&](std::ostream& o) { o << run.record.dump(1) << '\n'; });
   if (!run.converged && writer) {
     std::cerr << "corofem: did not converge: " << run.record.value("message", "") << "\n";
@@ -184,8 +192,8 @@ int export_command(const std::vector<std::string>& args) {
 int report_command(const std::vector<std::string>& args) {
   ParsedArgs parsed =
       parse_args(args, {"--out", "--models", "--only", "--threads"},
-                 {"--quick", "--smoke", "--tables-only", "--speed-accuracy-only", "--stability-only",
-                  "--model-accuracy-only", "--vtu", "--no-render"});
+                 {"--quick", "--smoke", "--tables-only", "--speed-accuracy-only",
+                  "--stability-only", "--model-accuracy-only", "--vtu", "--no-render"});
   if (parsed.help) {
     std::cout << kReportHelp;
     return 0;
@@ -206,11 +214,13 @@ int report_command(const std::vector<std::string>& args) {
       if (!std::filesystem::is_regular_file(config.models_dir / file, ec))
         throw InputError("--models " + config.models_dir.string() + ": no " + file + " there");
   }
-  const int only = parsed.options.count("--tables-only") + parsed.options.count("--speed-accuracy-only") +
-                   parsed.options.count("--stability-only") + parsed.options.count("--model-accuracy-only");
+  const int only =
+      parsed.options.count("--tables-only") + parsed.options.count("--speed-accuracy-only") +
+      parsed.options.count("--stability-only") + parsed.options.count("--model-accuracy-only");
   if (only > 1)
     throw InputError(
-        "report: give at most one of --tables-only, --speed-accuracy-only, --stability-only, --model-accuracy-only");
+        "report: give at most one of --tables-only, --speed-accuracy-only, --stability-only, "
+        "--model-accuracy-only");
   if (only == 1) {
     config.tables = parsed.options.count("--tables-only") > 0;
     config.speed_accuracy = parsed.options.count("--speed-accuracy-only") > 0;
@@ -222,7 +232,9 @@ int report_command(const std::vector<std::string>& args) {
   apply_threads_option(parsed);
   std::error_code ec;
   std::filesystem::create_directories(config.out_dir, ec);
-  if (ec) throw InputError("report: cannot create the output folder '" + config.out_dir.string() + "': " + ec.message());
+  if (ec)
+    throw InputError("report: cannot create the output folder '" + config.out_dir.string() +
+                     "': " + ec.message());
   check_writable(config.out_dir / "tables.json");
   std::cerr << "report: " << config.mode_name() << " run into " << config.out_dir.string() << "\n";
   run_report(config);
@@ -230,8 +242,8 @@ int report_command(const std::vector<std::string>& args) {
     const int rendered = render_report(config.out_dir, &std::cerr);
     if (rendered != 0)
       std::cerr << "report: the renderer exited with " << rendered
-                << "; the JSON records are complete (re-draw with reports/render " << config.out_dir.string()
-                << ")\n";
+                << "; the JSON records are complete (re-draw with reports/render "
+                << config.out_dir.string() << ")\n";
   }
   return 0;
 }
@@ -249,7 +261,9 @@ int dispatch(const std::vector<std::string>& args) {
   if (args[0] == "help") rest = {"--help"};
   if (command == "run") return run_command(rest);
   if (mpi_launch().size > 1 && command != "help" && rest != std::vector<std::string>{"--help"})
-    throw InputError("corofem " + command + " runs on one process; under mpirun only `corofem run` (see corofem help run)");
+    throw InputError(
+        "corofem " + command +
+        " runs on one process; under mpirun only `corofem run` (see corofem help run)");
   if (command == "export-matrices") return export_command(rest);
   if (command == "report") return report_command(rest);
   throw InputError("unknown command '" + command + "' (see corofem --help)");

@@ -1,11 +1,11 @@
 #include "cli/export_matrices.hpp"
 
 #include "core/atomic_file.hpp"
-#include "io/run_context.hpp"
 #include "core/errors.hpp"
 #include "integrate/implicit_euler.hpp"
 #include "integrate/static_solver.hpp"
 #include "io/matrix_market.hpp"
+#include "io/run_context.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/scene_problem.hpp"
 #include "scene/solver_factory.hpp"
@@ -31,7 +31,8 @@ void export_matrices(const Scene& scene, const std::filesystem::path& dir) {
   FeProblem problem = build_problem(scene);
   AnalysisSpec a = scene.analysis;
   const bool corotational = a.formulation == "corotational";
-  auto extractor = make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
+  auto extractor =
+      make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
   auto multigrid = make_multigrid_solver(a, problem, coarse_meshes(scene), false);
   MultigridSolver& solver = *multigrid;
   if (a.type == "static") {
@@ -45,24 +46,29 @@ void export_matrices(const Scene& scene, const std::filesystem::path& dir) {
   for (int l = 0; l < h.num_levels(); ++l) {
     const auto m = to_eigen(h.matrix(l));
     write_matrix_market(dir / level_file('A', l), m);
-    nlohmann::json level = {{"level", l}, {"vertices", h.matrix(l).block_rows},
-                            {"dofs", m.rows()}, {"nonzeros", m.nonZeros()},
+    nlohmann::json level = {{"level", l},
+                            {"vertices", h.matrix(l).block_rows},
+                            {"dofs", m.rows()},
+                            {"nonzeros", m.nonZeros()},
                             {"file", level_file('A', l)}};
     if (l + 1 < h.num_levels()) {
       const auto r = restriction_matrix(h.transfer(l));
       write_matrix_market(dir / level_file('R', l), r);
-      level["restriction"] = {{"file", level_file('R', l)}, {"rows", r.rows()},
-                              {"cols", r.cols()}, {"nonzeros", r.nonZeros()}};
+      level["restriction"] = {{"file", level_file('R', l)},
+                              {"rows", r.rows()},
+                              {"cols", r.cols()},
+                              {"nonzeros", r.nonZeros()}};
     }
     levels.push_back(level);
   }
-  const nlohmann::json record = {{"producer", "corofem export-matrices"},
-                                 {"context", run_context()},
-                                 {"scene_file", scene.name},
-                                 {"dof_index", "3 * vertex + component"},
-                                 {"matrix", a.type == "static" ? "Ktilde with supports imposed, first iteration"
-                                                               : "M + dt C + dt^2 Ktilde with supports imposed, first step"},
-                                 {"levels", levels}};
+  const nlohmann::json record = {
+      {"producer", "corofem export-matrices"},
+      {"context", run_context()},
+      {"scene_file", scene.name},
+      {"dof_index", "3 * vertex + component"},
+      {"matrix", a.type == "static" ? "Ktilde with supports imposed, first iteration"
+                                    : "M + dt C + dt^2 Ktilde with supports imposed, first step"},
+      {"levels", levels}};
   write_file_atomically(dir / "levels.json", [&](std::ostream& o) { o << record.dump(1) << '\n'; });
 }
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <ostream>
 
-#include "io/run_context.hpp"
 #include "core/memory_usage.hpp"
+#include "io/run_context.hpp"
 #include "io/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
 #include "scene/scene_simulation.hpp"
@@ -41,12 +41,14 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                {"tets", problem.mesh.num_tets()},
                {"reoriented_tets", validation.reoriented},
                {"unused_vertices_removed", validation.unused_removed}};
-  r["analysis"] = {{"type", a.type},
-                   {"formulation", a.formulation},
-                   {"integrator", a.integrator},
-                   {"rotation", corotational ? a.rotation : "none"},
-                   {"rotation_params", a.rotation_params.to_json()},
-                   {"solver", a.integrator == "newton" && corotational ? "sparse LU (UMFPACK), Newton" : solver->name()}};
+  r["analysis"] = {
+      {"type", a.type},
+      {"formulation", a.formulation},
+      {"integrator", a.integrator},
+      {"rotation", corotational ? a.rotation : "none"},
+      {"rotation_params", a.rotation_params.to_json()},
+      {"solver",
+       a.integrator == "newton" && corotational ? "sparse LU (UMFPACK), Newton" : solver->name()}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
     r["analysis"]["multigrid"] = multigrid_params(a).to_json();
     r["multigrid"] = simulation.describe_multigrid(*mg);
@@ -60,12 +62,12 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   r["inverted_max"] = result.inverted_max;
   r["timings_ms"] = result.timings_ms;
   r["peak_rss_kb"] = peak_rss_kb();
-  r["rotation_stats"] = {{"last_fallbacks", extractor->stats().fallbacks},
-                         {"last_iterations_max",
-                          extractor->stats().iterations.empty()
-                              ? 0
-                              : *std::max_element(extractor->stats().iterations.begin(),
-                                                  extractor->stats().iterations.end())}};
+  r["rotation_stats"] = {
+      {"last_fallbacks", extractor->stats().fallbacks},
+      {"last_iterations_max", extractor->stats().iterations.empty()
+                                  ? 0
+                                  : *std::max_element(extractor->stats().iterations.begin(),
+                                                      extractor->stats().iterations.end())}};
   r["node_tags"] = problem.mesh.node_tags;
   nlohmann::json rest = nlohmann::json::array(), disp = nlohmann::json::array();
   for (int v = 0; v < problem.mesh.num_vertices(); ++v) {

@@ -8,7 +8,7 @@
 namespace corofem {
 
 struct SceneRun {
-  nlohmann::json record;      ///< the RESULT.json of `corofem run`
+  nlohmann::json record;  ///< the RESULT.json of `corofem run`
   bool converged = false;
 };
 

@@ -1,5 +1,6 @@
 #pragma once
-// Provenance of this binary; the definitions are generated at build time (cmake/write_build_info.cmake).
+// Provenance of this binary; the definitions are generated at build time
+// (cmake/write_build_info.cmake).
 
 namespace corofem {
 const char* build_commit();

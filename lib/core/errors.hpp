@@ -1,5 +1,6 @@
 #pragma once
-// Error classes that map to the CLI's exit status: InputError -> 2, NotConverged / NumericalFault -> 1.
+// Error classes that map to the CLI's exit status: InputError -> 2, NotConverged / NumericalFault
+// -> 1.
 #include <stdexcept>
 #include <string>
 

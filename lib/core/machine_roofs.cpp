@@ -29,7 +29,8 @@ double measure_stream_triad_gbps(int repetitions, std::size_t elements) {
   for (int r = 0; r < repetitions; ++r) {
     const auto start = std::chrono::steady_clock::now();
     stream_triad(a.data(), b.data(), c.data(), 3.0 + r, elements);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     rates.push_back(24.0 * static_cast<double>(elements) / seconds / 1e9);
   }
   volatile double sink = a[elements / 2];  // the passes have an observable result
@@ -50,7 +51,8 @@ double measure_dense_gflops(int repetitions, int n) {
   for (int r = 0; r < repetitions; ++r) {
     const auto start = std::chrono::steady_clock::now();
     products();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     rates.push_back(2.0 * threads * n * n * static_cast<double>(n) / seconds / 1e9);
   }
   volatile double sink = c[0](n / 2, n / 2);

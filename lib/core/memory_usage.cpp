@@ -35,7 +35,8 @@ void require_memory_for_tets(double tets, const std::string& what) {
   std::ostringstream message;
   message.precision(3);
   message << what << " would give about " << tets << " tets, which need about " << need / 1e9
-          << " GB (" << kBytesPerTet / 1e3 << " kB per tet); this machine has " << have / 1e9 << " GB";
+          << " GB (" << kBytesPerTet / 1e3 << " kB per tet); this machine has " << have / 1e9
+          << " GB";
   throw InputError(message.str());
 }
 

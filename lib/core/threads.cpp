@@ -52,11 +52,14 @@ int threads_for(long long items) {
   return static_cast<int>(std::max(1LL, std::min<long long>(thread_count(), useful)));
 }
 
-void set_items_per_thread(long long items) { g_items_per_thread = std::max(1LL, items); }
+void set_items_per_thread(long long items) {
+  g_items_per_thread = std::max(1LL, items);
+}
 
 void set_thread_count(int count, const char* what) {
   if (count < 1 || count > 1024)
-    throw InputError(std::string(what) + ": " + std::to_string(count) + " threads (give 1..1024 or all)");
+    throw InputError(std::string(what) + ": " + std::to_string(count) +
+                     " threads (give 1..1024 or all)");
   if (count > 1 && !have_openmp())
     throw InputError(std::string(what) + ": " + std::to_string(count) +
                      " threads, but this build has no OpenMP (only 1)");
@@ -88,7 +91,8 @@ std::vector<int> balanced_ranges(const std::vector<long long>& weight_prefix, in
   for (int p = 1; p < parts; ++p) {
     const long long target = total * p / parts;
     // The boundary whose prefix is nearest the target; never before the previous boundary.
-    const auto it = std::lower_bound(weight_prefix.begin() + bounds[p - 1], weight_prefix.end() - 1, target);
+    const auto it =
+        std::lower_bound(weight_prefix.begin() + bounds[p - 1], weight_prefix.end() - 1, target);
     int b = static_cast<int>(it - weight_prefix.begin());
     if (b > bounds[p - 1] && target - weight_prefix[b - 1] < weight_prefix[b] - target) --b;
     bounds[p] = b;

@@ -30,7 +30,8 @@ Mat12 gradient_stiffness(const std::array<Vec3, 4>& g, double lambda_volume, dou
   Mat12 k;
   for (int a = 0; a < 4; ++a)
     for (int b = 0; b < 4; ++b)
-      k.block<3, 3>(3 * a, 3 * b) = lambda_volume * g[a] * g[b].transpose() + mu_volume * g[b] * g[a].transpose() +
+      k.block<3, 3>(3 * a, 3 * b) = lambda_volume * g[a] * g[b].transpose() +
+                                    mu_volume * g[b] * g[a].transpose() +
                                     mu_volume * g[a].dot(g[b]) * Mat3::Identity();
   return k;
 }

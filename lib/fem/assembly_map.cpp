@@ -19,7 +19,8 @@ BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map) {
   map.block.resize(mesh.tets.size());
   for (int e = 0; e < mesh.num_tets(); ++e)
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) map.block[e][4 * a + b] = k.find(mesh.tets[e][a], mesh.tets[e][b]);
+      for (int b = 0; b < 4; ++b)
+        map.block[e][4 * a + b] = k.find(mesh.tets[e][a], mesh.tets[e][b]);
   map.first.assign(mesh.tets.size(), 0);
   std::vector<char> seen(k.num_blocks(), 0);
   for (int e = 0; e < mesh.num_tets(); ++e)

@@ -17,8 +17,8 @@ struct AssemblyMap {
   /// The assembly visits a block's elements in ascending order at every thread count, so the
   /// first one stores and the others add: K needs no zero fill.
   std::vector<std::uint16_t> first;
-  std::vector<int> diagonal;               ///< block index of (v, v) per vertex
-  RowPartition rows;                       ///< rows per thread (thread_count() at construction)
+  std::vector<int> diagonal;  ///< block index of (v, v) per vertex
+  RowPartition rows;          ///< rows per thread (thread_count() at construction)
 };
 
 /// Zero matrix with one block per pair of vertices sharing an element, and its assembly map

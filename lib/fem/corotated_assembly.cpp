@@ -18,14 +18,15 @@ struct Owned {
 };
 
 /// s_e = Q^T p_e - x_e up to a translation: s_0 = 0, s_b = (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0).
-Vec12 corotated_strain(const TetMesh& mesh, const Tet& t, const Mat3& q, const Eigen::VectorXd& displacement) {
+Vec12 corotated_strain(const TetMesh& mesh, const Tet& t, const Mat3& q,
+                       const Eigen::VectorXd& displacement) {
   const Mat3 q_minus_i = q.transpose() - Mat3::Identity();
   const Vec3 u0 = displacement.segment<3>(3 * t[0]);
   Vec12 s;
   s.segment<3>(0).setZero();
   for (int b = 1; b < 4; ++b)
-    s.segment<3>(3 * b) =
-        q_minus_i * (mesh.rest[t[b]] - mesh.rest[t[0]]) + q.transpose() * (displacement.segment<3>(3 * t[b]) - u0);
+    s.segment<3>(3 * b) = q_minus_i * (mesh.rest[t[b]] - mesh.rest[t[0]]) +
+                          q.transpose() * (displacement.segment<3>(3 * t[b]) - u0);
   return s;
 }
 
@@ -38,7 +39,8 @@ Vec12 stiffness_times(const ElementRest& el, const Vec12& s) {
   const double volumetric = el.lambda_volume * g.trace();
   const Mat3 shear = el.mu_volume * (g + g.transpose());
   Vec12 ks;
-  for (int a = 0; a < 4; ++a) ks.segment<3>(3 * a) = volumetric * el.gradient[a] + shear * el.gradient[a];
+  for (int a = 0; a < 4; ++a)
+    ks.segment<3>(3 * a) = volumetric * el.gradient[a] + shear * el.gradient[a];
   return ks;
 }
 
@@ -52,9 +54,11 @@ Vec12 stiffness_times(const ElementRest& el, const Vec12& s) {
 /// One part of the assembly: the elements touching rows [lo, hi), each block Q K_ab Q^T added
 /// into the rows the part owns, and the element's force Q K_e s_e into the owned vertices'
 /// entries. Scalar form: Eigen's 3-vector products.
-void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
-                          const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, int part,
-                          double scale, const Eigen::VectorXd* added_diagonal, BrcMatrix& k, Eigen::VectorXd& force) {
+void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMesh& mesh,
+                          const AssemblyMap& map, const std::vector<Mat3>& rotations,
+                          const Eigen::VectorXd& displacement, int part, double scale,
+                          const Eigen::VectorXd* added_diagonal, BrcMatrix& k,
+                          Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   for (const int e : rows.elements[part]) {
@@ -81,7 +85,8 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
         Mat3 rotated = lambda * h[a] * h[b].transpose();
         rotated.noalias() += mu * h[b] * h[a].transpose();
         rotated.diagonal().array() += mu * el.gradient[a].dot(el.gradient[b]);
-        if (added_diagonal && b == a && (first >> (5 * a) & 1))  // once a vertex: its block's first store
+        if (added_diagonal && b == a &&
+            (first >> (5 * a) & 1))  // once a vertex: its block's first store
           rotated.diagonal() += added_diagonal->segment<3>(3 * t[a]);
         if (own.vertex[a]) store_or_add(4 * a + b, rotated);
         if (b != a && own.vertex[b]) store_or_add(4 * b + a, rotated.transpose());
@@ -93,8 +98,7 @@ void assemble_part_scalar(const std::vector<ElementRest>& elements, const TetMes
 #ifdef COROFEM_HAVE_AVX2_KERNELS
 /// The assembly's K blocks are cold in the step (the Galerkin stream has evicted them) and
 /// scattered, so no hardware prefetcher fetches them: the blocks of the element this many places
-/// ahead in the part's list are prefetched (in the dragon's step the assembly went from 9.9 to
-/// 8.1-8.9 ms at 1 thread and from 4.9-5.7 to 4.2-4.3 ms at 2, alternated runs).
+/// ahead in the part's list are prefetched (BM_CorotatedAssembly/dragon_cold measures it).
 constexpr std::size_t kPrefetchAhead = 24;
 
 /// h = Q g_a of one vertex in the lane patterns of a row-major 3x3 block: entry (r, c) of
@@ -109,7 +113,8 @@ struct PackedGradient {
   double h2, lh2, mh2;
 };
 
-__attribute__((target("avx2,fma"), always_inline)) inline PackedGradient pack_gradient(__m256d h, double l,
+__attribute__((target("avx2,fma"), always_inline)) inline PackedGradient pack_gradient(__m256d h,
+                                                                                       double l,
                                                                                        double m) {
   PackedGradient g;
   const __m256d lv = _mm256_set1_pd(l), mv = _mm256_set1_pd(m);
@@ -127,7 +132,8 @@ __attribute__((target("avx2,fma"), always_inline)) inline PackedGradient pack_gr
 }
 
 /// Columns c0, c1, c2 (lane 3 zero) of a 3x3 matrix to its rows (lane 3 zero).
-__attribute__((target("avx2,fma"), always_inline)) inline void transpose3_avx2(const __m256d c[3], __m256d r[3]) {
+__attribute__((target("avx2,fma"), always_inline)) inline void transpose3_avx2(const __m256d c[3],
+                                                                               __m256d r[3]) {
   const __m256d zero = _mm256_setzero_pd();
   const __m256d lo01 = _mm256_unpacklo_pd(c[0], c[1]), hi01 = _mm256_unpackhi_pd(c[0], c[1]);
   const __m256d lo2 = _mm256_unpacklo_pd(c[2], zero), hi2 = _mm256_unpackhi_pd(c[2], zero);
@@ -151,12 +157,16 @@ __attribute__((target("avx2,fma"), always_inline)) inline __m256d lane_avx2(__m2
 /// stiffness_times in 4-wide form, the same formulas summed in another order (round-off).
 /// qc: Q's columns.
 __attribute__((target("avx2,fma"), always_inline)) inline void element_force_avx2(
-    const TetMesh& mesh, const Tet& t, const ElementRest& el, const __m256d qc[3], const double* u, __m256d f[4]) {
+    const TetMesh& mesh, const Tet& t, const ElementRest& el, const __m256d qc[3], const double* u,
+    __m256d f[4]) {
   __m256d qt[3];  // Q^T's columns: Q's rows
   transpose3_avx2(qc, qt);
-  const __m256d e[3] = {_mm256_set_pd(0, 0, 0, 1), _mm256_set_pd(0, 0, 1, 0), _mm256_set_pd(0, 1, 0, 0)};
-  const __m256d qt_minus_i[3] = {_mm256_sub_pd(qt[0], e[0]), _mm256_sub_pd(qt[1], e[1]), _mm256_sub_pd(qt[2], e[2])};
-  const __m256d x0 = load3_avx2(mesh.rest[t[0]].data()), u0 = load3_avx2(u + 3 * static_cast<std::ptrdiff_t>(t[0]));
+  const __m256d e[3] = {_mm256_set_pd(0, 0, 0, 1), _mm256_set_pd(0, 0, 1, 0),
+                        _mm256_set_pd(0, 1, 0, 0)};
+  const __m256d qt_minus_i[3] = {_mm256_sub_pd(qt[0], e[0]), _mm256_sub_pd(qt[1], e[1]),
+                                 _mm256_sub_pd(qt[2], e[2])};
+  const __m256d x0 = load3_avx2(mesh.rest[t[0]].data()),
+                u0 = load3_avx2(u + 3 * static_cast<std::ptrdiff_t>(t[0]));
   __m256d g[3];  // G = sum_b s_b g_b^T by columns, s_b = (Q^T - I)(x_b - x_0) + Q^T (u_b - u_0)
   for (int b = 1; b < 4; ++b) {
     const __m256d dx = _mm256_sub_pd(load3_avx2(mesh.rest[t[b]].data()), x0);
@@ -183,7 +193,8 @@ __attribute__((target("avx2,fma"), always_inline)) inline void element_force_avx
   const __m256d shear[3] = {_mm256_mul_pd(mu, _mm256_add_pd(g[0], gt[0])),
                             _mm256_mul_pd(mu, _mm256_add_pd(g[1], gt[1])),
                             _mm256_mul_pd(mu, _mm256_add_pd(g[2], gt[2]))};
-  for (int a = 0; a < 4; ++a) {  // (K_e s)_a = V lambda tr(G) g_a + V mu (G + G^T) g_a, then Q times it
+  for (int a = 0; a < 4;
+       ++a) {  // (K_e s)_a = V lambda tr(G) g_a + V mu (G + G^T) g_a, then Q times it
     const double* ga = el.gradient[a].data();
     __m256d ks = _mm256_mul_pd(volumetric, load3_avx2(ga));
     for (int c = 0; c < 3; ++c) ks = _mm256_fmadd_pd(shear[c], _mm256_broadcast_sd(ga + c), ks);
@@ -194,8 +205,8 @@ __attribute__((target("avx2,fma"), always_inline)) inline void element_force_avx
 }
 
 /// dst, a row-major 3x3 block, += (or, for the block's first element, =) v0 | v1 | v2.
-__attribute__((target("avx2,fma"), always_inline)) inline void add_block_avx2(double* dst, bool first, __m256d v0,
-                                                                              __m256d v1, double v2) {
+__attribute__((target("avx2,fma"), always_inline)) inline void add_block_avx2(
+    double* dst, bool first, __m256d v0, __m256d v1, double v2) {
   if (first) {
     _mm256_storeu_pd(dst, v0);
     _mm256_storeu_pd(dst + 4, v1);
@@ -211,12 +222,10 @@ __attribute__((target("avx2,fma"), always_inline)) inline void add_block_avx2(do
 /// (a, b) is l h_a h_b^T + m h_b h_a^T + d I (d = m g_a . g_b) in storage order from the packed
 /// patterns; block (b, a) takes entry (r, c) from the same operands as (a, b)'s entry (c, r), so
 /// it is (a, b)'s exact transpose, and both have the scalar form's roundings: the same bits.
-__attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<ElementRest>& elements,
-                                                            const TetMesh& mesh, const AssemblyMap& map,
-                                                            const std::vector<Mat3>& rotations,
-                                                            const Eigen::VectorXd& displacement, int part,
-                                                            double scale, const Eigen::VectorXd* added_diagonal,
-                                                            BrcMatrix& k, Eigen::VectorXd& force) {
+__attribute__((target("avx2,fma"))) void assemble_part_avx2(
+    const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
+    const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, int part, double scale,
+    const Eigen::VectorXd* added_diagonal, BrcMatrix& k, Eigen::VectorXd& force) {
   const RowPartition& rows = map.rows;
   const int lo = rows.row_begin[part], hi = rows.row_begin[part + 1];
   const __m256d lane0 = _mm256_castsi256_pd(_mm256_set_epi64x(0, 0, 0, -1));
@@ -227,7 +236,8 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
     if (n + kPrefetchAhead < list.size()) {  // a block's 72 bytes span up to two lines
       const auto& ahead = map.block[list[n + kPrefetchAhead]];
       for (int ab = 0; ab < 16; ++ab) {
-        const char* blk = reinterpret_cast<const char*>(kv + 9 * static_cast<std::size_t>(ahead[ab]));
+        const char* blk =
+            reinterpret_cast<const char*>(kv + 9 * static_cast<std::size_t>(ahead[ab]));
         _mm_prefetch(blk, _MM_HINT_T0);
         _mm_prefetch(blk + 71, _MM_HINT_T0);  // its last byte: within the values
       }
@@ -267,20 +277,26 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
         const __m256d d0 = _mm256_and_pd(_mm256_set1_pd(d), lane0);
         __m256d v0 = _mm256_add_pd(_mm256_fmadd_pd(x.lp, y.q, _mm256_mul_pd(y.mp, x.q)), d0);
         __m256d v1 = _mm256_add_pd(_mm256_fmadd_pd(x.ls, y.t, _mm256_mul_pd(y.ms, x.t)), d0);
-        double v2 = _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(x.lh2), _mm_set_sd(y.h2), _mm_set_sd(y.mh2 * x.h2))) + d;
-        if (added_diagonal && b == a && (first >> (5 * a) & 1)) {  // once a vertex: its block's first store
+        double v2 = _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(x.lh2), _mm_set_sd(y.h2),
+                                               _mm_set_sd(y.mh2 * x.h2))) +
+                    d;
+        if (added_diagonal && b == a &&
+            (first >> (5 * a) & 1)) {  // once a vertex: its block's first store
           const double* dd = added_diagonal->data() + 3 * static_cast<std::ptrdiff_t>(t[a]);
           v0 = _mm256_add_pd(v0, _mm256_and_pd(_mm256_set1_pd(dd[0]), lane0));
           v1 = _mm256_add_pd(v1, _mm256_and_pd(_mm256_set1_pd(dd[1]), lane0));
           v2 += dd[2];
         }
         if (own.vertex[a])
-          add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]), first >> (4 * a + b) & 1, v0, v1,
-                         v2);
+          add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * a + b]),
+                         first >> (4 * a + b) & 1, v0, v1, v2);
         if (b != a && own.vertex[b]) {
-          const __m256d w0 = _mm256_add_pd(_mm256_fmadd_pd(x.lq, y.p, _mm256_mul_pd(y.mq, x.p)), d0);
-          const __m256d w1 = _mm256_add_pd(_mm256_fmadd_pd(x.lt, y.s, _mm256_mul_pd(y.mt, x.s)), d0);
-          add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]), first >> (4 * b + a) & 1, w0, w1, v2);
+          const __m256d w0 =
+              _mm256_add_pd(_mm256_fmadd_pd(x.lq, y.p, _mm256_mul_pd(y.mq, x.p)), d0);
+          const __m256d w1 =
+              _mm256_add_pd(_mm256_fmadd_pd(x.lt, y.s, _mm256_mul_pd(y.mt, x.s)), d0);
+          add_block_avx2(kv + 9 * static_cast<std::size_t>(blocks[4 * b + a]),
+                         first >> (4 * b + a) & 1, w0, w1, v2);
         }
       }
     }
@@ -290,9 +306,10 @@ __attribute__((target("avx2,fma"))) void assemble_part_avx2(const std::vector<El
 
 }  // namespace
 
-void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
-                        const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,
-                        Eigen::VectorXd& force, double matrix_scale, const Eigen::VectorXd* diagonal) {
+void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh,
+                        const AssemblyMap& map, const std::vector<Mat3>& rotations,
+                        const Eigen::VectorXd& displacement, BrcMatrix& k, Eigen::VectorXd& force,
+                        double matrix_scale, const Eigen::VectorXd* diagonal) {
   force.resize(3 * static_cast<Eigen::Index>(k.block_rows));
   const RowPartition& rows = map.rows;
   for_each_part(rows, [&](int part) {
@@ -300,10 +317,11 @@ void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh&
     force.segment(3 * lo, 3 * (hi - lo)).setZero();
 #ifdef COROFEM_HAVE_AVX2_KERNELS
     if (vector_block_kernels())
-      return assemble_part_avx2(elements, mesh, map, rotations, displacement, part, matrix_scale, diagonal, k,
-                                force);
+      return assemble_part_avx2(elements, mesh, map, rotations, displacement, part, matrix_scale,
+                                diagonal, k, force);
 #endif
-    assemble_part_scalar(elements, mesh, map, rotations, displacement, part, matrix_scale, diagonal, k, force);
+    assemble_part_scalar(elements, mesh, map, rotations, displacement, part, matrix_scale, diagonal,
+                         k, force);
   });
 }
 
@@ -319,7 +337,8 @@ Eigen::VectorXd internal_forces(const FeProblem& problem, const std::vector<Mat3
       const Tet& t = mesh.tets[e];
       const Owned own(t, lo, hi);
       const Mat3& q = rotations[e];
-      const Vec12 ks = stiffness_times(problem.elements[e], corotated_strain(mesh, t, q, displacement));
+      const Vec12 ks =
+          stiffness_times(problem.elements[e], corotated_strain(mesh, t, q, displacement));
       for (int a = 0; a < 4; ++a)
         if (own.vertex[a]) f.segment<3>(3 * t[a]) += q * ks.segment<3>(3 * a);
     }

@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "fem/assembly_map.hpp"
 #include "element/element_rest.hpp"
+#include "fem/assembly_map.hpp"
 #include "fem/fe_problem.hpp"
 
 namespace corofem {
@@ -20,9 +20,10 @@ namespace corofem {
 /// on the diagonal when given: a time step's matrix (dt beta + dt^2) Ktilde + (1 + dt alpha) M,
 /// written in this pass (no pass to scale a copy, none to add the mass into the diagonal blocks
 /// spread over the matrix). The force is neither.
-void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh, const AssemblyMap& map,
-                        const std::vector<Mat3>& rotations, const Eigen::VectorXd& displacement, BrcMatrix& k,
-                        Eigen::VectorXd& force, double matrix_scale = 1.0, const Eigen::VectorXd* diagonal = nullptr);
+void assemble_corotated(const std::vector<ElementRest>& elements, const TetMesh& mesh,
+                        const AssemblyMap& map, const std::vector<Mat3>& rotations,
+                        const Eigen::VectorXd& displacement, BrcMatrix& k, Eigen::VectorXd& force,
+                        double matrix_scale = 1.0, const Eigen::VectorXd* diagonal = nullptr);
 
 /// Elastic internal force, element by element: f_int = sum_e Q_e K_e (Q_e^T p_e - x_e), p = x + u.
 /// Equals Ktilde p - f0 of the assembled system, but is evaluated from vertex-0 offsets as

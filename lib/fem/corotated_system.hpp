@@ -19,8 +19,8 @@ struct AssemblyTarget {
 /// assembles into `target` and the elastic force there into `force` (internal_forces' f_int).
 /// Phases "rotate" and "assemble" are timed on `clock`.
 void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vector<Vec3>& positions,
-               const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations, Eigen::VectorXd& force,
-               PhaseClock& clock, const AssemblyTarget& target = {});
+               const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations,
+               Eigen::VectorXd& force, PhaseClock& clock, const AssemblyTarget& target = {});
 
 /// Number of elements with det F <= 0 at `positions`.
 int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);

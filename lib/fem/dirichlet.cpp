@@ -34,8 +34,7 @@ std::vector<char> DirichletConditions::supported_vertices() const {
 void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd& b) {
   // Only blocks in a row or column of a vertex with a fixed DOF change. The pattern is symmetric
   // (an FE matrix's), so they are row v and, through v's neighbours i, the blocks (i, v): visited
-  // from the supported vertices alone, not by scanning every block's column (the dragon's step:
-  // 0.5 ms a step for the scan, on one thread).
+  // from the supported vertices alone, not by scanning every block's column.
   const std::vector<char> vertex_fixed = bc.supported_vertices();
   // A block visited twice is visited as no-op the second time: its entries in a fixed row or
   // column are then 0 (or 1), so b loses nothing more. Row i's b sees the fixed columns in
@@ -61,8 +60,9 @@ void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorX
       if (i == v) continue;
       const int transposed = a.find(i, v);  // column v, in row i
       if (transposed < 0)
-        throw NumericalFault("supports: the matrix pattern is not symmetric (block (" + std::to_string(v) + ", " +
-                             std::to_string(i) + ") without (" + std::to_string(i) + ", " + std::to_string(v) + "))");
+        throw NumericalFault("supports: the matrix pattern is not symmetric (block (" +
+                             std::to_string(v) + ", " + std::to_string(i) + ") without (" +
+                             std::to_string(i) + ", " + std::to_string(v) + "))");
       apply(i, transposed);
     }
   }

@@ -11,8 +11,8 @@
 namespace corofem {
 
 struct RowPartition {
-  std::vector<int> row_begin;               ///< parts + 1 vertex boundaries
-  std::vector<std::vector<int>> elements;   ///< per part, ascending element indices
+  std::vector<int> row_begin;              ///< parts + 1 vertex boundaries
+  std::vector<std::vector<int>> elements;  ///< per part, ascending element indices
 
   int parts() const { return static_cast<int>(elements.size()); }
   /// Fraction of element visits beyond one per element (the boundary's duplicated work).

@@ -4,20 +4,20 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "element/element_rest.hpp"
 #include "fem/assembly_map.hpp"
 #include "fem/dirichlet.hpp"
-#include "element/element_rest.hpp"
 
 namespace corofem {
 
 struct FeProblem {
   TetMesh mesh;
-  std::vector<Material> materials;   ///< per element
+  std::vector<Material> materials;  ///< per element
   std::vector<ElementRest> elements;
   AssemblyMap assembly;
-  BrcMatrix stiffness;               ///< pattern; values of the last assembly
-  Eigen::VectorXd mass;              ///< lumped, per DOF
-  Eigen::VectorXd external_force;    ///< per DOF
+  BrcMatrix stiffness;             ///< pattern; values of the last assembly
+  Eigen::VectorXd mass;            ///< lumped, per DOF
+  Eigen::VectorXd external_force;  ///< per DOF
   DirichletConditions dirichlet;
 
   int num_dofs() const { return 3 * mesh.num_vertices(); }

@@ -6,9 +6,9 @@ Eigen::VectorXd lumped_mass(const TetMesh& mesh, const std::vector<Material>& ma
   Eigen::VectorXd m = Eigen::VectorXd::Zero(3 * mesh.num_vertices());
   for (int e = 0; e < mesh.num_tets(); ++e) {
     const Tet& t = mesh.tets[e];
-    const double quarter = 0.25 * materials[e].density *
-                           signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]],
-                                         mesh.rest[t[3]]);
+    const double quarter =
+        0.25 * materials[e].density *
+        signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]);
     for (int v : t) m.segment<3>(3 * v).array() += quarter;
   }
   return m;

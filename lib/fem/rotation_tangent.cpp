@@ -52,9 +52,11 @@ double asymmetry(const Mat12& j) {
   return n > 0 ? (j - j.transpose()).norm() / n : 0.0;
 }
 
-RotationTangent::RotationTangent(const FeProblem& problem, const std::string& method) : problem_(problem) {
+RotationTangent::RotationTangent(const FeProblem& problem, const std::string& method)
+    : problem_(problem) {
   const TetMesh& mesh = problem.mesh;
-  if (method == "polar" || method == "polar-fixed" || method == "mueller2016" || method == "polar-smoothed") {
+  if (method == "polar" || method == "polar-fixed" || method == "mueller2016" ||
+      method == "polar-smoothed") {
     family_ = Family::PolarOfF;
     model_ = "rotation factor of F";
     exact_ = method != "polar-smoothed";
@@ -114,7 +116,8 @@ void RotationTangent::rotation_jacobian(int e, const std::vector<Vec3>& position
   }
 }
 
-Mat12 RotationTangent::element_jacobian(int e, const std::vector<Vec3>& positions, const Mat3& q) const {
+Mat12 RotationTangent::element_jacobian(int e, const std::vector<Vec3>& positions,
+                                        const Mat3& q) const {
   const Tet& t = problem_.mesh.tets[e];
   const Mat12 k = problem_.elements[e].stiffness();
   // The force as internal_forces() computes it: s_0 = 0, s_b = Q^T (x_b - x_0) - (X_b - X_0).
@@ -142,8 +145,8 @@ Mat12 RotationTangent::element_jacobian(int e, const std::vector<Vec3>& position
   return j;
 }
 
-void RotationTangent::assemble(const std::vector<Vec3>& positions, const std::vector<Mat3>& rotations,
-                               BrcMatrix& out) const {
+void RotationTangent::assemble(const std::vector<Vec3>& positions,
+                               const std::vector<Mat3>& rotations, BrcMatrix& out) const {
   out.set_zero();
   for (int e = 0; e < problem_.mesh.num_tets(); ++e) {
     const Mat12 j = element_jacobian(e, positions, rotations[e]);

@@ -40,13 +40,15 @@ class RotationTangent {
   /// "polar of F", "rotation factor of S = F C", "Gram-Schmidt frame", "identity".
   const std::string& model() const { return model_; }
 
-  void rotation_jacobian(int e, const std::vector<Vec3>& positions, const Mat3& q, RotationJacobian& dq) const;
+  void rotation_jacobian(int e, const std::vector<Vec3>& positions, const Mat3& q,
+                         RotationJacobian& dq) const;
 
   /// d f_e / d x_e (12 x 12) of element e at `positions` with rotation q.
   Mat12 element_jacobian(int e, const std::vector<Vec3>& positions, const Mat3& q) const;
 
   /// The assembled tangent sum_e d f_e / d x into `out` (problem.stiffness's pattern).
-  void assemble(const std::vector<Vec3>& positions, const std::vector<Mat3>& rotations, BrcMatrix& out) const;
+  void assemble(const std::vector<Vec3>& positions, const std::vector<Mat3>& rotations,
+                BrcMatrix& out) const;
 
  private:
   enum class Family { PolarOfF, MomentFactor, GramSchmidt, Identity };

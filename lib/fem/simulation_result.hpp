@@ -14,13 +14,13 @@ struct SimulationResult {
   Eigen::VectorXd displacement;  ///< per DOF
   std::vector<Mat3> rotations;   ///< per element, of the final state
   bool converged = false;
-  int iterations = 0;            ///< static: rotation/solve iterations over all increments
-  int steps = 0;                 ///< dynamic: time steps taken; static: load increments
-  double residual = 0;           ///< |f_ext - f_int| / |f_ext| over free DOFs, final state
-  int inverted_max = 0;          ///< most elements with det F <= 0 seen at any iteration or step
-  int linear_iterations = 0;     ///< V-cycles / CG iterations summed (1 per direct solve)
+  int iterations = 0;         ///< static: rotation/solve iterations over all increments
+  int steps = 0;              ///< dynamic: time steps taken; static: load increments
+  double residual = 0;        ///< |f_ext - f_int| / |f_ext| over free DOFs, final state
+  int inverted_max = 0;       ///< most elements with det F <= 0 seen at any iteration or step
+  int linear_iterations = 0;  ///< V-cycles / CG iterations summed (1 per direct solve)
   std::map<std::string, double> timings_ms;  ///< phase -> total milliseconds
-  std::string message;           ///< why it did not converge, if it did not
+  std::string message;                       ///< why it did not converge, if it did not
 };
 
 /// Accumulates wall time per phase into SimulationResult::timings_ms.
@@ -35,9 +35,9 @@ class PhaseClock {
       const std::string& phase;
       std::chrono::steady_clock::time_point start;
       ~Add() {
-        totals[phase] += std::chrono::duration<double, std::milli>(
-                             std::chrono::steady_clock::now() - start)
-                             .count();
+        totals[phase] +=
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
       }
     } add{totals_, phase, start};
     return f();

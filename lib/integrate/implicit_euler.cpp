@@ -3,11 +3,11 @@
 #include <chrono>
 #include <memory>
 
+#include "core/errors.hpp"
 #include "core/threads.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
 #include "fem/rotation_tangent.hpp"
-#include "core/errors.hpp"
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
@@ -62,7 +62,8 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
     clock.time("assemble", [&] { newton.tangent.assemble(positions, rotations, j); });
     clock.time("system", [&] {
       const std::vector<double>& k = problem.stiffness.values;
-      for (std::size_t i = 0; i < k.size(); ++i) j.values[i] = dt * dt * j.values[i] + damping * k[i];
+      for (std::size_t i = 0; i < k.size(); ++i)
+        j.values[i] = dt * dt * j.values[i] + damping * k[i];
       add_lumped_mass(problem, mass_factor, j);
     });
   };
@@ -75,7 +76,8 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
     clock.time("forces", [&] { b = momentum + dt * (problem.external_force - internal_start); });
     clock.time("system", [&] {
       const std::vector<double>& k = problem.stiffness.values;
-      for (std::size_t i = 0; i < k.size(); ++i) newton.jacobian.values[i] = (damping + dt * dt) * k[i];
+      for (std::size_t i = 0; i < k.size(); ++i)
+        newton.jacobian.values[i] = (damping + dt * dt) * k[i];
       add_lumped_mass(problem, mass_factor, newton.jacobian);
       apply_dirichlet(bc, newton.jacobian, b);
     });
@@ -83,11 +85,13 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
   }
   // |g| is measured against the size of its terms: the momenta before and after (the predictor's;
   // a step driven only by moving supports has nothing else) and the forces at the step's start.
-  const double scale = std::max(free_norm(bc, momentum) + mass_factor * free_norm(bc, problem.mass.cwiseProduct(v1)) +
-                                    dt * (free_norm(bc, problem.external_force) + free_norm(bc, internal_start)),
-                                1e-300);
-  const NewtonReport report = newton_iterate(v1, residual, jacobian, bc, scale, options.newton_settings, newton.lu,
-                                             newton.jacobian, clock);
+  const double scale = std::max(
+      free_norm(bc, momentum) + mass_factor * free_norm(bc, problem.mass.cwiseProduct(v1)) +
+          dt * (free_norm(bc, problem.external_force) + free_norm(bc, internal_start)),
+      1e-300);
+  const NewtonReport report =
+      newton_iterate(v1, residual, jacobian, bc, scale, options.newton_settings, newton.lu,
+                     newton.jacobian, clock);
   if (!report.converged)
     throw NotConverged("step " + std::to_string(step) + ": Newton did not reach " +
                        std::to_string(options.newton_settings.tolerance) + " in " +
@@ -113,7 +117,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), elastic, b;
   Eigen::VectorXd previous_velocity = velocity;  // v_{n-1}: the solve's start extrapolates from it
-  BrcMatrix system = problem.stiffness;  // the step's matrix; its pattern is allocated once
+  BrcMatrix system = problem.stiffness;          // the step's matrix; its pattern is allocated once
   const double k_scale = dt * options.rayleigh_beta + dt * dt;
   const Eigen::VectorXd mass_diagonal = (1 + dt * options.rayleigh_alpha) * problem.mass;
   const bool assemble_into_system = !options.newton && !options.keep_stiffness;
@@ -126,27 +130,35 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     DirichletConditions bc = problem.dirichlet;  // on the velocity: reach the prescribed u
     clock.time("system", [&] {
       for (int i = 0; i < n; ++i)
-        bc.value[i] = bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
+        bc.value[i] =
+            bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
     });
     std::vector<Vec3> p;  // the rotations' input
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
     // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks: the
     // assembly writes all of it into A's values unless Ktilde itself is wanted.
-    linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock,
-              assemble_into_system ? AssemblyTarget{&system, k_scale, &mass_diagonal} : AssemblyTarget{});
-    clock.time("checks", [&] {  // counted by the rotations' pass where it can, else a pass of its own
-      const int counted = rotate.stats().inverted;
-      result.inverted_max = std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, p));
-    });
+    linearize(
+        problem, rotate, p, result.displacement, result.rotations, elastic, clock,
+        assemble_into_system ? AssemblyTarget{&system, k_scale, &mass_diagonal} : AssemblyTarget{});
+    clock.time(
+        "checks", [&] {  // counted by the rotations' pass where it can, else a pass of its own
+          const int counted = rotate.stats().inverted;
+          result.inverted_max =
+              std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, p));
+        });
     SolveStats stats;
     if (options.newton) {
-      stats = newton_step(problem, rotate, *newton, options, step, bc, elastic, result, velocity, clock);
+      stats = newton_step(problem, rotate, *newton, options, step, bc, elastic, result, velocity,
+                          clock);
     } else {
       // Every pass of the step is in a named phase: "forces" (the right-hand side; the elastic
       // force came out of the assembly) and "system" (A and its supports) besides rotate,
       // assemble, update and solve.
-      clock.time("forces", [&] { b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic); });
-      clock.time("checks", [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
+      clock.time("forces", [&] {
+        b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic);
+      });
+      clock.time("checks",
+                 [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
       clock.time("system", [&] {
         if (!assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
           const std::vector<double>& k = problem.stiffness.values;
@@ -162,8 +174,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       stats = clock.time("solve", [&] {
         // The iterative solvers start from 2 v_n - v_{n-1}, the velocity extrapolated linearly
         // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only
-        // their iteration count changes (the dragon's report scene: 258 -> 230 MG-PCG
-        // iterations over 25 steps).
+        // their iteration count changes (it falls: a better start).
         previous_velocity = 2 * velocity - previous_velocity;  // coefficient-wise: no aliasing
         velocity.swap(previous_velocity);                      // the start, and v_n kept
         return solver.solve(b, velocity);
@@ -179,9 +190,9 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       std::map<std::string, double> phase_ms;
       for (const auto& [phase, total] : result.timings_ms)
         phase_ms[phase] = total - (before.count(phase) ? before.at(phase) : 0.0);
-      phase_ms["step"] = std::chrono::duration<double, std::milli>(
-                             std::chrono::steady_clock::now() - step_start)
-                             .count();
+      phase_ms["step"] =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - step_start)
+              .count();
       on_step({step, result.displacement, velocity, result.rotations, phase_ms, stats});
     }
   }
@@ -189,8 +200,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   clock.time("rotate",
              [&] { rotate.extract(problem.positions(result.displacement), result.rotations); });
   const Eigen::VectorXd r =
-      problem.external_force -
-      internal_forces(problem, result.rotations, result.displacement);
+      problem.external_force - internal_forces(problem, result.rotations, result.displacement);
   check_finite(problem, r, "force", "the end of step " + std::to_string(options.steps));
   const double f_norm = free_norm(problem.dirichlet, problem.external_force);
   result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);

@@ -9,10 +9,10 @@
 #include <functional>
 
 #include "fem/fe_problem.hpp"
-#include "integrate/newton_iteration.hpp"
 #include "fem/simulation_result.hpp"
-#include "rotation/rotation_extractor.hpp"
+#include "integrate/newton_iteration.hpp"
 #include "linalg/linear_solver.hpp"
+#include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
 
@@ -28,12 +28,13 @@ struct DynamicOptions {
   /// problem.external_force, and problem.dirichlet with the displacement prescribed at the end of
   /// the step. Without it both stay as they are.
   std::function<void(int step, FeProblem& problem)> before_step;
-  bool newton = false;           ///< fully implicit Euler by Newton (else linearly implicit)
+  bool newton = false;  ///< fully implicit Euler by Newton (else linearly implicit)
   /// Linearly implicit: problem.stiffness holds the step's Ktilde when on_step is called (for
   /// callbacks that use it). Off, the assembly writes (dt beta + dt^2) Ktilde straight into the
   /// step's matrix, and problem.stiffness is not written.
   bool keep_stiffness = false;
-  NewtonSettings newton_settings;  ///< per step; a step that misses the tolerance throws NotConverged
+  NewtonSettings
+      newton_settings;  ///< per step; a step that misses the tolerance throws NotConverged
 };
 
 /// State after each step, for records that follow a run (flutter, energy, VTU frames, timings).
@@ -41,8 +42,9 @@ struct StepState {
   int step;
   const Eigen::VectorXd& displacement;
   const Eigen::VectorXd& velocity;
-  const std::vector<Mat3>& rotations;        ///< the ones this step's system used
-  const std::map<std::string, double>& phase_ms;  ///< this step: rotate, assemble, update, solve, step
+  const std::vector<Mat3>& rotations;  ///< the ones this step's system used
+  const std::map<std::string, double>&
+      phase_ms;             ///< this step: rotate, assemble, update, solve, step
   const SolveStats& solve;  ///< newton: iterations = Newton iterations, residual = |g| / scale
 };
 

@@ -24,18 +24,22 @@ Eigen::VectorXd SparseLuSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& 
     state_->analyzed = true;
   }
   state_->lu.factorize(state_->eigen.matrix());
-  if (state_->lu.info() != Eigen::Success) throw NumericalFault("Newton: the tangent matrix is singular");
+  if (state_->lu.info() != Eigen::Success)
+    throw NumericalFault("Newton: the tangent matrix is singular");
   Eigen::VectorXd x = state_->lu.solve(b);
   if (!x.allFinite()) throw NumericalFault("Newton: the tangent solve gave non-finite values");
   return x;
 }
 
-NewtonReport newton_iterate(Eigen::VectorXd& z, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
-                            const std::function<void(BrcMatrix&)>& jacobian, const DirichletConditions& fixed,
-                            double scale, const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
+NewtonReport newton_iterate(Eigen::VectorXd& z,
+                            const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
+                            const std::function<void(BrcMatrix&)>& jacobian,
+                            const DirichletConditions& fixed, double scale,
+                            const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
                             PhaseClock& clock) {
   NewtonReport report;
-  const DirichletConditions step_bc{fixed.fixed, Eigen::VectorXd::Zero(z.size())};  // dz = 0 where fixed
+  const DirichletConditions step_bc{fixed.fixed,
+                                    Eigen::VectorXd::Zero(z.size())};  // dz = 0 where fixed
   Eigen::VectorXd g = residual(z);
   double norm = free_norm(fixed, g);
   for (;; ++report.iterations) {
@@ -56,8 +60,10 @@ NewtonReport newton_iterate(Eigen::VectorXd& z, const std::function<Eigen::Vecto
       const Eigen::VectorXd trial = z + alpha * dz;
       Eigen::VectorXd g_trial = residual(trial);
       const double trial_norm = free_norm(fixed, g_trial);
-      if ((std::isfinite(trial_norm) && trial_norm <= settings.max_growth * norm) || halving == settings.max_halvings) {
-        if (!std::isfinite(trial_norm)) throw NumericalFault("Newton: the residual became non-finite");
+      if ((std::isfinite(trial_norm) && trial_norm <= settings.max_growth * norm) ||
+          halving == settings.max_halvings) {
+        if (!std::isfinite(trial_norm))
+          throw NumericalFault("Newton: the residual became non-finite");
         z = trial;
         g = std::move(g_trial);
         norm = trial_norm;

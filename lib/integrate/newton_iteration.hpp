@@ -19,16 +19,16 @@
 namespace corofem {
 
 struct NewtonSettings {
-  double tolerance = 1e-10;   ///< converged when |g|_free <= tolerance * scale
+  double tolerance = 1e-10;  ///< converged when |g|_free <= tolerance * scale
   int max_iterations = 50;
-  int max_halvings = 12;      ///< smallest step 2^-12
-  double max_growth = 1e4;    ///< largest accepted |g_new| / |g|
+  int max_halvings = 12;    ///< smallest step 2^-12
+  double max_growth = 1e4;  ///< largest accepted |g_new| / |g|
 };
 
 struct NewtonReport {
   int iterations = 0;
-  int halvings = 0;           ///< line-search halvings in all
-  double residual = 0;        ///< |g|_free / scale at the end
+  int halvings = 0;     ///< line-search halvings in all
+  double residual = 0;  ///< |g|_free / scale at the end
   bool converged = false;
 };
 
@@ -48,9 +48,11 @@ class SparseLuSolve {
 /// Solves g(z) = 0 from `z` (fixed DOFs of `fixed` keep their values in z). `residual(z)` returns
 /// g at z (and may update state such as rotations); `jacobian(z, J)` fills J at the z of the last
 /// residual call. Phases "rotate"/"assemble" are the callers'; the LU solve is timed as "solve".
-NewtonReport newton_iterate(Eigen::VectorXd& z, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
-                            const std::function<void(BrcMatrix&)>& jacobian, const DirichletConditions& fixed,
-                            double scale, const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
+NewtonReport newton_iterate(Eigen::VectorXd& z,
+                            const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
+                            const std::function<void(BrcMatrix&)>& jacobian,
+                            const DirichletConditions& fixed, double scale,
+                            const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
                             PhaseClock& clock);
 
 }  // namespace corofem

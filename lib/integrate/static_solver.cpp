@@ -4,8 +4,8 @@
 
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
-#include "integrate/newton_iteration.hpp"
 #include "fem/rotation_tangent.hpp"
+#include "integrate/newton_iteration.hpp"
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
@@ -63,7 +63,8 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
       linearize(problem, rotate, p, u, result.rotations, elastic, clock);
       const Eigen::VectorXd r = f - elastic;
-      check_finite(problem, r, "force", "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it));
+      check_finite(problem, r, "force",
+                   "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it));
       result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
       // A linear solve is exact after one step; corotated steps iterate the lagged rotations.
       if (it > 0 && (!options.corotational || result.residual < options.tolerance)) {
@@ -79,11 +80,13 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       apply_dirichlet(bc, system, b);
       clock.time("update", [&] { solver.set_matrix(system); });
       du.setZero();
-      result.linear_iterations += clock.time("solve", [&] { return solver.solve(b, du); }).iterations;
+      result.linear_iterations +=
+          clock.time("solve", [&] { return solver.solve(b, du); }).iterations;
       u += du;
       ++result.iterations;
-      check_finite(problem, u, "displacement",
-                   "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it + 1));
+      check_finite(
+          problem, u, "displacement",
+          "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it + 1));
     }
     result.steps = inc;
     if (!inc_converged) {

@@ -7,8 +7,8 @@
 // (fem/rotation_tangent.hpp, sparse LU), converging quadratically where the lagged ones crawl.
 #include "fem/fe_problem.hpp"
 #include "fem/simulation_result.hpp"
-#include "rotation/rotation_extractor.hpp"
 #include "linalg/linear_solver.hpp"
+#include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
 

@@ -30,7 +30,8 @@ Eigen::SparseMatrix<double> read_matrix_market(const std::filesystem::path& file
   }
   long rows = 0, cols = 0, entries = 0;
   std::istringstream(line) >> rows >> cols >> entries;
-  if (rows <= 0 || cols <= 0 || entries < 0) throw InputError("bad size line in '" + file.string() + "'");
+  if (rows <= 0 || cols <= 0 || entries < 0)
+    throw InputError("bad size line in '" + file.string() + "'");
   std::vector<Eigen::Triplet<double>> triplets;
   for (long n = 0; n < entries; ++n) {
     long r = 0, c = 0;

@@ -1,7 +1,5 @@
 #include "io/run_context.hpp"
 
-#include "core/threads.hpp"
-
 #include <unistd.h>
 
 #include <chrono>
@@ -12,6 +10,7 @@
 
 #include "core/build_info.hpp"
 #include "core/huge_pages.hpp"
+#include "core/threads.hpp"
 #include "sparse/block_kernels.hpp"
 
 namespace corofem {

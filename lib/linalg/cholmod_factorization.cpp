@@ -11,14 +11,18 @@ namespace corofem {
 namespace {
 
 /// Debian's CHOLMOD (SuiteSparse 5) opens OpenMP regions of a fixed CHOLMOD_OMP_NUM_THREADS = 4
-/// threads inside its supernodal factorization, whatever the machine. On 2 cores that tripled
-/// the factorization of the multigrid's coarsest level (6.2 against 1.9 ms for 1263 DOFs, 11
-/// MFlop): while one is alive, every OpenMP region of this process runs on one thread.
+/// threads inside its supernodal factorization, whatever the machine, which on 2 cores
+/// oversubscribes them several times over: while one is alive, every OpenMP region of this
+/// process runs on one thread.
 class SerialOpenMp {
  public:
 #ifdef COROFEM_HAVE_OPENMP
-  SerialOpenMp() : saved_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
-  ~SerialOpenMp() { omp_set_max_active_levels(saved_); }
+  SerialOpenMp() : saved_(omp_get_max_active_levels()) {
+    omp_set_max_active_levels(0);
+  }
+  ~SerialOpenMp() {
+    omp_set_max_active_levels(saved_);
+  }
 
  private:
   int saved_;
@@ -32,7 +36,7 @@ struct CholmodFactorization::Impl {
   // the caller's context (and the multigrid coarsest level retries a semidefinite one).
   Impl() { llt.cholmod().print = 0; }
   // The upper triangle: CHOLMOD's supernodal factorization works on it, a lower one it transposes
-  // first (the multigrid's coarsest level, 1263 DOFs: 2.61 against 2.87 ms per factorization).
+  // first.
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Upper> llt;
   bool analyzed = false;
   double lnz = 0, flops = 0;
@@ -66,7 +70,11 @@ Eigen::VectorXd CholmodFactorization::solve(const Eigen::VectorXd& b) const {
   return x;
 }
 
-double CholmodFactorization::factor_nonzeros() const { return impl_->lnz; }
-double CholmodFactorization::factorization_flops() const { return impl_->flops; }
+double CholmodFactorization::factor_nonzeros() const {
+  return impl_->lnz;
+}
+double CholmodFactorization::factorization_flops() const {
+  return impl_->flops;
+}
 
 }  // namespace corofem

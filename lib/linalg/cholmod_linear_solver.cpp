@@ -1,7 +1,7 @@
 #include <optional>
 
-#include "linalg/cholmod_factorization.hpp"
 #include "core/errors.hpp"
+#include "linalg/cholmod_factorization.hpp"
 #include "linalg/linear_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
@@ -41,6 +41,8 @@ class CholmodLinearSolver : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<CholmodLinearSolver>(); }
+std::unique_ptr<LinearSolver> make_cholmod_solver() {
+  return std::make_unique<CholmodLinearSolver>();
+}
 
 }  // namespace corofem

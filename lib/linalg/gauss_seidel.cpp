@@ -20,10 +20,14 @@ SmootherOrdering smoother_ordering(const std::string& name) {
 
 const char* smoother_ordering_name(SmootherOrdering ordering) {
   switch (ordering) {
-    case SmootherOrdering::Multicolour: return "multicolour";
-    case SmootherOrdering::Domains: return "domains";
-    case SmootherOrdering::Hybrid: return "hybrid";
-    default: return "sequential";
+    case SmootherOrdering::Multicolour:
+      return "multicolour";
+    case SmootherOrdering::Domains:
+      return "domains";
+    case SmootherOrdering::Hybrid:
+      return "hybrid";
+    default:
+      return "sequential";
   }
 }
 
@@ -31,7 +35,8 @@ namespace {
 
 /// Greedy colouring of the rows `which` (ascending) in the block graph: each takes the smallest
 /// colour none of its neighbours among them has. Returns them grouped by colour (ascending within).
-void colour_rows(const BrcMatrix& a, const std::vector<int>& which, std::vector<int>& start, std::vector<int>& rows) {
+void colour_rows(const BrcMatrix& a, const std::vector<int>& which, std::vector<int>& start,
+                 std::vector<int>& rows) {
   std::vector<int> colour(a.block_rows, -1), used;  // used[c] == i: colour c taken around row i
   int colours = 0;
   for (const int i : which) {
@@ -55,7 +60,6 @@ void colour_rows(const BrcMatrix& a, const std::vector<int>& which, std::vector<
   for (const int i : which) rows[next[colour[i]]++] = i;
 }
 
-
 }  // namespace
 
 void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
@@ -68,8 +72,10 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
     Eigen::Matrix3d d = a.block(diagonal_block_[i]);
     if (hybrid) {  // the l1 norm of the off-domain entries, row by row
       Eigen::Vector3d l1 = Eigen::Vector3d::Zero();
-      for (int k = a.row_start[i]; k < own_begin_[i]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
-      for (int k = own_end_[i]; k < a.row_start[i + 1]; ++k) l1 += a.block(k).cwiseAbs().rowwise().sum();
+      for (int k = a.row_start[i]; k < own_begin_[i]; ++k)
+        l1 += a.block(k).cwiseAbs().rowwise().sum();
+      for (int k = own_end_[i]; k < a.row_start[i + 1]; ++k)
+        l1 += a.block(k).cwiseAbs().rowwise().sum();
       d.diagonal() += l1;
       l1_.segment<3>(3 * i) = l1;
     }
@@ -124,10 +130,12 @@ void BlockGaussSeidel::order_hybrid(const BrcMatrix& a) {
   for (int d = 0; d < domains; ++d) {
     const int lo = domain_start_[d], hi = domain_start_[d + 1];
     for (int i = lo; i < hi; ++i) {
-      const auto first = a.col_index.begin() + a.row_start[i], last = a.col_index.begin() + a.row_start[i + 1];
+      const auto first = a.col_index.begin() + a.row_start[i],
+                 last = a.col_index.begin() + a.row_start[i + 1];
       own_begin_[i] = static_cast<int>(std::lower_bound(first, last, lo) - a.col_index.begin());
       own_end_[i] = static_cast<int>(std::lower_bound(first, last, hi) - a.col_index.begin());
-      if (own_begin_[i] != a.row_start[i] || own_end_[i] != a.row_start[i + 1]) halo_rows_.push_back(i);
+      if (own_begin_[i] != a.row_start[i] || own_end_[i] != a.row_start[i + 1])
+        halo_rows_.push_back(i);
     }
   }
 }
@@ -144,8 +152,8 @@ inline void solve_diagonal(const double* inverse, const double r[3], double* xi)
 }  // namespace
 
 template <bool Hybrid, bool Backward>
-void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo,
-                                 int hi) const {
+void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                 int i, int lo, int hi) const {
   // x_i += M_ii^{-1} (b_i - sum_j A_ij y_j), y_j = x_j in the own domain [lo, hi) (x_i itself
   // included), frozen_j outside it: for the hybrid smoother M_ii = D + D_l1, and this is
   // (D + D_l1) x_i' = b_i + D_l1 x_i - sum_{j != i} A_ij y_j: one loop over the row, x or the
@@ -156,26 +164,31 @@ void BlockGaussSeidel::relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, E
   double* xs = x.data();
   const double* frozen = Hybrid ? frozen_.data() : xs;
   const unsigned width = static_cast<unsigned>(hi - lo);
-  auto source = [=](int j) { return (Hybrid && static_cast<unsigned>(j - lo) >= width ? frozen : xs) + 3 * j; };
+  auto source = [=](int j) {
+    return (Hybrid && static_cast<unsigned>(j - lo) >= width ? frozen : xs) + 3 * j;
+  };
   double s[3];
-  block_row_sum<Backward, true>(a.col_index.data(), a.values.data(), a.row_start[i], a.row_start[i + 1], source, s);
+  block_row_sum<Backward, true>(a.col_index.data(), a.values.data(), a.row_start[i],
+                                a.row_start[i + 1], source, s);
   const double r[3] = {b[3 * i] - s[0], b[3 * i + 1] - s[1], b[3 * i + 2] - s[2]};
   double dx[3];
   solve_diagonal(inverse_diagonal_[i].data(), r, dx);
   for (int c = 0; c < 3; ++c) xs[3 * i + c] += dx[c];
 }
 
-void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+void BlockGaussSeidel::forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                         Eigen::VectorXd& x) const {
   sweep_from_zero(a, b, x, nullptr);
 }
 
 void BlockGaussSeidel::forward_from_zero_with_residual(const BrcMatrix& a, const Eigen::VectorXd& b,
-                                                       Eigen::VectorXd& x, Eigen::VectorXd& r) const {
+                                                       Eigen::VectorXd& x,
+                                                       Eigen::VectorXd& r) const {
   sweep_from_zero(a, b, x, &r);
 }
 
-void BlockGaussSeidel::sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                       Eigen::VectorXd* r) const {
+void BlockGaussSeidel::sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                       Eigen::VectorXd& x, Eigen::VectorXd* r) const {
   x.resize(b.size());
   const bool hybrid = ordering_ == SmootherOrdering::Hybrid;
   if (!hybrid && ordering_ != SmootherOrdering::Sequential) {
@@ -196,12 +209,15 @@ void BlockGaussSeidel::sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd
   {
 #pragma omp for schedule(static, 1)
     for (int d = 0; d < domains; ++d) {
-      const int first = hybrid ? domain_start_[d] : 0, last = hybrid ? domain_start_[d + 1] : a.block_rows;
+      const int first = hybrid ? domain_start_[d] : 0,
+                last = hybrid ? domain_start_[d + 1] : a.block_rows;
       for (int i = first; i < last; ++i) {
         const int begin = hybrid ? own_begin_[i] : a.row_start[i], diagonal = diagonal_block_[i];
         double fresh[3];
-        block_row_sum<false, true>(col, v, begin, diagonal, [xs](int j) { return xs + 3 * j; }, fresh);
-        const double ri[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1], b[3 * i + 2] - fresh[2]};
+        block_row_sum<false, true>(
+            col, v, begin, diagonal, [xs](int j) { return xs + 3 * j; }, fresh);
+        const double ri[3] = {b[3 * i] - fresh[0], b[3 * i + 1] - fresh[1],
+                              b[3 * i + 2] - fresh[2]};
         double* xi = xs + 3 * i;
         solve_diagonal(inverse_diagonal_[i].data(), ri, xi);
         if (!rs) continue;
@@ -218,7 +234,8 @@ void BlockGaussSeidel::sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd
   }
 }
 
-void BlockGaussSeidel::subtract_off_domain_products(const BrcMatrix& a, const double* x, double* r) const {
+void BlockGaussSeidel::subtract_off_domain_products(const BrcMatrix& a, const double* x,
+                                                    double* r) const {
   // Called inside a parallel region, after the domains: every x is final once all have passed
   // the loop's barrier. Each halo row is written by one thread, its two runs summed in order.
   const int rows = static_cast<int>(halo_rows_.size());
@@ -228,16 +245,18 @@ void BlockGaussSeidel::subtract_off_domain_products(const BrcMatrix& a, const do
     const int i = halo_rows_[n];
     double left[3] = {0, 0, 0}, right[3] = {0, 0, 0};
     block_row_sum(a.col_index.data(), a.values.data(), a.row_start[i], own_begin_[i], source, left);
-    block_row_sum(a.col_index.data(), a.values.data(), own_end_[i], a.row_start[i + 1], source, right);
+    block_row_sum(a.col_index.data(), a.values.data(), own_end_[i], a.row_start[i + 1], source,
+                  right);
     for (int c = 0; c < 3; ++c) r[3 * i + c] -= left[c] + right[c];
   }
 }
 
-void BlockGaussSeidel::sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                    bool forward) const {
+void BlockGaussSeidel::sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                    Eigen::VectorXd& x, bool forward) const {
   const int domains = num_domains();
   if (domains > 1) frozen_ = x;  // what the other domains read while this one changes
-#pragma omp parallel for schedule(static, 1) num_threads(std::min(domains, threads_for(a.num_blocks())))
+#pragma omp parallel for schedule(static, 1) \
+    num_threads(std::min(domains, threads_for(a.num_blocks())))
   for (int d = 0; d < domains; ++d) {
     if (forward)
       for (int i = domain_start_[d]; i < domain_start_[d + 1]; ++i)
@@ -248,11 +267,12 @@ void BlockGaussSeidel::sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b
   }
 }
 
-void BlockGaussSeidel::sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                     bool forward) const {
+void BlockGaussSeidel::sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                     Eigen::VectorXd& x, bool forward) const {
   // Interior rows read only their own domain (its boundary rows keep their values meanwhile).
   const int domains = num_domains();
-#pragma omp parallel for schedule(static, 1) num_threads(std::min(domains, threads_for(a.block_rows)))
+#pragma omp parallel for schedule(static, 1) \
+    num_threads(std::min(domains, threads_for(a.block_rows)))
   for (int d = 0; d < domains; ++d) {
     if (forward)
       for (int n = domain_start_[d]; n < domain_start_[d + 1]; ++n)
@@ -263,14 +283,15 @@ void BlockGaussSeidel::sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& 
   }
 }
 
-void BlockGaussSeidel::sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                    int colour) const {
+void BlockGaussSeidel::sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                    Eigen::VectorXd& x, int colour) const {
   const int first = colour_start_[colour], last = colour_start_[colour + 1];
 #pragma omp parallel for schedule(static) num_threads(threads_for(last - first))
   for (int n = first; n < last; ++n) relax_row<false, false>(a, b, x, colour_rows_[n], 0, 0);
 }
 
-void BlockGaussSeidel::forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+void BlockGaussSeidel::forward(const BrcMatrix& a, const Eigen::VectorXd& b,
+                               Eigen::VectorXd& x) const {
   if (ordering_ == SmootherOrdering::Hybrid) return sweep_hybrid(a, b, x, true);
   if (ordering_ == SmootherOrdering::Domains) sweep_domains(a, b, x, true);
   if (ordering_ != SmootherOrdering::Sequential) {
@@ -280,7 +301,8 @@ void BlockGaussSeidel::forward(const BrcMatrix& a, const Eigen::VectorXd& b, Eig
   for (int i = 0; i < a.block_rows; ++i) relax_row<false, false>(a, b, x, i, 0, 0);
 }
 
-void BlockGaussSeidel::backward(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+void BlockGaussSeidel::backward(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                Eigen::VectorXd& x) const {
   if (ordering_ == SmootherOrdering::Hybrid) return sweep_hybrid(a, b, x, false);
   if (ordering_ != SmootherOrdering::Sequential) {
     for (int c = num_colours() - 1; c >= 0; --c) sweep_colour(a, b, x, c);
@@ -294,7 +316,8 @@ void BlockGaussSeidel::block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z
   z.resize(r.size());
   const int n = static_cast<int>(inverse_diagonal_.size());
 #pragma omp parallel for schedule(static) num_threads(threads_for(n))
-  for (int i = 0; i < n; ++i) solve_diagonal(inverse_diagonal_[i].data(), r.data() + 3 * i, z.data() + 3 * i);
+  for (int i = 0; i < n; ++i)
+    solve_diagonal(inverse_diagonal_[i].data(), r.data() + 3 * i, z.data() + 3 * i);
 }
 
 }  // namespace corofem

@@ -32,16 +32,18 @@ enum class SmootherOrdering { Sequential, Multicolour, Domains, Hybrid };
 /// The domains' default size: vertices for the domains ordering, blocks for the hybrid one.
 inline constexpr int kDomainVertices = 4096;
 inline constexpr int kHybridDomainBlocks = 24576;
-SmootherOrdering smoother_ordering(const std::string& name);  ///< "sequential" | "multicolour" | "domains" | "hybrid"
+SmootherOrdering smoother_ordering(
+    const std::string& name);  ///< "sequential" | "multicolour" | "domains" | "hybrid"
 const char* smoother_ordering_name(SmootherOrdering ordering);
 
 class BlockGaussSeidel {
  public:
   /// `domain_size`: the domains' size, in vertices for the domains ordering (0: 4096), in blocks
   /// for the hybrid one (0: 24576).
-  explicit BlockGaussSeidel(SmootherOrdering ordering = SmootherOrdering::Sequential, int domain_size = 0)
+  explicit BlockGaussSeidel(SmootherOrdering ordering = SmootherOrdering::Sequential,
+                            int domain_size = 0)
       : ordering_(ordering),
-        domain_size_(domain_size > 0                            ? domain_size
+        domain_size_(domain_size > 0                        ? domain_size
                      : ordering == SmootherOrdering::Hybrid ? kHybridDomainBlocks
                                                             : kDomainVertices) {}
   /// Inverts the diagonal blocks of A (recompute whenever A's values change); colours A's
@@ -55,12 +57,12 @@ class BlockGaussSeidel {
   void forward_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// forward_from_zero(a, b, x) (the same bits) and r = b - A x for the x it leaves, in one pass
   /// for the sequential and hybrid orderings: the sweep leaves b_i - (the blocks it read) x =
-  /// (M_ii - A_ii) x_i, the l1 term (0 for the sequential one), and the blocks it reads, transposed,
-  /// are the blocks right of the diagonal in the rows above; only the blocks outside each row's
-  /// domain are read a second time. Requires A symmetric bit for bit (an FE matrix and its
-  /// Galerkin products are). b - A x to round-off; the other orderings compute it in full.
-  void forward_from_zero_with_residual(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                       Eigen::VectorXd& r) const;
+  /// (M_ii - A_ii) x_i, the l1 term (0 for the sequential one), and the blocks it reads,
+  /// transposed, are the blocks right of the diagonal in the rows above; only the blocks outside
+  /// each row's domain are read a second time. Requires A symmetric bit for bit (an FE matrix and
+  /// its Galerkin products are). b - A x to round-off; the other orderings compute it in full.
+  void forward_from_zero_with_residual(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                       Eigen::VectorXd& x, Eigen::VectorXd& r) const;
   /// z = D^{-1} r with the same inverted diagonal blocks (the block-Jacobi preconditioner; with
   /// the hybrid ordering, the l1-augmented ones).
   void block_jacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
@@ -74,18 +76,23 @@ class BlockGaussSeidel {
   int domain_rows_begin(int d) const { return domain_start_[d]; }
 
  private:
-  void sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int colour) const;
-  void sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
+  void sweep_colour(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                    int colour) const;
+  void sweep_domains(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                     bool forward) const;
   /// Relaxes row i: every column read from x, or, for the hybrid smoother, from x inside the
   /// row's domain [lo, hi) and from frozen_ outside it; Backward: its blocks in reverse order.
   template <bool Hybrid, bool Backward>
-  void relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo, int hi) const;
+  void relax_row(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int i, int lo,
+                 int hi) const;
   /// forward_from_zero, and with `r` also its residual (forward_from_zero_with_residual).
-  void sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd* r) const;
+  void sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                       Eigen::VectorXd* r) const;
   /// r_i -= (the blocks outside row i's domain) x, for the hybrid halo rows; an omp for inside
   /// the caller's parallel region, after its domains.
   void subtract_off_domain_products(const BrcMatrix& a, const double* x, double* r) const;
-  void sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) const;
+  void sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                    bool forward) const;
   void order_rows(const BrcMatrix& a);
   void order_hybrid(const BrcMatrix& a);
   SmootherOrdering ordering_;

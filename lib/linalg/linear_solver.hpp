@@ -10,8 +10,8 @@
 namespace corofem {
 
 struct SolveStats {
-  int iterations = 0;      ///< V-cycles or CG iterations; 1 for a direct solve
-  double residual = 0;     ///< |b - A x| / |b| reached
+  int iterations = 0;             ///< V-cycles or CG iterations; 1 for a direct solve
+  double residual = 0;            ///< |b - A x| / |b| reached
   double convergence_factor = 0;  ///< (r_k / r_0)^(1/k) for iterative solvers
 };
 

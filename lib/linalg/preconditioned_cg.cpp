@@ -1,8 +1,7 @@
 #include "linalg/preconditioned_cg.hpp"
 
-#include <cmath>
-
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -17,13 +16,15 @@ namespace {
 /// chunks' partial sums in chunk order, so it is the same bits at every thread count.
 constexpr Eigen::Index kChunk = 1024;  // a few on the threads gate's meshes too
 
-/// sum over the chunks [lo, hi) of n of partial(lo, hi), which may also update entries of its chunk.
+/// sum over the chunks [lo, hi) of n of partial(lo, hi), which may also update entries of its
+/// chunk.
 template <class Partial>
 double chunked_sum(Eigen::Index n, const Partial& partial) {
   const Eigen::Index chunks = (n + kChunk - 1) / kChunk;
   std::vector<double> sums(chunks);
 #pragma omp parallel for schedule(static) num_threads(threads_for(n))
-  for (Eigen::Index c = 0; c < chunks; ++c) sums[c] = partial(c * kChunk, std::min(n, (c + 1) * kChunk));
+  for (Eigen::Index c = 0; c < chunks; ++c)
+    sums[c] = partial(c * kChunk, std::min(n, (c + 1) * kChunk));
   double total = 0;
   for (const double s : sums) total += s;
   return total;
@@ -41,7 +42,8 @@ double dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
 
 SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                              const Preconditioner& precondition, double tolerance,
-                             int max_iterations, const char* name, const Eigen::VectorXd* initial_residual) {
+                             int max_iterations, const char* name,
+                             const Eigen::VectorXd* initial_residual) {
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
   if (b_norm == 0) return stats;
@@ -67,7 +69,8 @@ SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen
         return r.segment(lo, hi - lo).squaredNorm();
       }));
       ++stats.iterations;
-      if (!std::isfinite(rk)) throw NumericalFault(std::string(name) + ": residual became non-finite");
+      if (!std::isfinite(rk))
+        throw NumericalFault(std::string(name) + ": residual became non-finite");
       if (rk <= tolerance * b_norm) break;
       precondition(r, z);
       const double rz_next = dot(r, z), beta = rz_next / rz;
@@ -96,7 +99,8 @@ class JacobiPcgSolver : public LinearSolver {
   }
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     return preconditioned_cg(
-        a_, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { diagonal_.block_jacobi(r, z); },
+        a_, b, x,
+        [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { diagonal_.block_jacobi(r, z); },
         tolerance_, max_iterations_, "jacobi-pcg");
   }
 

@@ -20,7 +20,9 @@ GmshSession::GmshSession() {
   gmsh::option::setNumber("General.AbortOnError", 3);  // errors become exceptions
 }
 
-GmshSession::~GmshSession() { gmsh::finalize(); }
+GmshSession::~GmshSession() {
+  gmsh::finalize();
+}
 
 std::string last_gmsh_error() {
   std::string error;
@@ -87,6 +89,5 @@ TetMesh collect_tets(const fs::path& file) {
   validate_mesh(mesh);
   return mesh;
 }
-
 
 }  // namespace corofem

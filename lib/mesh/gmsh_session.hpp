@@ -30,9 +30,11 @@ void call_gmsh(const std::filesystem::path& source, const char* what, F&& f) {
   } catch (const InputError&) {
     throw;
   } catch (const std::string& message) {
-    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() + "': " + message);
+    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() +
+                     "': " + message);
   } catch (const std::exception& e) {
-    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() + "': " + e.what());
+    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() +
+                     "': " + e.what());
   } catch (...) {
     throw InputError("gmsh could not " + std::string(what) + " '" + source.string() +
                      "': " + last_gmsh_error());

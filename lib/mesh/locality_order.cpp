@@ -54,8 +54,11 @@ void sort_for_locality(TetMesh& mesh) {
   const int nt = mesh.num_tets();
   std::vector<int> tet_order(nt);
   std::iota(tet_order.begin(), tet_order.end(), 0);
-  auto smallest = [&](int e) { return *std::min_element(mesh.tets[e].begin(), mesh.tets[e].end()); };
-  std::stable_sort(tet_order.begin(), tet_order.end(), [&](int a, int b) { return smallest(a) < smallest(b); });
+  auto smallest = [&](int e) {
+    return *std::min_element(mesh.tets[e].begin(), mesh.tets[e].end());
+  };
+  std::stable_sort(tet_order.begin(), tet_order.end(),
+                   [&](int a, int b) { return smallest(a) < smallest(b); });
   permute(mesh.tets, tet_order);
   permute(mesh.element_tags, tet_order);
 }

@@ -16,25 +16,30 @@ constexpr std::uint64_t kMaxTag = 1'000'000'000ULL;
 /// Nodes per element of the gmsh element types accepted in binary files (linear and quadratic
 /// points, lines, triangles, quads, tets, hexes, prisms, pyramids); 0 for any other type.
 int nodes_of_element_type(std::int64_t type) {
-  static constexpr int kNodes[] = {0, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1, 8, 20, 15, 13};
+  static constexpr int kNodes[] = {0, 2,  3,  4,  4,  8, 6, 5,  3,  6,
+                                   9, 10, 27, 18, 14, 1, 8, 20, 15, 13};
   return type > 0 && type < static_cast<std::int64_t>(std::size(kNodes)) ? kNodes[type] : 0;
 }
 
 /// Text for a message: control and non-ASCII bytes shown as '?'.
 std::string printable(const std::string& text) {
   std::string out;
-  for (char c : text) out += c == '\n' ? std::string("\\n") : (c >= 32 && c < 127 ? std::string(1, c) : std::string("?"));
+  for (char c : text)
+    out += c == '\n' ? std::string("\\n")
+                     : (c >= 32 && c < 127 ? std::string(1, c) : std::string("?"));
   return out;
 }
 
 /// Reads a binary .msh front to back; every read is checked against the bytes that remain.
 class MshCursor {
  public:
-  MshCursor(const std::string& bytes, const std::filesystem::path& file) : bytes_(bytes), file_(file) {}
+  MshCursor(const std::string& bytes, const std::filesystem::path& file)
+      : bytes_(bytes), file_(file) {}
 
   [[noreturn]] void reject(const std::string& section, const std::string& what) const {
-    throw InputError("mesh file '" + file_.string() + "' is malformed: " + what + " in $" + section +
-                     " (byte " + std::to_string(at_) + " of " + std::to_string(bytes_.size()) + ")");
+    throw InputError("mesh file '" + file_.string() + "' is malformed: " + what + " in $" +
+                     section + " (byte " + std::to_string(at_) + " of " +
+                     std::to_string(bytes_.size()) + ")");
   }
 
   std::uint64_t left() const { return bytes_.size() - at_; }
@@ -53,13 +58,16 @@ class MshCursor {
 
   /// Checks that `count` items of `item_bytes` each fit in what remains (no overflow), before
   /// anything is read or allocated from `count`.
-  void need(std::uint64_t count, std::uint64_t item_bytes, const std::string& section, const std::string& what) const {
+  void need(std::uint64_t count, std::uint64_t item_bytes, const std::string& section,
+            const std::string& what) const {
     if (item_bytes > 0 && count > left() / item_bytes)
-      reject(section, what + " declares " + std::to_string(count) + " items of " + std::to_string(item_bytes) +
-                          " bytes but only " + std::to_string(left()) + " bytes remain");
+      reject(section, what + " declares " + std::to_string(count) + " items of " +
+                          std::to_string(item_bytes) + " bytes but only " + std::to_string(left()) +
+                          " bytes remain");
   }
 
-  void skip(std::uint64_t count, std::uint64_t item_bytes, const std::string& section, const std::string& what) {
+  void skip(std::uint64_t count, std::uint64_t item_bytes, const std::string& section,
+            const std::string& what) {
     need(count, item_bytes, section, what);
     at_ += count * item_bytes;
   }
@@ -83,7 +91,8 @@ class MshCursor {
   /// A text line holding one non-negative decimal count.
   std::uint64_t count_line(const std::string& section) {
     const std::string text = line(section);
-    if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string::npos)
+    if (text.empty() || text.size() > 18 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
       reject(section, "bad count line '" + printable(text.substr(0, 40)) + "'");
     return std::stoull(text);
   }
@@ -99,14 +108,15 @@ class NodeTags {
  public:
   void define(std::uint64_t tag, std::uint64_t min_tag, std::uint64_t max_tag, MshCursor& in) {
     if (tag == 0 || tag < min_tag || tag > max_tag)
-      in.reject("Nodes", "node tag " + std::to_string(tag) + " is outside [" + std::to_string(min_tag) + ", " +
-                             std::to_string(max_tag) + "]");
-    if (!tags_.insert(tag).second) in.reject("Nodes", "node " + std::to_string(tag) + " is defined twice");
+      in.reject("Nodes", "node tag " + std::to_string(tag) + " is outside [" +
+                             std::to_string(min_tag) + ", " + std::to_string(max_tag) + "]");
+    if (!tags_.insert(tag).second)
+      in.reject("Nodes", "node " + std::to_string(tag) + " is defined twice");
   }
   void check_reference(std::uint64_t node, std::uint64_t element, MshCursor& in) const {
     if (!tags_.count(node))
-      in.reject("Elements", "element " + std::to_string(element) + " refers to node " + std::to_string(node) +
-                                ", which $Nodes does not define");
+      in.reject("Elements", "element " + std::to_string(element) + " refers to node " +
+                                std::to_string(node) + ", which $Nodes does not define");
   }
 
  private:
@@ -117,7 +127,8 @@ class NodeTags {
 void check_physical_names(MshCursor& in, const std::filesystem::path& file) {
   const std::uint64_t count = in.count_line("PhysicalNames");
   in.need(count, 6, "PhysicalNames", "the header");  // "d t \"\"\n" is the shortest line
-  for (std::uint64_t k = 0; k < count; ++k) check_physical_name_line(in.line("PhysicalNames"), file);
+  for (std::uint64_t k = 0; k < count; ++k)
+    check_physical_name_line(in.line("PhysicalNames"), file);
   in.expect("$EndPhysicalNames\n", "PhysicalNames");
 }
 
@@ -131,7 +142,8 @@ void check_entities_v41(MshCursor& in) {
       in.read<std::int32_t>("Entities");
       in.skip(dim == 0 ? 3 : 6, 8, "Entities", "a bounding box");
       in.skip(in.read<std::uint64_t>("Entities"), 4, "Entities", "a physical tag list");
-      if (dim > 0) in.skip(in.read<std::uint64_t>("Entities"), 4, "Entities", "a bounding entity list");
+      if (dim > 0)
+        in.skip(in.read<std::uint64_t>("Entities"), 4, "Entities", "a bounding entity list");
     }
   }
 }
@@ -149,8 +161,8 @@ TagHeader read_tag_header(MshCursor& in, const std::string& section, std::uint64
   in.need(h.blocks, 20, section, "the block count");
   in.need(h.total, smallest_item, section, "the item count");
   if (h.total > 0 && (h.max_tag > kMaxTag || h.min_tag > h.max_tag || h.min_tag == 0))
-    in.reject(section, "tag range [" + std::to_string(h.min_tag) + ", " + std::to_string(h.max_tag) +
-                           "] (tags are 1 to 1e9)");
+    in.reject(section, "tag range [" + std::to_string(h.min_tag) + ", " +
+                           std::to_string(h.max_tag) + "] (tags are 1 to 1e9)");
   return h;
 }
 
@@ -169,13 +181,14 @@ void check_nodes_v41(MshCursor& in, NodeTags& nodes) {
       in.reject("Nodes", "blocks list more nodes than the header's " + std::to_string(h.total));
     const std::uint64_t doubles = 3 + (parametric ? dim : 0);
     in.need(count, 8 + 8 * doubles, "Nodes", "a block");
-    for (std::uint64_t k = 0; k < count; ++k) nodes.define(in.read<std::uint64_t>("Nodes"), h.min_tag, h.max_tag, in);
+    for (std::uint64_t k = 0; k < count; ++k)
+      nodes.define(in.read<std::uint64_t>("Nodes"), h.min_tag, h.max_tag, in);
     in.skip(count, 8 * doubles, "Nodes", "a block's coordinates");
     listed += count;
   }
   if (listed != h.total)
-    in.reject("Nodes", "the header declares " + std::to_string(h.total) + " nodes but the blocks list " +
-                           std::to_string(listed));
+    in.reject("Nodes", "the header declares " + std::to_string(h.total) +
+                           " nodes but the blocks list " + std::to_string(listed));
 }
 
 void check_elements_v41(MshCursor& in, const NodeTags& nodes) {
@@ -189,22 +202,25 @@ void check_elements_v41(MshCursor& in, const NodeTags& nodes) {
     const auto count = in.read<std::uint64_t>("Elements");
     const int per_element = nodes_of_element_type(type);
     if (dim < 0 || dim > 3 || per_element == 0)
-      in.reject("Elements", "bad block header (dimension " + std::to_string(dim) + ", element type " +
-                                std::to_string(type) + ")");
+      in.reject("Elements", "bad block header (dimension " + std::to_string(dim) +
+                                ", element type " + std::to_string(type) + ")");
     if (count > h.total - listed)
-      in.reject("Elements", "blocks list more elements than the header's " + std::to_string(h.total));
+      in.reject("Elements",
+                "blocks list more elements than the header's " + std::to_string(h.total));
     in.need(count, 8ULL * (1 + per_element), "Elements", "a block");
     for (std::uint64_t k = 0; k < count; ++k) {
       const auto tag = in.read<std::uint64_t>("Elements");
       if (tag == 0 || tag < h.min_tag || tag > h.max_tag || !seen.insert(tag).second)
-        in.reject("Elements", "element tag " + std::to_string(tag) + " is outside the header's range or repeated");
-      for (int a = 0; a < per_element; ++a) nodes.check_reference(in.read<std::uint64_t>("Elements"), tag, in);
+        in.reject("Elements", "element tag " + std::to_string(tag) +
+                                  " is outside the header's range or repeated");
+      for (int a = 0; a < per_element; ++a)
+        nodes.check_reference(in.read<std::uint64_t>("Elements"), tag, in);
     }
     listed += count;
   }
   if (listed != h.total)
-    in.reject("Elements", "the header declares " + std::to_string(h.total) + " elements but the blocks list " +
-                              std::to_string(listed));
+    in.reject("Elements", "the header declares " + std::to_string(h.total) +
+                              " elements but the blocks list " + std::to_string(listed));
 }
 
 void check_nodes_v22(MshCursor& in, NodeTags& nodes) {
@@ -226,14 +242,18 @@ void check_elements_v22(MshCursor& in, const NodeTags& nodes) {
     const auto count = in.read<std::int32_t>("Elements");
     const auto tags = in.read<std::int32_t>("Elements");
     const int per_element = nodes_of_element_type(type);
-    if (per_element == 0 || count <= 0 || tags < 0 || static_cast<std::uint64_t>(count) > total - listed)
+    if (per_element == 0 || count <= 0 || tags < 0 ||
+        static_cast<std::uint64_t>(count) > total - listed)
       in.reject("Elements", "bad block header (element type " + std::to_string(type) + ", " +
-                                std::to_string(count) + " elements, " + std::to_string(tags) + " tags)");
-    in.need(static_cast<std::uint64_t>(count), 4ULL * (1 + tags + per_element), "Elements", "a block");
+                                std::to_string(count) + " elements, " + std::to_string(tags) +
+                                " tags)");
+    in.need(static_cast<std::uint64_t>(count), 4ULL * (1 + tags + per_element), "Elements",
+            "a block");
     for (std::int32_t k = 0; k < count; ++k) {
       const auto tag = in.read<std::int32_t>("Elements");
       if (tag <= 0 || static_cast<std::uint64_t>(tag) > kMaxTag || !seen.insert(tag).second)
-        in.reject("Elements", "element number " + std::to_string(tag) + " is not positive or repeated");
+        in.reject("Elements",
+                  "element number " + std::to_string(tag) + " is not positive or repeated");
       in.skip(static_cast<std::uint64_t>(tags), 4, "Elements", "an element's tags");
       for (int a = 0; a < per_element; ++a) {
         const auto node = in.read<std::int32_t>("Elements");
@@ -250,12 +270,15 @@ void check_binary_msh(const std::string& bytes, double version, const std::files
   MshCursor in(bytes, file);
   const bool v41 = version == 4.1;
   if (!v41 && version != 2.2)
-    in.reject("MeshFormat", "binary version " + std::to_string(version) +
-                                " is not read (binary files must be 4.1 or 2.2; gmsh -save -format msh41 converts)");
+    in.reject(
+        "MeshFormat",
+        "binary version " + std::to_string(version) +
+            " is not read (binary files must be 4.1 or 2.2; gmsh -save -format msh41 converts)");
   in.expect("$MeshFormat\n", "MeshFormat");
   in.line("MeshFormat");
   if (in.read<std::int32_t>("MeshFormat") != 1)
-    in.reject("MeshFormat", "the file was written with the other byte order (the endianness marker is not 1)");
+    in.reject("MeshFormat",
+              "the file was written with the other byte order (the endianness marker is not 1)");
   in.expect("\n$EndMeshFormat\n", "MeshFormat");
   NodeTags nodes;
   bool have_nodes = false, have_elements = false;
@@ -278,7 +301,8 @@ void check_binary_msh(const std::string& bytes, double version, const std::files
       in.reject(name.empty() ? "MeshFormat" : name,
                 "unexpected '" + printable(header.substr(0, 40)) +
                     "' (binary files may hold $PhysicalNames, " + (v41 ? "$Entities, " : "") +
-                    "$Nodes and then $Elements, each once; other sections and text between them are not read)");
+                    "$Nodes and then $Elements, each once; other sections and text between them "
+                    "are not read)");
     }
     in.expect("\n$End" + name + "\n", name);
   }

@@ -30,7 +30,8 @@ std::size_t section_start(const std::string& bytes, const std::string& name) {
 
 /// n whitespace-separated unsigned integers as text at `offset`.
 std::vector<unsigned long long> ascii_counts(const std::string& bytes, std::size_t offset, int n,
-                                             const std::filesystem::path& file, const std::string& section) {
+                                             const std::filesystem::path& file,
+                                             const std::string& section) {
   std::istringstream in(bytes.substr(offset, 256));
   std::vector<unsigned long long> v(n);
   for (auto& x : v) {
@@ -42,8 +43,8 @@ std::vector<unsigned long long> ascii_counts(const std::string& bytes, std::size
 }
 
 /// Whitespace-separated tokens of the section body from `offset` up to "$End<name>".
-std::vector<std::string> section_lines(const std::string& bytes, std::size_t offset, const std::string& name,
-                                       const std::filesystem::path& file) {
+std::vector<std::string> section_lines(const std::string& bytes, std::size_t offset,
+                                       const std::string& name, const std::filesystem::path& file) {
   const std::size_t end = bytes.find("$End" + name, offset);
   if (end == std::string::npos) reject(file, "$" + name + " has no $End" + name);
   std::vector<std::string> lines;
@@ -74,7 +75,8 @@ std::vector<long long> integers(const std::string& line, const std::filesystem::
 
 /// ASCII files: every node reference of every element names a node of $Nodes (gmsh 4.8 keeps
 /// a null vertex for a missing one and crashes later, in getElements).
-void check_ascii_references(const std::string& bytes, int major, const std::filesystem::path& file) {
+void check_ascii_references(const std::string& bytes, int major,
+                            const std::filesystem::path& file) {
   // Each section is checked whenever it is present: gmsh parses whatever it finds.
   std::unordered_set<long long> tags;
   const std::size_t nodes_at = section_start(bytes, "Nodes");
@@ -84,13 +86,16 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
     const auto head = integers(node_lines[0], file, "Nodes");
     std::size_t row = 1;
     if (major == 2) {
-      if (head.size() != 1 || head[0] < 0 || static_cast<std::size_t>(head[0]) != node_lines.size() - 1)
-        reject(file, "$Nodes declares " + node_lines[0] + " nodes but lists " + std::to_string(node_lines.size() - 1));
+      if (head.size() != 1 || head[0] < 0 ||
+          static_cast<std::size_t>(head[0]) != node_lines.size() - 1)
+        reject(file, "$Nodes declares " + node_lines[0] + " nodes but lists " +
+                         std::to_string(node_lines.size() - 1));
       for (; row < node_lines.size(); ++row) {
         std::istringstream in(node_lines[row]);
         long long tag = 0;
         double x = 0, y = 0, z = 0;
-        if (!(in >> tag >> x >> y >> z) || tag <= 0) reject(file, "bad node line in $Nodes: '" + node_lines[row] + "'");
+        if (!(in >> tag >> x >> y >> z) || tag <= 0)
+          reject(file, "bad node line in $Nodes: '" + node_lines[row] + "'");
         tags.insert(tag);
       }
     } else {
@@ -100,7 +105,8 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
         const auto block = integers(node_lines[row++], file, "Nodes");
         if (block.size() != 4 || block[3] < 0) reject(file, "bad entity block header in $Nodes");
         const long long n = block[3];
-        if (row + 2 * static_cast<std::size_t>(n) > node_lines.size()) reject(file, "truncated $Nodes");
+        if (row + 2 * static_cast<std::size_t>(n) > node_lines.size())
+          reject(file, "truncated $Nodes");
         for (long long k = 0; k < n; ++k) {
           const auto tag = integers(node_lines[row++], file, "Nodes");
           if (tag.size() != 1 || tag[0] < head[2] || tag[0] > head[3] || tag[0] <= 0)
@@ -114,7 +120,9 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
         }
         listed += n;
       }
-      if (listed != head[1]) reject(file, "$Nodes declares " + std::to_string(head[1]) + " nodes but lists " + std::to_string(listed));
+      if (listed != head[1])
+        reject(file, "$Nodes declares " + std::to_string(head[1]) + " nodes but lists " +
+                         std::to_string(listed));
     }
   }
   const std::size_t elements_at = section_start(bytes, "Elements");
@@ -131,8 +139,10 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
   };
   std::size_t row = 1;
   if (major == 2) {
-    if (head.size() != 1 || head[0] < 0 || static_cast<std::size_t>(head[0]) != element_lines.size() - 1)
-      reject(file, "$Elements declares " + element_lines[0] + " elements but lists " + std::to_string(element_lines.size() - 1));
+    if (head.size() != 1 || head[0] < 0 ||
+        static_cast<std::size_t>(head[0]) != element_lines.size() - 1)
+      reject(file, "$Elements declares " + element_lines[0] + " elements but lists " +
+                       std::to_string(element_lines.size() - 1));
     for (; row < element_lines.size(); ++row) {
       const auto v = integers(element_lines[row], file, "Elements");
       if (v.size() < 3 || v[2] < 0) reject(file, "bad element line in $Elements");
@@ -144,7 +154,8 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
     while (row < element_lines.size()) {
       const auto block = integers(element_lines[row++], file, "Elements");
       if (block.size() != 4 || block[3] < 0) reject(file, "bad entity block header in $Elements");
-      if (row + static_cast<std::size_t>(block[3]) > element_lines.size()) reject(file, "truncated $Elements");
+      if (row + static_cast<std::size_t>(block[3]) > element_lines.size())
+        reject(file, "truncated $Elements");
       for (long long k = 0; k < block[3]; ++k) {
         const auto v = integers(element_lines[row++], file, "Elements");
         if (v.empty() || v[0] < head[2] || v[0] > head[3] || v[0] <= 0)
@@ -153,7 +164,9 @@ void check_ascii_references(const std::string& bytes, int major, const std::file
       }
       listed += block[3];
     }
-    if (listed != head[1]) reject(file, "$Elements declares " + std::to_string(head[1]) + " elements but lists " + std::to_string(listed));
+    if (listed != head[1])
+      reject(file, "$Elements declares " + std::to_string(head[1]) + " elements but lists " +
+                       std::to_string(listed));
   }
 }
 
@@ -165,7 +178,8 @@ void check_ascii_physical_names(const std::string& bytes, const std::filesystem:
   if (lines.empty()) reject(file, "empty $PhysicalNames");
   const auto head = integers(lines[0], file, "PhysicalNames");
   if (head.size() != 1 || head[0] < 0 || static_cast<std::size_t>(head[0]) != lines.size() - 1)
-    reject(file, "$PhysicalNames declares " + lines[0] + " names but lists " + std::to_string(lines.size() - 1));
+    reject(file, "$PhysicalNames declares " + lines[0] + " names but lists " +
+                     std::to_string(lines.size() - 1));
   for (std::size_t i = 1; i < lines.size(); ++i) check_physical_name_line(lines[i], file);
 }
 
@@ -173,10 +187,20 @@ void check_ascii_physical_names(const std::string& bytes, const std::filesystem:
 /// so "$Nodes1" is read as $Nodes by gmsh but skipped by the checks above; a fuzzed file built
 /// that way corrupted gmsh's heap.
 void check_section_names(const std::string& bytes, const std::filesystem::path& file) {
-  static const std::unordered_set<std::string> known = {
-      "MeshFormat", "PhysicalNames", "Entities", "PartitionedEntities", "Nodes", "Elements",
-      "Periodic", "GhostElements", "Parametrizations", "NodeData", "ElementData",
-      "ElementNodeData", "InterpolationScheme", "Comments"};
+  static const std::unordered_set<std::string> known = {"MeshFormat",
+                                                        "PhysicalNames",
+                                                        "Entities",
+                                                        "PartitionedEntities",
+                                                        "Nodes",
+                                                        "Elements",
+                                                        "Periodic",
+                                                        "GhostElements",
+                                                        "Parametrizations",
+                                                        "NodeData",
+                                                        "ElementData",
+                                                        "ElementNodeData",
+                                                        "InterpolationScheme",
+                                                        "Comments"};
   std::istringstream in(bytes);
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] != '$') continue;
@@ -202,7 +226,8 @@ void precheck_msh(const std::filesystem::path& file) {
   // Range first: converting an out-of-range double to int is undefined (UBSan found 4.2e33 here).
   const int major = version >= 2 && version < 5 ? static_cast<int>(version) : 0;
   if ((major != 2 && major != 4) || (type != 0 && type != 1) || data_size != 8)
-    reject(file, "unsupported $MeshFormat '" + bytes.substr(format, bytes.find('\n', format) - format) +
+    reject(file, "unsupported $MeshFormat '" +
+                     bytes.substr(format, bytes.find('\n', format) - format) +
                      "' (need version 2.x or 4.x, type 0 or 1, data size 8)");
   if (type == 1) {
     check_binary_msh(bytes, version, file);
@@ -213,7 +238,9 @@ void precheck_msh(const std::filesystem::path& file) {
     int v4_counts;  // numbers in the v4 header (v2 and $PhysicalNames: 1)
     bool has_tag_range;
   };
-  const Section sections[] = {{"Entities", 4, false}, {"Nodes", 4, true}, {"Elements", 4, true},
+  const Section sections[] = {{"Entities", 4, false},
+                              {"Nodes", 4, true},
+                              {"Elements", 4, true},
                               {"PhysicalNames", 1, false}};
   for (const Section& s : sections) {
     const std::size_t at = section_start(bytes, s.name);
@@ -227,8 +254,8 @@ void precheck_msh(const std::filesystem::path& file) {
                          " items in a file of " + std::to_string(size) + " bytes");
     if (s.has_tag_range && major == 4 && counts[1] > 0 &&
         (counts[3] > kMaxTag || counts[2] > counts[3]))
-      reject(file, "$" + std::string(s.name) + " has tag range [" + std::to_string(counts[2]) + ", " +
-                       std::to_string(counts[3]) + "] (tags above 1e9 are not accepted)");
+      reject(file, "$" + std::string(s.name) + " has tag range [" + std::to_string(counts[2]) +
+                       ", " + std::to_string(counts[3]) + "] (tags above 1e9 are not accepted)");
   }
   check_section_names(bytes, file);
   check_ascii_physical_names(bytes, file);
@@ -243,9 +270,10 @@ void check_physical_name_line(const std::string& line, const std::filesystem::pa
   const std::size_t open = rest.find_first_not_of(" \t");
   std::string name = open == std::string::npos ? "" : rest.substr(open);
   while (!name.empty() && (name.back() == '\r' || name.back() == ' ')) name.pop_back();
-  if (!parsed || dim < 0 || dim > 3 || tag <= 0 || tag > 2147483647LL || name.size() < 2 || name.front() != '"' ||
-      name.back() != '"')
-    reject(file, "bad $PhysicalNames line '" + line.substr(0, 60) + "' (need: dimension 0-3, tag > 0, \"name\")");
+  if (!parsed || dim < 0 || dim > 3 || tag <= 0 || tag > 2147483647LL || name.size() < 2 ||
+      name.front() != '"' || name.back() != '"')
+    reject(file, "bad $PhysicalNames line '" + line.substr(0, 60) +
+                     "' (need: dimension 0-3, tag > 0, \"name\")");
 }
 
 void precheck_stl(const std::filesystem::path& file) {
@@ -260,7 +288,8 @@ void precheck_stl(const std::filesystem::path& file) {
   const auto size = std::filesystem::file_size(file);
   if (size != 84 + 50ULL * triangles)
     reject(file, "binary STL declares " + std::to_string(triangles) + " triangles (" +
-                     std::to_string(84 + 50ULL * triangles) + " bytes) but has " + std::to_string(size) + " bytes");
+                     std::to_string(84 + 50ULL * triangles) + " bytes) but has " +
+                     std::to_string(size) + " bytes");
 }
 
 }  // namespace corofem

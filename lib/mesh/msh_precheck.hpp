@@ -10,9 +10,9 @@ namespace corofem {
 
 /// Throws InputError naming the file and the section when: the file does not start with a
 /// $MeshFormat section; the version is not 2.x or 4.x or the data size not 8; a binary file fails
-/// check_binary_msh; in an ASCII file, a count in $Entities, $Nodes, $Elements or $PhysicalNames exceeds
-/// the file's size in bytes (every item takes at least one byte); or a node or element tag range
-/// exceeds 1e9 or has min > max; an unknown section header (gmsh matches names by prefix); a
+/// check_binary_msh; in an ASCII file, a count in $Entities, $Nodes, $Elements or $PhysicalNames
+/// exceeds the file's size in bytes (every item takes at least one byte); or a node or element tag
+/// range exceeds 1e9 or has min > max; an unknown section header (gmsh matches names by prefix); a
 /// malformed $Nodes or $Elements body; or an element referring to a node $Nodes does not define.
 void precheck_msh(const std::filesystem::path& file);
 

@@ -19,7 +19,8 @@ TetMesh make_quadruped_mesh(double size) {
     const int body = occ::addBox(0, -0.25, 1.0, 1.6, 0.5, 0.5);
     gmsh::vectorpair tools;
     for (double x : {0.15, 1.45})
-      for (double y : {-0.15, 0.15}) tools.push_back({3, occ::addCylinder(x, y, 0, 0, 0, 1.05, 0.08)});
+      for (double y : {-0.15, 0.15})
+        tools.push_back({3, occ::addCylinder(x, y, 0, 0, 0, 1.05, 0.08)});
     tools.push_back({3, occ::addCylinder(1.45, 0, 1.35, 0.45, 0, 0.6, 0.13)});
     tools.push_back({3, occ::addBox(1.8, -0.1, 1.85, 0.45, 0.2, 0.23)});
     gmsh::vectorpair fused;

@@ -62,8 +62,7 @@ MeshValidation validate_mesh(TetMesh& mesh) {
     mesh.element_tags.resize(mesh.tets.size());
     for (std::size_t i = 0; i < mesh.tets.size(); ++i) mesh.element_tags[i] = i + 1;
   }
-  if (mesh.tets.empty())
-    throw InputError("mesh '" + mesh.source + "' contains no tetrahedra");
+  if (mesh.tets.empty()) throw InputError("mesh '" + mesh.source + "' contains no tetrahedra");
   for (std::size_t v = 0; v < mesh.rest.size(); ++v) {
     if (!mesh.rest[v].allFinite())
       throw InputError("node " + std::to_string(mesh.node_tags[v]) + " of '" + mesh.source +

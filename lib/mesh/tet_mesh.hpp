@@ -29,8 +29,8 @@ double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 
 /// What validate_mesh changed.
 struct MeshValidation {
-  int reoriented = 0;        ///< inverted rest tets made positive by swapping two vertices
-  int unused_removed = 0;    ///< vertices that no tet uses, dropped
+  int reoriented = 0;      ///< inverted rest tets made positive by swapping two vertices
+  int unused_removed = 0;  ///< vertices that no tet uses, dropped
 };
 
 /// Checks a mesh and puts it in canonical form. Throws InputError (naming `mesh.source` and the

@@ -35,8 +35,8 @@ namespace {
 /// One part's numeric phase (paper 4.2): per control byte, step 1 advances to A's next block,
 /// step 2 adds its n weighted copies into their blocks of E.
 template <class AddScaled>
-inline void run_stream(const std::vector<std::uint8_t>& control, const GalerkinStream::Pair* pair, const double* av,
-                       double* ev, const AddScaled& add_scaled) {
+inline void run_stream(const std::vector<std::uint8_t>& control, const GalerkinStream::Pair* pair,
+                       const double* av, double* ev, const AddScaled& add_scaled) {
   const double* block = av - 9;
   for (const std::uint8_t c : control) {
     if (c & 0x80) block += 9;
@@ -45,15 +45,15 @@ inline void run_stream(const std::vector<std::uint8_t>& control, const GalerkinS
   }
 }
 
-void run_stream_scalar(const std::vector<std::uint8_t>& control, const GalerkinStream::Pair* pair, const double* av,
-                       double* ev) {
+void run_stream_scalar(const std::vector<std::uint8_t>& control, const GalerkinStream::Pair* pair,
+                       const double* av, double* ev) {
   run_stream(control, pair, av, ev, add_scaled_block_scalar);
 }
 
 #ifdef COROFEM_HAVE_AVX2_KERNELS
 __attribute__((target("avx2,fma"))) void run_stream_avx2(const std::vector<std::uint8_t>& control,
-                                                         const GalerkinStream::Pair* pair, const double* av,
-                                                         double* ev) {
+                                                         const GalerkinStream::Pair* pair,
+                                                         const double* av, double* ev) {
   // The function itself, not a lambda around it: a lambda is compiled without AVX2, and could
   // only call the AVX2 add, pair by pair, instead of inlining it.
   run_stream(control, pair, av, ev, add_scaled_block_avx2);
@@ -97,7 +97,8 @@ namespace {
 /// added into E_ij. The scatter in either form (the stream's kernel, so that their ratio is the
 /// algorithms').
 template <class AddScaled>
-inline void reuse_rows(const BrcMatrix& a, const Transfer& t, BrcMatrix& e, int* slot, const AddScaled& add_scaled) {
+inline void reuse_rows(const BrcMatrix& a, const Transfer& t, BrcMatrix& e, int* slot,
+                       const AddScaled& add_scaled) {
   for (int i = 0; i < e.block_rows; ++i) {
     for (int eb = e.row_start[i]; eb < e.row_start[i + 1]; ++eb) slot[e.col_index[eb]] = eb;
     for (int m = t.r_start[i]; m < t.r_start[i + 1]; ++m) {
@@ -114,8 +115,8 @@ inline void reuse_rows(const BrcMatrix& a, const Transfer& t, BrcMatrix& e, int*
 }
 
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-__attribute__((target("avx2,fma"))) void reuse_rows_avx2(const BrcMatrix& a, const Transfer& t, BrcMatrix& e,
-                                                         int* slot) {
+__attribute__((target("avx2,fma"))) void reuse_rows_avx2(const BrcMatrix& a, const Transfer& t,
+                                                         BrcMatrix& e, int* slot) {
   reuse_rows(a, t, e, slot, add_scaled_block_avx2);
 }
 #endif
@@ -184,7 +185,8 @@ MirrorPairs galerkin_mirror_pairs(const BrcMatrix& e) {
   for (int i = 0; i < e.block_rows; ++i)
     for (int b = e.row_start[i]; b < e.row_start[i + 1]; ++b)
       if (e.col_index[b] > i)
-        mirror.emplace_back(static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(e.find(e.col_index[b], i)));
+        mirror.emplace_back(static_cast<std::uint32_t>(b),
+                            static_cast<std::uint32_t>(e.find(e.col_index[b], i)));
   return mirror;
 }
 
@@ -240,7 +242,8 @@ GalerkinMethod galerkin_method(const std::string& name) {
   if (name == "stream-full") return GalerkinMethod::StreamFull;
   if (name == "reuse") return GalerkinMethod::Reuse;
   if (name == "gather") return GalerkinMethod::Gather;
-  throw InputError("analysis.galerkin: unknown method '" + name + "' (known: naive, stream, stream-full, reuse, gather)");
+  throw InputError("analysis.galerkin: unknown method '" + name +
+                   "' (known: naive, stream, stream-full, reuse, gather)");
 }
 
 }  // namespace corofem

@@ -1,11 +1,15 @@
 #pragma once
 // Galerkin coarse operators E = R A R^T on BRC matrices (paper section 4.3). A block of E is a sum
-// of (scalar weight) x (3x3 block of A), since R = Rs (x) I3. Three ways to compute the values of
-// E's precomputed pattern, all proven equal to the oracles in reference/:
+// of (scalar weight) x (3x3 block of A), since R = Rs (x) I3. Five ways to compute the values of
+// E's precomputed pattern (GalerkinMethod below), all proven equal to the oracles in reference/:
 //  - naive: eq. (9) entry by entry of E, intersecting the sorted index sets S_l^A and S_j^R;
-//  - stream: Algorithm 1, a control and a data stream aligned with A's blocks (GalerkinStream);
+//  - stream-full: Algorithm 1 as the paper has it, a control and a data stream aligned with A's
+//    blocks (GalerkinStream, Symmetry::Full);
+//  - stream: the same streams over A's upper triangle, E's lower blocks mirrored (Symmetric);
 //  - reuse: the row-wise triple product of production AMG codes writing into E's known pattern
-//    through a marker array (the stronger baseline).
+//    through a marker array (the stronger baseline);
+//  - gather: the stream's pairs sorted by destination, so each E block is summed in registers
+//    and written once (galerkin_gather.hpp; the default).
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -41,7 +45,8 @@ void for_each_galerkin_pair(const BrcMatrix& a, const Transfer& t, bool upper_on
       const int k = a.col_index[b];
       for (int m = t.p_start[l]; m < t.p_start[l + 1]; ++m)
         for (int n = t.p_start[k]; n < t.p_start[k + 1]; ++n)
-          if (!upper_only || t.p_col[n] >= t.p_col[m]) f(b, t.p_col[m], t.p_col[n], t.p_weight[m] * t.p_weight[n]);
+          if (!upper_only || t.p_col[n] >= t.p_col[m])
+            f(b, t.p_col[m], t.p_col[n], t.p_weight[m] * t.p_weight[n]);
     }
 }
 
@@ -81,8 +86,12 @@ class GalerkinStream {
 
   std::size_t num_pairs() const;
   std::size_t bytes() const;  ///< every part's control and data streams
-  int parts() const { return static_cast<int>(parts_.size()); }
-  const std::vector<std::uint8_t>& control(int part = 0) const { return parts_[part].control; }
+  int parts() const {
+    return static_cast<int>(parts_.size());
+  }
+  const std::vector<std::uint8_t>& control(int part = 0) const {
+    return parts_[part].control;
+  }
 
  private:
   struct Part {

@@ -9,8 +9,9 @@ namespace {
 
 /// Blocks [first, last) of blocks_: each the sum of its pairs' w A_k, from zero, in the pairs'
 /// order, each entry e += w a as add_scaled_block_scalar (the stream's scalar form).
-void gather_scalar(const std::uint32_t* blocks, const std::uint32_t* start, std::size_t first, std::size_t last,
-                   const GalerkinGather::Pair* pairs, const double* av, double* ev) {
+void gather_scalar(const std::uint32_t* blocks, const std::uint32_t* start, std::size_t first,
+                   std::size_t last, const GalerkinGather::Pair* pairs, const double* av,
+                   double* ev) {
   for (std::size_t u = first; u < last; ++u) {
     double s[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     for (std::uint32_t c = start[u]; c < start[u + 1]; ++c) {
@@ -26,10 +27,11 @@ void gather_scalar(const std::uint32_t* blocks, const std::uint32_t* start, std:
 #ifdef COROFEM_HAVE_AVX2_KERNELS
 /// The same with add_scaled_block_avx2's operations (two 4-wide FMAs and one scalar FMA), the
 /// sums held in registers.
-__attribute__((target("avx2,fma"))) void gather_avx2(const std::uint32_t* blocks, const std::uint32_t* start,
-                                                     std::size_t first, std::size_t last,
-                                                     const GalerkinGather::Pair* pairs, const double* av,
-                                                     double* ev) {
+__attribute__((target("avx2,fma"))) void gather_avx2(const std::uint32_t* blocks,
+                                                     const std::uint32_t* start, std::size_t first,
+                                                     std::size_t last,
+                                                     const GalerkinGather::Pair* pairs,
+                                                     const double* av, double* ev) {
   for (std::size_t u = first; u < last; ++u) {
     __m256d s0 = _mm256_setzero_pd(), s1 = _mm256_setzero_pd();
     double s2 = 0;
@@ -51,12 +53,13 @@ __attribute__((target("avx2,fma"))) void gather_avx2(const std::uint32_t* blocks
 
 }  // namespace
 
-GalerkinGather::GalerkinGather(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e, int parts) {
+GalerkinGather::GalerkinGather(const BrcMatrix& a, const Transfer& t, const BrcMatrix& e,
+                               int parts) {
   // Pair counts per block of E, then the pairs in A's storage order into their blocks' ranges.
   std::vector<std::uint32_t> count(e.num_blocks(), 0);
   for_each_galerkin_pair(a, t, true, [&](int, int i, int j, double) { ++count[e.find(i, j)]; });
   std::vector<long long> prefix(e.block_rows + 1, 0);  // pairs per row of E: the threads' work
-  std::vector<std::uint32_t> slot(e.num_blocks(), 0);   // block of E -> its position in blocks_
+  std::vector<std::uint32_t> slot(e.num_blocks(), 0);  // block of E -> its position in blocks_
   start_.push_back(0);
   for (int i = 0; i < e.block_rows; ++i) {
     for (int b = e.row_start[i]; b < e.row_start[i + 1]; ++b) {
@@ -100,11 +103,13 @@ void GalerkinGather::apply(const BrcMatrix& a, BrcMatrix& e) const {
     for (int p = 0; p < parts; ++p) {
 #ifdef COROFEM_HAVE_AVX2_KERNELS
       if (vector_block_kernels()) {
-        gather_avx2(blocks_.data(), start_.data(), part_start_[p], part_start_[p + 1], pairs_.data(), av, ev);
+        gather_avx2(blocks_.data(), start_.data(), part_start_[p], part_start_[p + 1],
+                    pairs_.data(), av, ev);
         continue;
       }
 #endif
-      gather_scalar(blocks_.data(), start_.data(), part_start_[p], part_start_[p + 1], pairs_.data(), av, ev);
+      gather_scalar(blocks_.data(), start_.data(), part_start_[p], part_start_[p + 1],
+                    pairs_.data(), av, ev);
     }
     mirror_blocks(mirror_, ev);
   }

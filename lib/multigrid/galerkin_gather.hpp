@@ -34,14 +34,17 @@ class GalerkinGather {
   /// E = R A R^T (every block of E is written; A must have the pattern the stream was built for).
   void apply(const BrcMatrix& a, BrcMatrix& e) const;
 
-  std::size_t num_pairs() const { return pairs_.size(); }
+  std::size_t num_pairs() const {
+    return pairs_.size();
+  }
   std::size_t bytes() const;  ///< the pairs, the summed blocks' indices and their pair offsets
 
  private:
   std::vector<std::uint32_t> blocks_;  ///< E's blocks summed (i <= j), in storage order
   std::vector<std::uint32_t> start_;   ///< pairs of blocks_[u]: [start_[u], start_[u + 1])
   std::vector<Pair> pairs_;
-  std::vector<std::size_t> part_start_;  ///< blocks_ of part p: [part_start_[p], part_start_[p + 1])
+  std::vector<std::size_t>
+      part_start_;  ///< blocks_ of part p: [part_start_[p], part_start_[p + 1])
   std::vector<std::pair<std::uint32_t, std::uint32_t>> mirror_;  ///< (E_ij, E_ji) blocks, i < j
 };
 

@@ -7,7 +7,8 @@
 
 namespace corofem {
 
-MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern, std::vector<Transfer> transfers)
+MultigridHierarchy::MultigridHierarchy(const BrcMatrix& fine_pattern,
+                                       std::vector<Transfer> transfers)
     : transfers_(std::move(transfers)) {
   matrices_.push_back(fine_pattern);
   for (std::size_t h = 0; h < transfers_.size(); ++h) {
@@ -36,7 +37,8 @@ const GalerkinStream& MultigridHierarchy::stream(int h) const {
 }
 
 const GalerkinStream& MultigridHierarchy::full_stream(int h) const {
-  return built(full_streams_[h], matrices_[h], transfers_[h], matrices_[h + 1], GalerkinStream::Symmetry::Full);
+  return built(full_streams_[h], matrices_[h], transfers_[h], matrices_[h + 1],
+               GalerkinStream::Symmetry::Full);
 }
 
 const GalerkinGather& MultigridHierarchy::gather(int h) const {
@@ -51,12 +53,14 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
   double* to = matrices_[0].values.data();
   constexpr std::ptrdiff_t kChunk = 1 << 15;
 #pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
-  for (std::ptrdiff_t c = 0; c < values; c += kChunk) std::copy(from + c, from + std::min(values, c + kChunk), to + c);
+  for (std::ptrdiff_t c = 0; c < values; c += kChunk)
+    std::copy(from + c, from + std::min(values, c + kChunk), to + c);
   update_coarse(method);
 }
 
 void MultigridHierarchy::take_update(BrcMatrix& fine, GalerkinMethod method) {
-  if (fine.values.size() != matrices_[0].values.size() || fine.block_rows != matrices_[0].block_rows)
+  if (fine.values.size() != matrices_[0].values.size() ||
+      fine.block_rows != matrices_[0].block_rows)
     throw std::logic_error("MultigridHierarchy::take_update: the matrix has another pattern");
   std::swap(fine.values, matrices_[0].values);
   update_coarse(method);
@@ -95,6 +99,8 @@ std::size_t MultigridHierarchy::stream_bytes(GalerkinMethod method) const {
   return bytes;
 }
 
-void MultigridHierarchy::prepare(GalerkinMethod method) { static_cast<void>(stream_bytes(method)); }
+void MultigridHierarchy::prepare(GalerkinMethod method) {
+  static_cast<void>(stream_bytes(method));
+}
 
 }  // namespace corofem

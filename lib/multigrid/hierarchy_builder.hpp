@@ -29,7 +29,7 @@ struct HierarchyParams {
 };
 
 struct BuiltHierarchy {
-  std::vector<Transfer> transfers;  ///< level h to h + 1
+  std::vector<Transfer> transfers;                  ///< level h to h + 1
   nlohmann::json levels = nlohmann::json::array();  ///< per coarse level: where it came from, fit
   std::map<std::string, double> setup_ms;           ///< what building it cost, by part
 };
@@ -37,7 +37,8 @@ struct BuiltHierarchy {
 /// Transfers for `params.levels` levels below the fine mesh. `fixed` per fine vertex (its DOFs
 /// take no part in the transfer). Meshes: `coarse_meshes[h - 1]` is level h (at least
 /// levels - 1 of them; `names` for messages). Lattice: stops early when nothing is left to
-/// coarsen. Then lattice levels down to `params.coarsest_max_vertices`. Throws InputError for a coarse mesh that does not cover the level above.
+/// coarsen. Then lattice levels down to `params.coarsest_max_vertices`. Throws InputError for a
+/// coarse mesh that does not cover the level above.
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes = {});

@@ -37,7 +37,8 @@ CoarseLevel make_lattice_level(const std::vector<Vec3>& points, const std::vecto
     int axis[3] = {0, 1, 2};
     std::sort(axis, axis + 3, [&](int a, int b) { return s[a] > s[b]; });
     long long corner[3] = {c[0], c[1], c[2]};
-    const double w[4] = {1 - s[axis[0]], s[axis[0]] - s[axis[1]], s[axis[1]] - s[axis[2]], s[axis[2]]};
+    const double w[4] = {1 - s[axis[0]], s[axis[0]] - s[axis[1]], s[axis[1]] - s[axis[2]],
+                         s[axis[2]]};
     std::array<std::pair<int, double>, 4> entries;
     for (int v = 0; v < 4; ++v) {
       if (v > 0) ++corner[axis[v - 1]];

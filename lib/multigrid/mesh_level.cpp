@@ -46,12 +46,14 @@ CoarseLevel make_mesh_level(const std::vector<Vec3>& points, const std::vector<c
   if (fit.located > 0 && 2 * fit.far_outside > fit.located)
     throw InputError("coarse mesh '" + name + "' does not overlap the level above: " +
                      std::to_string(fit.far_outside) + " of " + std::to_string(fit.located) +
-                     " points lie outside it, farther than its mean edge length " + std::to_string(edge));
+                     " points lie outside it, farther than its mean edge length " +
+                     std::to_string(edge));
   if (farthest > 0.25 * diagonal)
     throw InputError("coarse mesh '" + name + "' does not cover the level above: a point lies " +
                      std::to_string(farthest) + " outside it (bounding-box diagonal " +
                      std::to_string(diagonal) + ")");
-  for (int i : t.keep_supported_coarse_vertices(coarse.num_vertices())) level.points.push_back(coarse.rest[i]);
+  for (int i : t.keep_supported_coarse_vertices(coarse.num_vertices()))
+    level.points.push_back(coarse.rest[i]);
   fit.dropped_vertices = coarse.num_vertices() - t.coarse;
   if (fit_out) *fit_out = fit;
   return level;

@@ -25,6 +25,7 @@ struct MeshLevelFit {
 /// bounding-box diagonal. (A coarser surface of the same body may leave most of the finer
 /// level's points, its surface vertices, just outside: the bunny's L2 leaves 60% of L1's.)
 CoarseLevel make_mesh_level(const std::vector<Vec3>& points, const std::vector<char>& fixed,
-                            const TetMesh& coarse, const std::string& name, MeshLevelFit* fit = nullptr);
+                            const TetMesh& coarse, const std::string& name,
+                            MeshLevelFit* fit = nullptr);
 
 }  // namespace corofem

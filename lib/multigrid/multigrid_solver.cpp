@@ -5,10 +5,10 @@
 #include <cmath>
 #include <optional>
 
-#include "linalg/cholmod_factorization.hpp"
 #include "core/errors.hpp"
 #include "core/statistics.hpp"
 #include "core/threads.hpp"
+#include "linalg/cholmod_factorization.hpp"
 #include "linalg/preconditioned_cg.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
@@ -21,7 +21,8 @@ template <class F>
 double wall_ms(const F& f) {
   const auto start = std::chrono::steady_clock::now();
   f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 /// Runs f and adds its wall time in ms to totals[part].
@@ -54,13 +55,14 @@ nlohmann::json MultigridParams::to_json() const {
           {"transfer", "barycentric in the containing or nearest coarse tet"},
           {"galerkin", names[static_cast<int>(galerkin)]},
           {"smoother", smoother_json()},
-          {"cycle", {{"kind", "V"},
-                     {"vcycles", vcycles},
-                     {"max_iterations", max_iterations},
-                     {"tolerance", tolerance},
-                     {"coarsest", "cholmod"},
-                     {"coarsest_factorization",
-                      overlap_factorization ? "beside the first descent at 2+ threads" : "in the update"}}}};
+          {"cycle",
+           {{"kind", "V"},
+            {"vcycles", vcycles},
+            {"max_iterations", max_iterations},
+            {"tolerance", tolerance},
+            {"coarsest", "cholmod"},
+            {"coarsest_factorization",
+             overlap_factorization ? "beside the first descent at 2+ threads" : "in the update"}}}};
 }
 
 struct MultigridSolver::Coarsest {
@@ -89,8 +91,10 @@ nlohmann::json MultigridSolver::describe() const {
   double blocks = 0;
   for (int h = 0; h < hierarchy_.num_levels(); ++h) {
     const BrcMatrix& a = hierarchy_.matrix(h);
-    nlohmann::json level = {{"level", h}, {"vertices", a.block_rows}, {"blocks", a.col_index.size()}};
-    if (h > 0 && h - 1 < static_cast<int>(level_info_.size())) level["built_from"] = level_info_[h - 1];
+    nlohmann::json level = {
+        {"level", h}, {"vertices", a.block_rows}, {"blocks", a.col_index.size()}};
+    if (h > 0 && h - 1 < static_cast<int>(level_info_.size()))
+      level["built_from"] = level_info_[h - 1];
     levels.push_back(level);
     blocks += static_cast<double>(a.col_index.size());
   }
@@ -103,27 +107,36 @@ nlohmann::json MultigridSolver::describe() const {
   auto median_or_null = [](const std::vector<double>& v) -> nlohmann::json {
     return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v));
   };
-  return {{"params", params_.to_json()},
-          {"hierarchy", hierarchy_name(params_.hierarchy.kind)},
-          {"levels", levels},
-          {"operator_complexity", blocks / static_cast<double>(hierarchy_.matrix(0).col_index.size())},
-          {"setup_ms", setup_ms_},
-          {"update_parts_ms", update_parts_ms()},
-          {"solve_parts_ms", solve_parts_ms()},
-          {"solves", rho.size()},
-          {"rho", median_or_null(rho)},
-          {"iterations", median_or_null(iterations)},
-          {"coarsest_shifts", coarsest_shifts_},
-          {"deferred_updates", deferred_updates_}};
+  return {
+      {"params", params_.to_json()},
+      {"hierarchy", hierarchy_name(params_.hierarchy.kind)},
+      {"levels", levels},
+      {"operator_complexity", blocks / static_cast<double>(hierarchy_.matrix(0).col_index.size())},
+      {"setup_ms", setup_ms_},
+      {"update_parts_ms", update_parts_ms()},
+      {"solve_parts_ms", solve_parts_ms()},
+      {"solves", rho.size()},
+      {"rho", median_or_null(rho)},
+      {"iterations", median_or_null(iterations)},
+      {"coarsest_shifts", coarsest_shifts_},
+      {"deferred_updates", deferred_updates_}};
 }
 
 MultigridSolver::~MultigridSolver() = default;
 
-std::map<std::string, double> MultigridSolver::update_parts_ms() const { return means(update_ms_, updates_); }
-std::map<std::string, double> MultigridSolver::solve_parts_ms() const { return means(solve_ms_, solves_); }
+std::map<std::string, double> MultigridSolver::update_parts_ms() const {
+  return means(update_ms_, updates_);
+}
+std::map<std::string, double> MultigridSolver::solve_parts_ms() const {
+  return means(solve_ms_, solves_);
+}
 
-double MultigridSolver::coarsest_factor_nonzeros() const { return coarsest_->cholmod.factor_nonzeros(); }
-double MultigridSolver::coarsest_factorization_flops() const { return coarsest_->cholmod.factorization_flops(); }
+double MultigridSolver::coarsest_factor_nonzeros() const {
+  return coarsest_->cholmod.factor_nonzeros();
+}
+double MultigridSolver::coarsest_factorization_flops() const {
+  return coarsest_->cholmod.factorization_flops();
+}
 
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
   ++updates_;
@@ -138,9 +151,9 @@ void MultigridSolver::take_matrix(BrcMatrix& a) {
 }
 
 void MultigridSolver::update_levels() {
-  // The coarsest factorization is serial (CHOLMOD, linalg/cholmod_factorization.cpp). MG-PCG's initial
-  // residual needs neither it nor the smoothers, and its first V-cycle's descent needs only the
-  // smoothers: so at two or more threads the update stops after the Galerkin products and the
+  // The coarsest factorization is serial (CHOLMOD, linalg/cholmod_factorization.cpp). MG-PCG's
+  // initial residual needs neither it nor the smoothers, and its first V-cycle's descent needs only
+  // the smoothers: so at two or more threads the update stops after the Galerkin products and the
   // next solve runs the factorization on one thread beside those on another
   // (run_overlapped_pcg). The first update, which analyses the pattern, runs in full here.
   update_pending_ = true;
@@ -148,7 +161,8 @@ void MultigridSolver::update_levels() {
 }
 
 bool MultigridSolver::defers_update() const {
-  return params_.overlap_factorization && preconditioner_ && thread_count() > 1 && hierarchy_.num_levels() > 1;
+  return params_.overlap_factorization && preconditioner_ && thread_count() > 1 &&
+         hierarchy_.num_levels() > 1;
 }
 
 void MultigridSolver::complete_update(const std::function<void()>& beside) {
@@ -160,7 +174,8 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
   run_side_by_side([&] { coarsest_ms = wall_ms([&] { update_coarsest(); }); },
                    [&] {
                      smoothers_ms = wall_ms([&] {
-                       for (int h = 0; h < last; ++h) smoothers_[h].set_matrix(hierarchy_.matrix(h));
+                       for (int h = 0; h < last; ++h)
+                         smoothers_[h].set_matrix(hierarchy_.matrix(h));
                      });
                      if (beside) beside();
                    });
@@ -214,14 +229,16 @@ void MultigridSolver::cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x,
   ascend(h, b, x);
 }
 
-void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
+void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                              bool zero_guess) {
   const BrcMatrix& a = hierarchy_.matrix(h);
   const bool fine = h == 0;
   // A single sweep from zero forms its residual as it goes (the blocks it reads, transposed, are
   // the rest of the rows above): that residual counts in the smoothing.
   const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1;
   timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
-    if (from_zero_sweep) return smoothers_[h].forward_from_zero_with_residual(a, b, x, residual_[h]);
+    if (from_zero_sweep)
+      return smoothers_[h].forward_from_zero_with_residual(a, b, x, residual_[h]);
     int s = 0;
     if (zero_guess && params_.pre_smoothing > 0) {
       smoothers_[h].forward_from_zero(a, b, x);
@@ -232,7 +249,8 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
     for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
   });
   if (!from_zero_sweep)
-    timed(solve_ms_, fine ? "fine_residual" : "coarse_levels", [&] { a.residual(b, x, residual_[h]); });
+    timed(solve_ms_, fine ? "fine_residual" : "coarse_levels",
+          [&] { a.residual(b, x, residual_[h]); });
   timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
         [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
 }
@@ -242,14 +260,16 @@ void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
   timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
         [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
   timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
-    for (int s = 0; s < params_.post_smoothing; ++s) smoothers_[h].backward(hierarchy_.matrix(h), b, x);
+    for (int s = 0; s < params_.post_smoothing; ++s)
+      smoothers_[h].backward(hierarchy_.matrix(h), b, x);
   });
 }
 
 void MultigridSolver::finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const int last = hierarchy_.num_levels() - 1;
   cycle(last, coarse_b_[last], coarse_x_[last], true);
-  for (int h = last - 1; h >= 0; --h) ascend(h, h == 0 ? b : coarse_b_[h], h == 0 ? x : coarse_x_[h]);
+  for (int h = last - 1; h >= 0; --h)
+    ascend(h, h == 0 ? b : coarse_b_[h], h == 0 ? x : coarse_x_[h]);
 }
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

@@ -7,20 +7,20 @@
 #include <nlohmann/json.hpp>
 
 #include "linalg/gauss_seidel.hpp"
+#include "linalg/linear_solver.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
-#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 
 /// The parameters of every component, written into every record of a multigrid solve.
 struct MultigridParams {
-  HierarchyParams hierarchy;       ///< builder and level count
-  int pre_smoothing = 1;           ///< forward Gauss-Seidel sweeps before the coarse correction
-  int post_smoothing = 1;          ///< backward sweeps after it
-  int vcycles = 0;                 ///< multigrid: fixed count; 0 = iterate to the tolerance
-  int max_iterations = 500;        ///< cap on V-cycles / CG iterations
-  double tolerance = 1e-8;         ///< relative residual |b - A x| / |b|
+  HierarchyParams hierarchy;  ///< builder and level count
+  int pre_smoothing = 1;      ///< forward Gauss-Seidel sweeps before the coarse correction
+  int post_smoothing = 1;     ///< backward sweeps after it
+  int vcycles = 0;            ///< multigrid: fixed count; 0 = iterate to the tolerance
+  int max_iterations = 500;   ///< cap on V-cycles / CG iterations
+  double tolerance = 1e-8;    ///< relative residual |b - A x| / |b|
   GalerkinMethod galerkin = GalerkinMethod::Gather;
   SmootherOrdering smoother = SmootherOrdering::Sequential;  ///< the Gauss-Seidel sweeps' order
   /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial

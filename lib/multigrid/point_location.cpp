@@ -24,7 +24,8 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
   const double denominator = 1 / (va + vb + vc);
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
@@ -103,7 +104,7 @@ double TetLocator::distance_to_tet(int t, const Vec3& p) const {
   const Tet& tet = tets_[t];
   for (const auto& f : kFaces)
     best = std::min(best, (p - closest_on_triangle(p, vertices_[tet[f[0]]], vertices_[tet[f[1]]],
-                                                    vertices_[tet[f[2]]]))
+                                                   vertices_[tet[f[2]]]))
                               .norm());
   return best;
 }
@@ -142,7 +143,8 @@ TetLocation TetLocator::locate(const Vec3& p) const {
     for (int k = cell[2] - r; k <= cell[2] + r; ++k)
       for (int j = cell[1] - r; j <= cell[1] + r; ++j)
         for (int i = cell[0] - r; i <= cell[0] + r; ++i) {
-          if (std::max({std::abs(i - cell[0]), std::abs(j - cell[1]), std::abs(k - cell[2])}) != r) continue;
+          if (std::max({std::abs(i - cell[0]), std::abs(j - cell[1]), std::abs(k - cell[2])}) != r)
+            continue;
           if (i < 0 || j < 0 || k < 0 || i >= dims_[0] || j >= dims_[1] || k >= dims_[2]) continue;
           const int bucket = bucket_of({i, j, k});
           for (int m = bucket_start_[bucket]; m < bucket_start_[bucket + 1]; ++m) {

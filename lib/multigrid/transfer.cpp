@@ -38,19 +38,23 @@ std::vector<int> Transfer::keep_supported_coarse_vertices(int candidates) {
 
 void Transfer::restrict_to(const Eigen::VectorXd& f, Eigen::VectorXd& c) const {
   c.resize(3 * coarse);
-#pragma omp parallel for schedule(static) num_threads(threads_for(static_cast<long long>(r_col.size())))
+#pragma omp parallel for schedule(static) \
+    num_threads(threads_for(static_cast <long long>(r_col.size())))
   for (int i = 0; i < coarse; ++i) {
     Vec3 sum = Vec3::Zero();
-    for (int k = r_start[i]; k < r_start[i + 1]; ++k) sum += r_weight[k] * f.segment<3>(3 * r_col[k]);
+    for (int k = r_start[i]; k < r_start[i + 1]; ++k)
+      sum += r_weight[k] * f.segment<3>(3 * r_col[k]);
     c.segment<3>(3 * i) = sum;
   }
 }
 
 void Transfer::prolongate_add(const Eigen::VectorXd& c, Eigen::VectorXd& f) const {
-#pragma omp parallel for schedule(static) num_threads(threads_for(static_cast<long long>(p_col.size())))
+#pragma omp parallel for schedule(static) \
+    num_threads(threads_for(static_cast <long long>(p_col.size())))
   for (int l = 0; l < fine; ++l) {
     Vec3 sum = Vec3::Zero();
-    for (int k = p_start[l]; k < p_start[l + 1]; ++k) sum += p_weight[k] * c.segment<3>(3 * p_col[k]);
+    for (int k = p_start[l]; k < p_start[l + 1]; ++k)
+      sum += p_weight[k] * c.segment<3>(3 * p_col[k]);
     f.segment<3>(3 * l) += sum;
   }
 }
@@ -59,7 +63,8 @@ Eigen::SparseMatrix<double> restriction_matrix(const Transfer& t) {
   std::vector<Eigen::Triplet<double>> triplets;
   for (int i = 0; i < t.coarse; ++i)
     for (int k = t.r_start[i]; k < t.r_start[i + 1]; ++k)
-      for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * i + c, 3 * t.r_col[k] + c, t.r_weight[k]);
+      for (int c = 0; c < 3; ++c)
+        triplets.emplace_back(3 * i + c, 3 * t.r_col[k] + c, t.r_weight[k]);
   Eigen::SparseMatrix<double> r(3 * t.coarse, 3 * t.fine);
   r.setFromTriplets(triplets.begin(), triplets.end());
   return r;

@@ -10,7 +10,9 @@
 
 namespace corofem {
 
-bool calculix_available() { return std::system("command -v ccx > /dev/null 2>&1") == 0; }
+bool calculix_available() {
+  return std::system("command -v ccx > /dev/null 2>&1") == 0;
+}
 
 std::string calculix_deck(const FeProblem& problem, bool nlgeom, int increments) {
   // ccx reads numeric fields of at most 20 characters: 14 significant digits fit with sign and
@@ -35,7 +37,8 @@ std::string calculix_deck(const FeProblem& problem, bool nlgeom, int increments)
     deck << "*ELEMENT, TYPE=C3D4, ELSET=E" << group << "\n";
     for (int e : elements) {
       const Tet& t = problem.mesh.tets[e];
-      deck << e + 1 << ", " << t[0] + 1 << ", " << t[1] + 1 << ", " << t[2] + 1 << ", " << t[3] + 1 << "\n";
+      deck << e + 1 << ", " << t[0] + 1 << ", " << t[1] + 1 << ", " << t[2] + 1 << ", " << t[3] + 1
+           << "\n";
     }
     deck << "*MATERIAL, NAME=M" << group << "\n*ELASTIC\n"
          << std::get<0>(material) << ", " << std::get<1>(material) << "\n";
@@ -44,10 +47,13 @@ std::string calculix_deck(const FeProblem& problem, bool nlgeom, int increments)
   }
   deck << "*BOUNDARY\n";
   for (int i = 0; i < problem.num_dofs(); ++i)
-    if (problem.dirichlet.fixed[i]) deck << i / 3 + 1 << ", " << i % 3 + 1 << ", " << i % 3 + 1 << ", " << problem.dirichlet.value[i] << "\n";
+    if (problem.dirichlet.fixed[i])
+      deck << i / 3 + 1 << ", " << i % 3 + 1 << ", " << i % 3 + 1 << ", "
+           << problem.dirichlet.value[i] << "\n";
   if (nlgeom) {
     const double step = 1.0 / increments;
-    deck << "*STEP, NLGEOM, INC=1000\n*STATIC\n" << step << ", 1.0, " << step * 1e-4 << ", " << step << "\n";
+    deck << "*STEP, NLGEOM, INC=1000\n*STATIC\n"
+         << step << ", 1.0, " << step * 1e-4 << ", " << step << "\n";
   } else {
     deck << "*STEP\n*STATIC\n";
   }
@@ -69,23 +75,26 @@ std::string tail_of(const std::filesystem::path& file, std::size_t chars) {
 
 }  // namespace
 
-Eigen::VectorXd run_calculix(const FeProblem& problem, bool nlgeom, const std::filesystem::path& work_dir,
-                             const std::string& job, int increments) {
+Eigen::VectorXd run_calculix(const FeProblem& problem, bool nlgeom,
+                             const std::filesystem::path& work_dir, const std::string& job,
+                             int increments) {
   std::filesystem::create_directories(work_dir);
   const std::string deck = calculix_deck(problem, nlgeom, increments);
   write_file_atomically(work_dir / (job + ".inp"), [&](std::ostream& out) { out << deck; });
   const std::filesystem::path log = work_dir / (job + ".log");
-  const std::string command = "cd '" + work_dir.string() + "' && OMP_NUM_THREADS=1 ccx -i '" + job + "' > '" +
-                              log.string() + "' 2>&1";
+  const std::string command = "cd '" + work_dir.string() + "' && OMP_NUM_THREADS=1 ccx -i '" + job +
+                              "' > '" + log.string() + "' 2>&1";
   const int status = std::system(command.c_str());
   const auto fail = [&](const std::string& what) -> NumericalFault {
-    return NumericalFault("CalculiX job '" + job + "' " + what + "; the end of its log: " + tail_of(log, 400));
+    return NumericalFault("CalculiX job '" + job + "' " + what +
+                          "; the end of its log: " + tail_of(log, 400));
   };
   if (status != 0) throw fail("exited with status " + std::to_string(status));
   // The .dat holds one displacement block per printed increment: keep the last.
   std::ifstream dat(work_dir / (job + ".dat"));
   std::string line;
-  Eigen::VectorXd u = Eigen::VectorXd::Constant(problem.num_dofs(), std::numeric_limits<double>::quiet_NaN());
+  Eigen::VectorXd u =
+      Eigen::VectorXd::Constant(problem.num_dofs(), std::numeric_limits<double>::quiet_NaN());
   bool in_block = false;
   while (std::getline(dat, line)) {
     if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
@@ -101,7 +110,8 @@ Eigen::VectorXd run_calculix(const FeProblem& problem, bool nlgeom, const std::f
       if (line.find_first_not_of(" \t\r") != std::string::npos) in_block = false;
       continue;
     }
-    if (node < 1 || node > problem.mesh.num_vertices()) throw fail("printed node " + std::to_string(node));
+    if (node < 1 || node > problem.mesh.num_vertices())
+      throw fail("printed node " + std::to_string(node));
     u.segment<3>(3 * (node - 1)) = Vec3(ux, uy, uz);
   }
   if (!u.allFinite()) throw fail("printed no displacements for some nodes (did it converge?)");

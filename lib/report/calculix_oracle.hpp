@@ -22,7 +22,8 @@ std::string calculix_deck(const FeProblem& problem, bool nlgeom, int increments 
 /// Writes the deck to `work_dir`/`job`.inp, runs ccx there on one thread, and returns the
 /// displacements of the last increment per DOF. Throws NumericalFault naming the job and the end
 /// of ccx's log when ccx fails or prints no displacements for every node.
-Eigen::VectorXd run_calculix(const FeProblem& problem, bool nlgeom, const std::filesystem::path& work_dir,
-                             const std::string& job, int increments = 20);
+Eigen::VectorXd run_calculix(const FeProblem& problem, bool nlgeom,
+                             const std::filesystem::path& work_dir, const std::string& job,
+                             int increments = 20);
 
 }  // namespace corofem

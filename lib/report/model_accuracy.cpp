@@ -4,13 +4,13 @@
 #include <ostream>
 
 #include "integrate/static_solver.hpp"
+#include "linalg/linear_solver.hpp"
 #include "report/calculix_oracle.hpp"
 #include "report/case_record.hpp"
 #include "rotation/polar_decomposition.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_problem.hpp"
-#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 using nlohmann::json;
@@ -18,7 +18,8 @@ using nlohmann::json;
 namespace {
 
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 /// |a - b| / |b| (L2 over every DOF) and max |a - b| / max |b|.
@@ -33,8 +34,11 @@ json run_case(const std::string& id, SceneSize size, const ReportConfig& config)
   const AnalysisSpec& a = scene.analysis;
   FeProblem problem = build_problem(scene);
   const auto work_dir = config.out_dir / "calculix" / (id + "-" + size_name(size));
-  json out = {{"scene", id}, {"size", size_name(size)}, {"tets", problem.mesh.num_tets()},
-              {"vertices", problem.mesh.num_vertices()}, {"scene_json", scene_json}};
+  json out = {{"scene", id},
+              {"size", size_name(size)},
+              {"tets", problem.mesh.num_tets()},
+              {"vertices", problem.mesh.num_vertices()},
+              {"scene_json", scene_json}};
   auto start = std::chrono::steady_clock::now();
   const Eigen::VectorXd ccx_linear = run_calculix(problem, false, work_dir, "linear", a.load_steps);
   out["calculix_ms"]["linear"] = elapsed_ms(start);
@@ -44,18 +48,21 @@ json run_case(const std::string& id, SceneSize size, const ReportConfig& config)
   out["displacement_max_m"] = ccx_nlgeom.cwiseAbs().maxCoeff();
   auto solver = make_cholmod_solver();
   IdentityExtractor none;
-  const SimulationResult linear = solve_static(problem, none, *solver, {false, 1, a.tolerance, 1, false});
+  const SimulationResult linear =
+      solve_static(problem, none, *solver, {false, 1, a.tolerance, 1, false});
   out["linear"] = {{"against_calculix_linear", errors(linear.displacement, ccx_linear)},
                    {"against_calculix_nlgeom", errors(linear.displacement, ccx_nlgeom)}};
   out["methods"] = json::array();
   for (const std::string& method : rotation_method_names()) {
     if (method == "none") continue;
-    if (config.progress) *config.progress << "report: model accuracy: " << id << " " << size_name(size) << ": " << method << std::endl;
+    if (config.progress)
+      *config.progress << "report: model accuracy: " << id << " " << size_name(size) << ": "
+                       << method << std::endl;
     out["methods"].push_back(record_case({{"method", method}}, [&] {
       auto rotation = make_rotation_extractor(method, problem.mesh, a.rotation_params);
       const auto t0 = std::chrono::steady_clock::now();
-      const SimulationResult r =
-          solve_static(problem, *rotation, *solver, {true, a.load_steps, a.tolerance, a.max_iterations, true});
+      const SimulationResult r = solve_static(
+          problem, *rotation, *solver, {true, a.load_steps, a.tolerance, a.max_iterations, true});
       return json{{"converged", r.converged},
                   {"newton_iterations", r.iterations},
                   {"residual", r.residual},
@@ -75,14 +82,16 @@ json run_model_accuracy(const ReportConfig& config) {
   const std::vector<SceneSize> sizes = config.mode == ReportConfig::Mode::Full
                                            ? std::vector<SceneSize>{SceneSize::Small, SceneSize::S}
                                            : std::vector<SceneSize>{SceneSize::Small};
-  json out = {{"oracle", "CalculiX ccx, C3D4, *STATIC with NLGEOM (St. Venant-Kirchhoff) and without"},
-              {"errors", "l2: |u - u_ccx| / |u_ccx| over every DOF; max: max |u - u_ccx| / max |u_ccx|"},
-              {"cases", json::array()}};
+  json out = {
+      {"oracle", "CalculiX ccx, C3D4, *STATIC with NLGEOM (St. Venant-Kirchhoff) and without"},
+      {"errors", "l2: |u - u_ccx| / |u_ccx| over every DOF; max: max |u - u_ccx| / max |u_ccx|"},
+      {"cases", json::array()}};
   for (const std::string& id : model_accuracy_ids()) {
     if (config.mode == ReportConfig::Mode::Smoke && id != "cantilever") continue;
     if (!config.only.empty() && config.only != id) continue;
     for (SceneSize size : sizes)
-      out["cases"].push_back(record_case({{"scene", id}, {"size", size_name(size)}}, [&] { return run_case(id, size, config); }));
+      out["cases"].push_back(record_case({{"scene", id}, {"size", size_name(size)}},
+                                         [&] { return run_case(id, size, config); }));
   }
   return out;
 }

@@ -16,14 +16,17 @@ using nlohmann::json;
 json paper_table1_row(const std::string& m) {
   // PAPER_NOTES section 6 (Core 2 Duo 6600, 2.4 GHz, one thread).
   if (m == "bunny")
-    return {{"tets", 11241}, {"vertices", 2918}, {"levels", 3}, {"rotate_ms", 21}, {"assemble_ms", 18},
-            {"update_ms", 11}, {"update_naive_ms", 108}, {"solve_ms", 10}, {"tps", 17}};
+    return {{"tets", 11241},          {"vertices", 2918},  {"levels", 3},
+            {"rotate_ms", 21},        {"assemble_ms", 18}, {"update_ms", 11},
+            {"update_naive_ms", 108}, {"solve_ms", 10},    {"tps", 17}};
   if (m == "horse")
-    return {{"tets", 33689}, {"vertices", 8632}, {"levels", 4}, {"rotate_ms", 67}, {"assemble_ms", 58},
-            {"update_ms", 39}, {"update_naive_ms", 354}, {"solve_ms", 26}, {"tps", 5.2}};
+    return {{"tets", 33689},          {"vertices", 8632},  {"levels", 4},
+            {"rotate_ms", 67},        {"assemble_ms", 58}, {"update_ms", 39},
+            {"update_naive_ms", 354}, {"solve_ms", 26},    {"tps", 5.2}};
   if (m == "dragon")
-    return {{"tets", 67309}, {"vertices", 16943}, {"levels", 4}, {"rotate_ms", 112}, {"assemble_ms", 103},
-            {"update_ms", 94}, {"update_naive_ms", 1183}, {"solve_ms", 51}, {"tps", 2.8}};
+    return {{"tets", 67309},           {"vertices", 16943},  {"levels", 4},
+            {"rotate_ms", 112},        {"assemble_ms", 103}, {"update_ms", 94},
+            {"update_naive_ms", 1183}, {"solve_ms", 51},     {"tps", 2.8}};
   return nullptr;
 }
 
@@ -36,13 +39,15 @@ json paper_table2_tps(const std::string& m) {
 
 namespace {
 
-
-double tps_of(const TimedRun& run, int warmup) { return 1000.0 / run.median_ms("step", warmup); }
+double tps_of(const TimedRun& run, int warmup) {
+  return 1000.0 / run.median_ms("step", warmup);
+}
 
 /// Median ms of every phase of a step, the step and its time steps per second.
 json phase_medians(const TimedRun& run, int warmup) {
   json phases;
-  for (const char* phase : {"checks", "rotate", "assemble", "forces", "system", "update", "solve", "step"})
+  for (const char* phase :
+       {"checks", "rotate", "assemble", "forces", "system", "update", "solve", "step"})
     phases[phase] = run.median_ms(phase, warmup);
   phases["tps"] = tps_of(run, warmup);
   return phases;
@@ -85,22 +90,23 @@ json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warm
 }  // namespace
 
 json run_paper_tables(const ReportConfig& config) {
-  json tables = {{"table1", json::array()},   {"table2", json::array()},
+  json tables = {{"table1", json::array()},       {"table2", json::array()},
                  {"small_strain", json::array()}, {"jacobi_pcg", json::array()},
                  {"verification", json::array()}, {"multigrid", json::array()},
                  {"rival_solvers", json::array()}};
   const int warmup = config.table_warmup(), measured = config.table_measured();
   const int steps = warmup + measured;
-  tables["settings"] = {{"warmup_steps", warmup},
-                        {"measured_steps", measured},
-                        {"statistic", "median over the measured steps"},
-                        {"rotation", "energy-newton"},
-                        {"solver", "mgpcg"},
-                        {"accuracy", "MG-PCG to relative residual " + std::to_string(config.default_tolerance()) +
-                                         " per step, warm-started from the previous velocity"},
-                        {"tolerance", config.default_tolerance()},
-                        {"dt", 0.01},
-                        {"oracle_check_steps", nlohmann::json::array()}};
+  tables["settings"] = {
+      {"warmup_steps", warmup},
+      {"measured_steps", measured},
+      {"statistic", "median over the measured steps"},
+      {"rotation", "energy-newton"},
+      {"solver", "mgpcg"},
+      {"accuracy", "MG-PCG to relative residual " + std::to_string(config.default_tolerance()) +
+                       " per step, warm-started from the previous velocity"},
+      {"tolerance", config.default_tolerance()},
+      {"dt", 0.01},
+      {"oracle_check_steps", nlohmann::json::array()}};
   // The rooflines' roofs, this machine's, measured before the runs at the run's thread count
   // and at one thread (Table 1 is measured at both).
   const int threads = thread_count();
@@ -113,7 +119,8 @@ json run_paper_tables(const ReportConfig& config) {
   tables["threads"] = threads;
   tables["stream_triad_GBps"] = roofs.stream_gbps;
   tables["dense_gflops"] = roofs.dense_gflops;
-  tables["one_thread_roofs"] = {{"stream_triad_GBps", roofs_one.stream_gbps}, {"dense_gflops", roofs_one.dense_gflops}};
+  tables["one_thread_roofs"] = {{"stream_triad_GBps", roofs_one.stream_gbps},
+                                {"dense_gflops", roofs_one.dense_gflops}};
   std::vector<int> check_steps{warmup + 1, warmup + measured / 2, steps};
   check_steps.erase(std::unique(check_steps.begin(), check_steps.end()), check_steps.end());
   tables["settings"]["oracle_check_steps"] = check_steps;
@@ -121,11 +128,14 @@ json run_paper_tables(const ReportConfig& config) {
     for (SceneSize size : config.table_sizes(model)) {
       const std::string id = model + "-" + size_name(size);
       // The paper's row sits beside ours only at the paper's size (not beside quick runs).
-      const std::string paper_model =
-          config.with_models() ? (size == file_model_size(model) ? model : "") : paper_model_of(size);
-      const json scene = table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
+      const std::string paper_model = config.with_models()
+                                          ? (size == file_model_size(model) ? model : "")
+                                          : paper_model_of(size);
+      const json scene =
+          table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
       auto say = [&](const std::string& what) {
-        if (config.progress) *config.progress << "report: tables: " << id << ": " << what << std::endl;
+        if (config.progress)
+          *config.progress << "report: tables: " << id << ": " << what << std::endl;
       };
       json base = {{"model", id}, {"scene", scene}, {"paper_model", paper_model}};
       // Table 1: the paper's method.
@@ -154,7 +164,8 @@ json run_paper_tables(const ReportConfig& config) {
           const Eigen::VectorXd& u1 = single_run.result.displacement;
           const Eigen::VectorXd& u = main.result.displacement;
           one_thread["same_displacement_bits"] =
-              u1.size() == u.size() && std::memcmp(u1.data(), u.data(), u.size() * sizeof(double)) == 0;
+              u1.size() == u.size() &&
+              std::memcmp(u1.data(), u.data(), u.size() * sizeof(double)) == 0;
         }
         say("naive Galerkin update");
         const TimedRun naive = timed_run(with_analysis(scene, {{"galerkin", "naive"}}), id, {});
@@ -164,20 +175,22 @@ json run_paper_tables(const ReportConfig& config) {
         // Our Galerkin update (the scene's method) against PETSc's MatPtAP (numeric reuse, one
         // thread) on the same matrices.
         const auto galerkin_ms = [](const TimedRun& run) -> json {
-          if (!run.multigrid.is_object() || !run.multigrid.contains("update_parts_ms")) return nullptr;
+          if (!run.multigrid.is_object() || !run.multigrid.contains("update_parts_ms"))
+            return nullptr;
           return run.multigrid["update_parts_ms"].value("galerkin", 0.0);
         };
         json ours_one = threads > 1 ? galerkin_ms(single_run) : galerkin_ms(main);
         json matptap = nullptr;
         if (main.matptap_ms >= 0)
-          matptap = {{"matptap_ms", main.matptap_ms},
-                     {"galerkin", main.multigrid.value("params", json::object()).value("galerkin", "")},
-                     {"galerkin_ms", galerkin_ms(main)},
-                     {"galerkin_one_thread_ms", ours_one},
-                     {"matptap_over_galerkin_one_thread",
-                      ours_one.is_number() && ours_one.get<double>() > 0
-                          ? json(main.matptap_ms / ours_one.get<double>())
-                          : json(nullptr)}};
+          matptap = {
+              {"matptap_ms", main.matptap_ms},
+              {"galerkin", main.multigrid.value("params", json::object()).value("galerkin", "")},
+              {"galerkin_ms", galerkin_ms(main)},
+              {"galerkin_one_thread_ms", ours_one},
+              {"matptap_over_galerkin_one_thread",
+               ours_one.is_number() && ours_one.get<double>() > 0
+                   ? json(main.matptap_ms / ours_one.get<double>())
+                   : json(nullptr)}};
         if (one_thread.is_null()) {  // this run is on one thread
           one_thread = all;
           one_thread["roofline"] = main.roofline(warmup, roofs_one);
@@ -207,7 +220,8 @@ json run_paper_tables(const ReportConfig& config) {
                       {"checked_steps", check_steps}}},
                     {"cholmod_step_ms", cholmod.median_ms("step", warmup)},
                     {"cholmod_factorize_ms", cholmod.median_ms("update", warmup)},
-                    {"speedup_vs_cholmod", cholmod.median_ms("step", warmup) / main.median_ms("step", warmup)},
+                    {"speedup_vs_cholmod",
+                     cholmod.median_ms("step", warmup) / main.median_ms("step", warmup)},
                     {"inverted_max", main.result.inverted_max},
                     {"roofline", main.roofline(warmup, roofs)},
                     {"galerkin_vs_matptap", matptap},
@@ -218,25 +232,34 @@ json run_paper_tables(const ReportConfig& config) {
         tables["verification"].push_back(
             {{"model", id},
              {"checks",
-              {{{"oracle", "CHOLMOD solve of the same step"}, {"quantity", "relative error of the MG-PCG solution"},
-                {"largest", main.solve_error_max}, {"count", check_steps.size()}},
-               {{"oracle", "Eigen sparse R A R^T"}, {"quantity", "relative Frobenius error of every coarse level"},
-                {"largest", main.galerkin_error_max}, {"count", main.levels - 1}},
-               {{"oracle", "energy-exact (closed-form minimizer)"}, {"quantity", "energy-newton rotation angle error (rad)"},
-                {"largest", main.rotation_error_max_rad}, {"count", main.rotation_elements_compared}}}}});
+              {{{"oracle", "CHOLMOD solve of the same step"},
+                {"quantity", "relative error of the MG-PCG solution"},
+                {"largest", main.solve_error_max},
+                {"count", check_steps.size()}},
+               {{"oracle", "Eigen sparse R A R^T"},
+                {"quantity", "relative Frobenius error of every coarse level"},
+                {"largest", main.galerkin_error_max},
+                {"count", main.levels - 1}},
+               {{"oracle", "energy-exact (closed-form minimizer)"},
+                {"quantity", "energy-newton rotation angle error (rad)"},
+                {"largest", main.rotation_error_max_rad},
+                {"count", main.rotation_elements_compared}}}}});
       }
       // Table 2: polar decomposition with spatial smoothing.
       say("polar + smoothing");
       tables["table2"].push_back(record_case({{"model", id}, {"paper_model", paper_model}}, [&] {
-        const TimedRun polar = timed_run(with_analysis(scene, {{"rotation", "polar-smoothed"}}), id, {});
-        return json{{"tets", polar.tets}, {"tps", tps_of(polar, warmup)},
+        const TimedRun polar =
+            timed_run(with_analysis(scene, {{"rotation", "polar-smoothed"}}), id, {});
+        return json{{"tets", polar.tets},
+                    {"tps", tps_of(polar, warmup)},
                     {"rotate_ms", polar.median_ms("rotate", warmup)},
                     {"paper_tps", paper_table2_tps(paper_model)}};
       }));
       // Figure 1: small strain against corotated.
       say("small strain");
       tables["small_strain"].push_back(record_case({{"model", id}}, [&] {
-        const TimedRun linear = timed_run(with_analysis(scene, {{"formulation", "linear"}}), id, {});
+        const TimedRun linear =
+            timed_run(with_analysis(scene, {{"formulation", "linear"}}), id, {});
         if (!row["completed"]) throw NumericalFault("the corotated run of this model failed");
         return json{{"tps", tps_of(linear, warmup)},
                     {"corotated_tps", tps_of(main, warmup)},
@@ -248,49 +271,65 @@ json run_paper_tables(const ReportConfig& config) {
         say(std::string("multigrid quality: ") + hierarchy);
         tables["multigrid"].push_back(record_case({{"model", id}}, [&] {
           const json on = with_analysis(scene, {{"hierarchy", hierarchy}});
-          const std::string kind = main.multigrid.is_null() ? "" : main.multigrid.value("hierarchy", "");
+          const std::string kind =
+              main.multigrid.is_null() ? "" : main.multigrid.value("hierarchy", "");
           const TimedRun pcg = kind == hierarchy ? main : timed_run(on, id, {});
-          const TimedRun vcycle = timed_run(with_analysis(on, {{"solver", "multigrid"}, {"vcycles", 0}}), id, {});
+          const TimedRun vcycle =
+              timed_run(with_analysis(on, {{"solver", "multigrid"}, {"vcycles", 0}}), id, {});
           return multigrid_quality_row(pcg, vcycle, warmup);
         }));
       }
       // The baseline preconditioner at the same accuracy, on the scene and on the scene 100x
       // stiffer: M + dt^2 K is mass-dominated at the paper's soft materials (Jacobi's CG
-      // iterations grow as sqrt(cond), the V-cycle's barely), so the comparison says where each wins.
+      // iterations grow as sqrt(cond), the V-cycle's barely), so the comparison says where each
+      // wins.
       for (const double young_scale : {1.0, 100.0}) {
         say("Jacobi-PCG" + std::string(young_scale > 1 ? ", 100x stiffer" : ""));
-        tables["jacobi_pcg"].push_back(record_case({{"model", id}, {"young_scale", young_scale}}, [&] {
-          const json stiffer = with_young_scaled(scene, young_scale);
-          const TimedRun jacobi = timed_run(with_analysis(stiffer, {{"solver", "jacobi-pcg"}}), id, {});
-          const TimedRun mgpcg = young_scale == 1.0 ? main : timed_run(stiffer, id, {});
-          return json{{"step_ms", jacobi.median_ms("step", warmup)},
-                      {"solve_ms", jacobi.median_ms("solve", warmup)},
-                      {"iterations", jacobi.median_iterations(warmup)},
-                      {"mgpcg_step_ms", mgpcg.step_ms.empty() ? json(nullptr) : json(mgpcg.median_ms("step", warmup))},
-                      {"mgpcg_iterations", mgpcg.step_ms.empty() ? json(nullptr) : json(mgpcg.median_iterations(warmup))}};
-        }));
+        tables["jacobi_pcg"].push_back(
+            record_case({{"model", id}, {"young_scale", young_scale}}, [&] {
+              const json stiffer = with_young_scaled(scene, young_scale);
+              const TimedRun jacobi =
+                  timed_run(with_analysis(stiffer, {{"solver", "jacobi-pcg"}}), id, {});
+              const TimedRun mgpcg = young_scale == 1.0 ? main : timed_run(stiffer, id, {});
+              return json{
+                  {"step_ms", jacobi.median_ms("step", warmup)},
+                  {"solve_ms", jacobi.median_ms("solve", warmup)},
+                  {"iterations", jacobi.median_iterations(warmup)},
+                  {"mgpcg_step_ms",
+                   mgpcg.step_ms.empty() ? json(nullptr) : json(mgpcg.median_ms("step", warmup))},
+                  {"mgpcg_iterations",
+                   mgpcg.step_ms.empty() ? json(nullptr) : json(mgpcg.median_iterations(warmup))}};
+            }));
       }
       // The algebraic multigrid users would pick instead, to the same tolerance, their setup
       // timed as the update phase (a new matrix every step), as ours is; the AMGs also with
       // their setup reused across steps (GAMG's interpolation, BoomerAMG's whole hierarchy).
-      const std::vector<std::pair<std::string, bool>> rivals = {
-          {"petsc-gamg", false}, {"hypre-boomeramg", false}, {"petsc-mg", false},
-          {"petsc-gamg", true},  {"hypre-boomeramg", true}};
+      const std::vector<std::pair<std::string, bool>> rivals = {{"petsc-gamg", false},
+                                                                {"hypre-boomeramg", false},
+                                                                {"petsc-mg", false},
+                                                                {"petsc-gamg", true},
+                                                                {"hypre-boomeramg", true}};
       for (const auto& [rival, reuse] : rivals) {
         say(rival + (reuse ? " (setup reuse)" : ""));
-        tables["rival_solvers"].push_back(record_case({{"model", id}, {"solver", rival}, {"setup_reuse", reuse}}, [&] {
-          const TimedRun run =
-              timed_run(with_analysis(scene, {{"solver", rival}, {"setup_reuse", reuse}}), id, {});
-          const double mgpcg_step = main.step_ms.empty() ? 0.0 : main.median_ms("step", warmup);
-          return json{{"step_ms", run.median_ms("step", warmup)},
-                      {"update_ms", run.median_ms("update", warmup)},
-                      {"solve_ms", run.median_ms("solve", warmup)},
-                      {"iterations", run.median_iterations(warmup)},
-                      {"mgpcg_step_ms", mgpcg_step > 0 ? json(mgpcg_step) : json(nullptr)},
-                      {"mgpcg_update_ms", main.step_ms.empty() ? json(nullptr) : json(main.median_ms("update", warmup))},
-                      {"mgpcg_solve_ms", main.step_ms.empty() ? json(nullptr) : json(main.median_ms("solve", warmup))},
-                      {"step_over_mgpcg", mgpcg_step > 0 ? json(run.median_ms("step", warmup) / mgpcg_step) : json(nullptr)}};
-        }));
+        tables["rival_solvers"].push_back(
+            record_case({{"model", id}, {"solver", rival}, {"setup_reuse", reuse}}, [&] {
+              const TimedRun run = timed_run(
+                  with_analysis(scene, {{"solver", rival}, {"setup_reuse", reuse}}), id, {});
+              const double mgpcg_step = main.step_ms.empty() ? 0.0 : main.median_ms("step", warmup);
+              return json{
+                  {"step_ms", run.median_ms("step", warmup)},
+                  {"update_ms", run.median_ms("update", warmup)},
+                  {"solve_ms", run.median_ms("solve", warmup)},
+                  {"iterations", run.median_iterations(warmup)},
+                  {"mgpcg_step_ms", mgpcg_step > 0 ? json(mgpcg_step) : json(nullptr)},
+                  {"mgpcg_update_ms",
+                   main.step_ms.empty() ? json(nullptr) : json(main.median_ms("update", warmup))},
+                  {"mgpcg_solve_ms",
+                   main.step_ms.empty() ? json(nullptr) : json(main.median_ms("solve", warmup))},
+                  {"step_over_mgpcg", mgpcg_step > 0
+                                          ? json(run.median_ms("step", warmup) / mgpcg_step)
+                                          : json(nullptr)}};
+            }));
       }
     }
   }

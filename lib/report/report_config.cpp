@@ -32,8 +32,12 @@ std::vector<SceneSize> ReportConfig::table_sizes(const std::string& model) const
   return {SceneSize::S};
 }
 
-int ReportConfig::table_warmup() const { return mode == Mode::Smoke ? 1 : 5; }
-int ReportConfig::table_measured() const { return mode == Mode::Smoke ? 3 : 20; }
+int ReportConfig::table_warmup() const {
+  return mode == Mode::Smoke ? 1 : 5;
+}
+int ReportConfig::table_measured() const {
+  return mode == Mode::Smoke ? 3 : 20;
+}
 
 SceneSize ReportConfig::sweep_size(const std::string& model) const {
   if (mode != Mode::Full) return SceneSize::Small;
@@ -46,9 +50,15 @@ std::vector<SceneSize> ReportConfig::resolution_sizes() const {
   return {SceneSize::Small, SceneSize::S, SceneSize::M, SceneSize::L};
 }
 
-int ReportConfig::sweep_steps() const { return mode == Mode::Smoke ? 3 : mode == Mode::Quick ? 10 : 20; }
-int ReportConfig::stability_ramp() const { return mode == Mode::Smoke ? 6 : mode == Mode::Quick ? 40 : 100; }
-int ReportConfig::stability_hold() const { return mode == Mode::Smoke ? 6 : mode == Mode::Quick ? 100 : 200; }
+int ReportConfig::sweep_steps() const {
+  return mode == Mode::Smoke ? 3 : mode == Mode::Quick ? 10 : 20;
+}
+int ReportConfig::stability_ramp() const {
+  return mode == Mode::Smoke ? 6 : mode == Mode::Quick ? 40 : 100;
+}
+int ReportConfig::stability_hold() const {
+  return mode == Mode::Smoke ? 6 : mode == Mode::Quick ? 100 : 200;
+}
 
 std::vector<std::string> ReportConfig::stability_scenes() const {
   if (mode == Mode::Smoke) return keep_only({"bar-twist", "block-squash"}, only);

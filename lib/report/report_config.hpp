@@ -17,8 +17,8 @@ struct ReportConfig {
   std::filesystem::path out_dir = "out/report";
   std::filesystem::path models_dir;  ///< empty: procedural scenes only
   bool tables = true, speed_accuracy = true, stability = true, model_accuracy = true;
-  bool vtu = false;                  ///< stability: VTU frames for ParaView
-  std::string only;                  ///< if set: just the models / stability scenes of this name
+  bool vtu = false;  ///< stability: VTU frames for ParaView
+  std::string only;  ///< if set: just the models / stability scenes of this name
   std::ostream* progress = nullptr;
 
   std::string mode_name() const;
@@ -27,7 +27,7 @@ struct ReportConfig {
   std::vector<std::string> models() const;  ///< quadruped first: the paper's rows
   std::vector<SceneSize> table_sizes(const std::string& model) const;
   int table_warmup() const;
-  int table_measured() const;   ///< steps in each median (at least 20 outside smoke)
+  int table_measured() const;  ///< steps in each median (at least 20 outside smoke)
   double default_tolerance() const { return 1e-4; }  ///< MG-PCG relative residual per step
   SceneSize sweep_size(const std::string& model) const;
   std::vector<SceneSize> resolution_sizes() const;

@@ -27,7 +27,8 @@ json header(const ReportConfig& config, const char* section) {
           {"parameters",
            {{"mode", config.mode_name()},
             {"models_dir", config.with_models() ? config.models_dir.string() : ""},
-            {"scenes", config.with_models() ? "bunny, horse, dragon surfaces" : "embedded procedural scenes"}}}};
+            {"scenes", config.with_models() ? "bunny, horse, dragon surfaces"
+                                            : "embedded procedural scenes"}}}};
 }
 
 template <class F>
@@ -50,7 +51,8 @@ std::vector<fs::path> run_report(const ReportConfig& config) {
   fs::create_directories(config.out_dir);
   std::vector<fs::path> written;
   if (config.tables)
-    written.push_back(write_section(config, "tables", "tables.json", [&] { return run_paper_tables(config); }));
+    written.push_back(
+        write_section(config, "tables", "tables.json", [&] { return run_paper_tables(config); }));
   if (config.speed_accuracy)
     written.push_back(write_section(config, "speed-accuracy", "speed_accuracy.json",
                                     [&] { return run_speed_accuracy(config); }));

@@ -15,7 +15,9 @@ json box(double x0, double y0, double z0, double x1, double y1, double z1) {
   return json::array({json::array({x0, y0, z0}), json::array({x1, y1, z1})});
 }
 
-int size_index(SceneSize size) { return static_cast<int>(size); }
+int size_index(SceneSize size) {
+  return static_cast<int>(size);
+}
 
 /// Bars: 2 x 0.5 x 0.5 m in Kuhn cells (4n, n, n): 1536, 11904, 32670, 65856 tets.
 json bar_mesh(SceneSize size) {
@@ -60,9 +62,15 @@ json model_mesh(const std::string& model, SceneSize size, const fs::path& models
 }
 
 json dynamic_analysis(int steps, double tolerance, SceneSize size) {
-  return {{"type", "dynamic"},  {"formulation", "corotational"}, {"rotation", "energy-newton"},
-          {"solver", "mgpcg"},  {"levels", paper_levels(size)},  {"tolerance", tolerance},
-          {"dt", 0.01},         {"steps", steps},                {"rayleigh", {{"alpha", 1.0}}}};
+  return {{"type", "dynamic"},
+          {"formulation", "corotational"},
+          {"rotation", "energy-newton"},
+          {"solver", "mgpcg"},
+          {"levels", paper_levels(size)},
+          {"tolerance", tolerance},
+          {"dt", 0.01},
+          {"steps", steps},
+          {"rayleigh", {{"alpha", 1.0}}}};
 }
 
 // Quadruped landmarks (mesh/quadruped_mesh.hpp).
@@ -94,8 +102,12 @@ int paper_levels(SceneSize size) {
   return levels[size_index(size)];
 }
 
-std::vector<std::string> procedural_models() { return {"quadruped", "cantilever", "twisting-bar"}; }
-std::vector<std::string> file_models() { return {"bunny", "horse", "dragon"}; }
+std::vector<std::string> procedural_models() {
+  return {"quadruped", "cantilever", "twisting-bar"};
+}
+std::vector<std::string> file_models() {
+  return {"bunny", "horse", "dragon"};
+}
 
 SceneSize file_model_size(const std::string& model) {
   if (model == "bunny") return SceneSize::S;
@@ -114,10 +126,10 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
     if (model == "cantilever") {
       s["gravity"] = {0, 0, -9.81};
     } else {  // a quarter turn per 25 steps, from the first step on
-      s["moves"] = json::array({{{"box", box(2 - 1e-6, 0, 0, 2, 0.5, 0.5)},
-                                 {"rotate", {{"axis", {1, 0, 0}}, {"center", {2, 0.25, 0.25}},
-                                             {"degrees", 360}}},
-                                 {"ramp_steps", 100}}});
+      s["moves"] = json::array(
+          {{{"box", box(2 - 1e-6, 0, 0, 2, 0.5, 0.5)},
+            {"rotate", {{"axis", {1, 0, 0}}, {"center", {2, 0.25, 0.25}}, {"degrees", 360}}},
+            {"ramp_steps", 100}}});
     }
   } else if (model == "quadruped") {
     s["mesh"] = quadruped_mesh(size);
@@ -132,13 +144,16 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
     s["material"] = {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}};
     if (model == "horse") {
       s["fixed"] = json::array({{{"box", kHorseHind}}});
-      s["forces"] = json::array({{{"box", kHorseShoulders}, {"total", {0, 0, 400}}, {"ramp_steps", 10}}});
+      s["forces"] =
+          json::array({{{"box", kHorseShoulders}, {"total", {0, 0, 400}}, {"ramp_steps", 10}}});
     } else if (model == "bunny") {  // base z = -0.493; ears and head pulled sideways
       s["fixed"] = json::array({{{"box", box(-1, -1, -1, 1, 1, -0.47)}}});
-      s["forces"] = json::array({{{"box", box(-1, -1, 0.25, 1, 1, 1)}, {"total", {400, 0, 0}}, {"ramp_steps", 10}}});
+      s["forces"] = json::array(
+          {{{"box", box(-1, -1, 0.25, 1, 1, 1)}, {"total", {400, 0, 0}}, {"ramp_steps", 10}}});
     } else if (model == "dragon") {  // up is +y, length along z; base y = -0.381
       s["fixed"] = json::array({{{"box", box(-1, -1, -1, 1, -0.36, 1)}}});
-      s["forces"] = json::array({{{"box", box(-1, 0.2, -1, 1, 1, 1)}, {"total", {0, 0, 200}}, {"ramp_steps", 10}}});
+      s["forces"] = json::array(
+          {{{"box", box(-1, 0.2, -1, 1, 1, 1)}, {"total", {0, 0, 200}}, {"ramp_steps", 10}}});
     } else {
       throw InputError("unknown report model '" + model + "'");
     }
@@ -172,9 +187,12 @@ json probe_box(const std::string& model) {
 }
 
 std::vector<std::string> stability_scene_ids(bool with_models) {
-  std::vector<std::string> ids{"bar-twist",           "bar-stretch",
-                               "block-squash",        "quadruped-stretched",
-                               "quadruped-stretched-far", "quadruped-posed"};
+  std::vector<std::string> ids{"bar-twist",
+                               "bar-stretch",
+                               "block-squash",
+                               "quadruped-stretched",
+                               "quadruped-stretched-far",
+                               "quadruped-posed"};
   if (with_models) {
     ids.push_back("horse-stretched");
     ids.push_back("horse-posed");
@@ -185,9 +203,12 @@ std::vector<std::string> stability_scene_ids(bool with_models) {
 json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int hold_steps,
                      const fs::path& models_dir) {
   json s;
-  s["analysis"] = {{"type", "dynamic"},   {"formulation", "corotational"},
-                   {"rotation", "energy-newton"}, {"solver", "cholmod"},
-                   {"dt", 0.01},          {"steps", ramp_steps + hold_steps},
+  s["analysis"] = {{"type", "dynamic"},
+                   {"formulation", "corotational"},
+                   {"rotation", "energy-newton"},
+                   {"solver", "cholmod"},
+                   {"dt", 0.01},
+                   {"steps", ramp_steps + hold_steps},
                    {"rayleigh", {{"alpha", 10.0}, {"beta", 0.002}}},  // settles within the hold
                    // Newton steps: a step that converges at all does in under 10 iterations.
                    {"max_iterations", 30}};
@@ -213,7 +234,8 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
     json move = ramp({{"box", box(0, 0, 0.5 - 1e-6, 0.5, 0.5, 0.5)}, {"translate", {0, 0, -0.6}}});
     move["release_step"] = ramp_steps + 1;
     s["moves"] = json::array({move});
-  } else if (id == "quadruped-stretched" || id == "quadruped-stretched-far" || id == "quadruped-posed") {
+  } else if (id == "quadruped-stretched" || id == "quadruped-stretched-far" ||
+             id == "quadruped-posed") {
     s["mesh"] = quadruped_mesh(size);
     s["material"] = {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}};
     s["fixed"] = json::array({{{"box", kHindFeet}}});
@@ -222,9 +244,9 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
       s["forces"] = json::array({ramp({{"box", kHead}, {"total", {pull, 0, pull}}}),
                                  ramp({{"box", kShoulders}, {"total", {pull, 0, pull}}})});
     } else {  // legs 30x stiffer than the body, knees as soft as the body
-      s["material"]["regions"] = json::array(
-          {{{"box", box(-1, -1, -1, 3, 1, 1.0)}, {"young", 3e7}},
-           {{"box", box(-1, -1, 0.45, 3, 1, 0.6)}, {"young", 1e6}}});
+      s["material"]["regions"] =
+          json::array({{{"box", box(-1, -1, -1, 3, 1, 1.0)}, {"young", 3e7}},
+                       {{"box", box(-1, -1, 0.45, 3, 1, 0.6)}, {"young", 1e6}}});
       // Knee hinges of about 200 N m/rad each: these loads fold them by tens of degrees.
       s["forces"] = json::array({ramp({{"box", kShoulders}, {"total", {0, 0, 400}}}),
                                  ramp({{"box", kForeShins}, {"total", {-150, 0, 150}}})});
@@ -237,9 +259,9 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
       s["forces"] = json::array({ramp({{"box", kHorseHead}, {"total", {0, 150, 150}}}),
                                  ramp({{"box", kHorseShoulders}, {"total", {0, 150, 150}}})});
     } else {  // legs below the belly 30x stiffer, knees (z in [-0.3, -0.22]) as soft as the body
-      s["material"]["regions"] = json::array(
-          {{{"box", box(-1, -1, -1, 1, 1, -0.12)}, {"young", 3e6}},
-           {{"box", box(-1, -1, -0.3, 1, 1, -0.22)}, {"young", 1e5}}});
+      s["material"]["regions"] =
+          json::array({{{"box", box(-1, -1, -1, 1, 1, -0.12)}, {"young", 3e6}},
+                       {{"box", box(-1, -1, -0.3, 1, 1, -0.22)}, {"young", 1e5}}});
       s["forces"] = json::array({ramp({{"box", kHorseShoulders}, {"total", {0, 0, 20}}}),
                                  ramp({{"box", kHorseFore}, {"total", {0, -5, 5}}})});
     }
@@ -249,24 +271,28 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
   return s;
 }
 
-std::vector<std::string> model_accuracy_ids() { return {"cantilever", "twisting-bar", "quadruped"}; }
+std::vector<std::string> model_accuracy_ids() {
+  return {"cantilever", "twisting-bar", "quadruped"};
+}
 
 json model_accuracy_scene(const std::string& id, SceneSize size) {
   json s = table_scene(id == "quadruped" ? "quadruped" : "cantilever", size, 1, 1e-8);
-  s["analysis"] = {{"type", "static"},   {"formulation", "corotational"}, {"rotation", "polar"},
-                   {"solver", "cholmod"}, {"integrator", "newton"},       {"load_steps", 20},
+  s["analysis"] = {{"type", "static"},    {"formulation", "corotational"}, {"rotation", "polar"},
+                   {"solver", "cholmod"}, {"integrator", "newton"},        {"load_steps", 20},
                    {"tolerance", 1e-10},  {"max_iterations", 30}};
   s.erase("moves");
   if (s.contains("forces"))
     for (json& force : s["forces"]) force.erase("ramp_steps");
   if (id == "cantilever") s["material"]["young"] = 2e6;  // droops about a quarter of its length
-  if (id == "quadruped")  // a tenth of the table's pull: NLGEOM and Newton from rest in 20 increments
+  if (id ==
+      "quadruped")  // a tenth of the table's pull: NLGEOM and Newton from rest in 20 increments
     for (json& force : s["forces"]) force["total"] = {0, 0, 2e3};
   if (id == "twisting-bar") {
     // About 0.8 rad of twist by bar theory (GJ = 0.141 a^4 E / 2.6 = 1690 N m^2, L = 2 m).
     s.erase("gravity");
-    s["forces"] = json::array({{{"box", box(2 - 1e-6, 0, 0.5 - 1e-6, 2, 0.5, 0.5)}, {"total", {0, 1350, 0}}},
-                               {{"box", box(2 - 1e-6, 0, 0, 2, 0.5, 1e-6)}, {"total", {0, -1350, 0}}}});
+    s["forces"] =
+        json::array({{{"box", box(2 - 1e-6, 0, 0.5 - 1e-6, 2, 0.5, 0.5)}, {"total", {0, 1350, 0}}},
+                     {{"box", box(2 - 1e-6, 0, 0, 2, 0.5, 1e-6)}, {"total", {0, -1350, 0}}}});
   }
   return s;
 }

@@ -13,7 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-
 double relative_error(const Eigen::VectorXd& u, const Eigen::VectorXd& reference) {
   const double norm = reference.norm();
   return norm > 0 ? (u - reference).norm() / norm : (u - reference).norm();
@@ -38,7 +37,8 @@ std::vector<json> solver_settings(const ReportConfig& config, int levels) {
   settings.push_back({{"solver", "jacobi-pcg"}, {"tolerance", 1e-4}});
   if (have_petsc())  // the algebraic multigrid users would pick instead
     for (const char* rival : {"petsc-gamg", "hypre-boomeramg", "petsc-mg"})
-      for (double tolerance : {1e-4, 1e-6}) settings.push_back({{"solver", rival}, {"tolerance", tolerance}});
+      for (double tolerance : {1e-4, 1e-6})
+        settings.push_back({{"solver", rival}, {"tolerance", tolerance}});
   if (config.mode == ReportConfig::Mode::Smoke) settings.resize(3);
   return settings;
 }
@@ -46,7 +46,8 @@ std::vector<json> solver_settings(const ReportConfig& config, int levels) {
 std::string label_of(const json& setting) {
   std::string label;
   for (auto& [key, value] : setting.items())
-    label += (label.empty() ? "" : " ") + key + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
+    label += (label.empty() ? "" : " ") + key + "=" +
+             (value.is_string() ? value.get<std::string>() : value.dump());
   return label;
 }
 
@@ -56,9 +57,14 @@ json cheapest_meeting(const json& points, double tolerance) {
   for (const json& p : points) {
     if (!p.value("completed", false) || p.value("is_reference", false)) continue;
     if (!p["rel_error"].is_number() || p["rel_error"].get<double>() > tolerance) continue;
-    if (best.is_null() || p["time_per_step_ms"].get<double>() < best["time_per_step_ms"].get<double>()) best = p;
+    if (best.is_null() ||
+        p["time_per_step_ms"].get<double>() < best["time_per_step_ms"].get<double>())
+      best = p;
   }
-  return best.is_null() ? json(nullptr) : json{{"label", best["label"]}, {"time_per_step_ms", best["time_per_step_ms"]}, {"rel_error", best["rel_error"]}};
+  return best.is_null() ? json(nullptr)
+                        : json{{"label", best["label"]},
+                               {"time_per_step_ms", best["time_per_step_ms"]},
+                               {"rel_error", best["rel_error"]}};
 }
 
 }  // namespace
@@ -71,7 +77,8 @@ void mark_pareto_front(json& points, const std::string& sweep) {
   for (json& p : points) {
     if (!candidate(p)) {
       // A completed reference is on no front: it is what the errors are measured against.
-      if (p.value("completed", false) && (sweep.empty() || p.value("sweep", "") == sweep)) p["pareto"] = false;
+      if (p.value("completed", false) && (sweep.empty() || p.value("sweep", "") == sweep))
+        p["pareto"] = false;
       continue;
     }
     const double t = p["time_per_step_ms"], e = p["rel_error"];
@@ -87,33 +94,46 @@ void mark_pareto_front(json& points, const std::string& sweep) {
 
 json run_speed_accuracy(const ReportConfig& config) {
   const AccuracyTargets targets;
-  json out = {{"targets", {{"solver", targets.solver}, {"rotation", targets.rotation}, {"resolution", targets.resolution}}},
-              {"error_definitions",
-               {{"solver", "|u - u_ref| / |u_ref| of the last step's displacement, u_ref: CHOLMOD with the same rotations and mesh"},
-                {"rotation", "|u - u_ref| / |u_ref|, u_ref: energy-exact rotations with CHOLMOD (the exact minimizer)"},
-                {"resolution", "|p - p_ref| / |p_ref| of the mean displacement of a probe region, p_ref: the finest resolution"}}},
-              {"scenes", json::array()}};
+  json out = {
+      {"targets",
+       {{"solver", targets.solver},
+        {"rotation", targets.rotation},
+        {"resolution", targets.resolution}}},
+      {"error_definitions",
+       {{"solver",
+         "|u - u_ref| / |u_ref| of the last step's displacement, u_ref: CHOLMOD with the same "
+         "rotations and mesh"},
+        {"rotation",
+         "|u - u_ref| / |u_ref|, u_ref: energy-exact rotations with CHOLMOD (the exact minimizer)"},
+        {"resolution",
+         "|p - p_ref| / |p_ref| of the mean displacement of a probe region, p_ref: the finest "
+         "resolution"}}},
+      {"scenes", json::array()}};
   const int steps = config.sweep_steps();
   const int warmup = std::min(2, steps - 1);
   for (const std::string& model : config.models()) {
     const SceneSize size = config.sweep_size(model);
     const std::string id = model + "-" + size_name(size);
-    const json scene = table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
+    const json scene =
+        table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
     auto say = [&](const std::string& what) {
-      if (config.progress) *config.progress << "report: speed-accuracy: " << id << ": " << what << std::endl;
+      if (config.progress)
+        *config.progress << "report: speed-accuracy: " << id << ": " << what << std::endl;
     };
     json entry = {{"scene", id}, {"model", model}, {"steps", steps}, {"points", json::array()}};
     auto point = [&](const std::string& sweep, const json& setting, const json& scene_json,
-                     const std::function<double(const TimedRun&)>& error, bool is_reference = false) {
+                     const std::function<double(const TimedRun&)>& error,
+                     bool is_reference = false) {
       say(sweep + ": " + label_of(setting));
-      json p = record_case({{"sweep", sweep}, {"setting", setting}, {"label", label_of(setting)}}, [&] {
-        const TimedRun run = timed_run(scene_json, id, {});
-        return json{{"time_per_step_ms", run.median_ms("step", warmup)},
-                    {"rel_error", finite_or_null(error(run))},
-                    {"tets", run.tets},
-                    {"iterations_per_step", run.median_iterations(warmup)},
-                    {"is_reference", is_reference}};
-      });
+      json p =
+          record_case({{"sweep", sweep}, {"setting", setting}, {"label", label_of(setting)}}, [&] {
+            const TimedRun run = timed_run(scene_json, id, {});
+            return json{{"time_per_step_ms", run.median_ms("step", warmup)},
+                        {"rel_error", finite_or_null(error(run))},
+                        {"tets", run.tets},
+                        {"iterations_per_step", run.median_iterations(warmup)},
+                        {"is_reference", is_reference}};
+          });
       entry["points"].push_back(p);
     };
     // References at this resolution.
@@ -121,8 +141,10 @@ json run_speed_accuracy(const ReportConfig& config) {
     say("references (CHOLMOD)");
     json refs = record_case({}, [&] {
       u_ref = timed_run(with_analysis(scene, {{"solver", "cholmod"}}), id, {}).result.displacement;
-      u_exact = timed_run(with_analysis(scene, {{"solver", "cholmod"}, {"rotation", "energy-exact"}}), id, {})
-                    .result.displacement;
+      u_exact =
+          timed_run(with_analysis(scene, {{"solver", "cholmod"}, {"rotation", "energy-exact"}}), id,
+                    {})
+              .result.displacement;
       return json::object();
     });
     if (!refs["completed"]) {
@@ -135,11 +157,14 @@ json run_speed_accuracy(const ReportConfig& config) {
     for (const json& setting : solver_settings(config, levels))
       point("solver", setting, with_analysis(scene, setting),
             [&](const TimedRun& r) { return relative_error(r.result.displacement, u_ref); });
-    point("solver", {{"solver", "cholmod"}}, with_analysis(scene, {{"solver", "cholmod"}}),
-          [&](const TimedRun& r) { return relative_error(r.result.displacement, u_ref); }, true);
+    point(
+        "solver", {{"solver", "cholmod"}}, with_analysis(scene, {{"solver", "cholmod"}}),
+        [&](const TimedRun& r) { return relative_error(r.result.displacement, u_ref); }, true);
     for (const std::string& method : rotation_method_names()) {
       if (method == "none") continue;
-      if (config.mode == ReportConfig::Mode::Smoke && method != "energy-newton" && method != "polar") continue;
+      if (config.mode == ReportConfig::Mode::Smoke && method != "energy-newton" &&
+          method != "polar")
+        continue;
       point("rotation", {{"rotation", method}}, with_analysis(scene, {{"rotation", method}}),
             [&](const TimedRun& r) { return relative_error(r.result.displacement, u_exact); });
     }
@@ -150,14 +175,16 @@ json run_speed_accuracy(const ReportConfig& config) {
     for (SceneSize s : config.resolution_sizes()) {
       const json setting = {{"resolution", size_name(s)}};
       say("resolution: " + size_name(s));
-      json p = record_case({{"sweep", "resolution"}, {"setting", setting}, {"label", size_name(s)}}, [&] {
-        const TimedRun run = timed_run(table_scene(model, s, steps, config.default_tolerance(), config.models_dir),
-                                       model + "-" + size_name(s), {});
-        const Vec3 value = run.probe(probe);
-        return json{{"time_per_step_ms", run.median_ms("step", warmup)},
-                    {"tets", run.tets},
-                    {"probe_displacement", {value.x(), value.y(), value.z()}}};
-      });
+      json p = record_case(
+          {{"sweep", "resolution"}, {"setting", setting}, {"label", size_name(s)}}, [&] {
+            const TimedRun run = timed_run(
+                table_scene(model, s, steps, config.default_tolerance(), config.models_dir),
+                model + "-" + size_name(s), {});
+            const Vec3 value = run.probe(probe);
+            return json{{"time_per_step_ms", run.median_ms("step", warmup)},
+                        {"tets", run.tets},
+                        {"probe_displacement", {value.x(), value.y(), value.z()}}};
+          });
       resolution_points.push_back(p);
     }
     // The finest completed resolution is the reference.
@@ -169,11 +196,13 @@ json run_speed_accuracy(const ReportConfig& config) {
       const auto& a = p["probe_displacement"];
       const auto& b = (*finest)["probe_displacement"];
       const Vec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]);
-      p["rel_error"] = finite_or_null(pb.norm() > 0 ? (pa - pb).norm() / pb.norm() : (pa - pb).norm());
+      p["rel_error"] =
+          finite_or_null(pb.norm() > 0 ? (pa - pb).norm() / pb.norm() : (pa - pb).norm());
       p["is_reference"] = &p == finest;
       entry["points"].push_back(p);
     }
-    for (const char* sweep : {"solver", "rotation", "resolution"}) mark_pareto_front(entry["points"], sweep);
+    for (const char* sweep : {"solver", "rotation", "resolution"})
+      mark_pareto_front(entry["points"], sweep);
     auto subset_of = [&](const char* sweep) {
       json subset = json::array();
       for (const json& p : entry["points"])

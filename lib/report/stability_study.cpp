@@ -10,9 +10,9 @@
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
 #include "fem/rotation_tangent.hpp"
+#include "io/vtu_writer.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
-#include "io/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 
@@ -29,18 +29,20 @@ struct BlowUp : NumericalFault {
 /// The boundary surface: faces that belong to one tet only, each oriented with its normal
 /// pointing away from that tet's fourth vertex (outward), as indices into `vertices`.
 struct BoundarySurface {
-  std::vector<int> vertices;                ///< mesh vertices on the boundary, ascending
+  std::vector<int> vertices;                  ///< mesh vertices on the boundary, ascending
   std::vector<std::array<int, 3>> triangles;  ///< positions in `vertices`
 };
 
 BoundarySurface boundary_surface(const TetMesh& mesh) {
-  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;  // sorted -> count, oriented
+  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>>
+      faces;  // sorted -> count, oriented
   for (const Tet& t : mesh.tets)
     for (int skip = 0; skip < 4; ++skip) {
       std::array<int, 3> f;
       for (int a = 0, k = 0; a < 4; ++a)
         if (a != skip) f[k++] = t[a];
-      const Vec3 normal = (mesh.rest[f[1]] - mesh.rest[f[0]]).cross(mesh.rest[f[2]] - mesh.rest[f[0]]);
+      const Vec3 normal =
+          (mesh.rest[f[1]] - mesh.rest[f[0]]).cross(mesh.rest[f[2]] - mesh.rest[f[0]]);
       if (normal.dot(mesh.rest[t[skip]] - mesh.rest[f[0]]) > 0) std::swap(f[1], f[2]);
       std::array<int, 3> key = f;
       std::sort(key.begin(), key.end());
@@ -60,11 +62,14 @@ BoundarySurface boundary_surface(const TetMesh& mesh) {
     }
   for (const auto& [key, face] : faces)
     if (face.first == 1)
-      surface.triangles.push_back({position[face.second[0]], position[face.second[1]], position[face.second[2]]});
+      surface.triangles.push_back(
+          {position[face.second[0]], position[face.second[1]], position[face.second[2]]});
   return surface;
 }
 
-double round4(double x) { return std::isfinite(x) ? std::round(x * 1e4) / 1e4 : 0.0; }
+double round4(double x) {
+  return std::isfinite(x) ? std::round(x * 1e4) / 1e4 : 0.0;
+}
 
 }  // namespace
 
@@ -81,7 +86,8 @@ json refined_scene(const json& scene, int k) {
 }
 
 json run_stability_case(const json& scene, const std::string& scene_id, const StabilityRun& spec,
-                        int ramp_steps, int hold_steps, json* pose, const std::filesystem::path& vtu_dir) {
+                        int ramp_steps, int hold_steps, json* pose,
+                        const std::filesystem::path& vtu_dir) {
   const FlutterThresholds thresholds;
   const std::string& method = spec.method;
   json s = refined_scene(scene, spec.refinement);
@@ -90,8 +96,10 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
   ramp_steps *= spec.refinement;
   hold_steps *= spec.refinement;
   const double dt = s["analysis"]["dt"].get<double>();
-  const double alpha = s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("alpha", 0.0) : 0.0;
-  const double beta = s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("beta", 0.0) : 0.0;
+  const double alpha =
+      s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("alpha", 0.0) : 0.0;
+  const double beta =
+      s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("beta", 0.0) : 0.0;
   const int settle_from = ramp_steps + hold_steps / 2;  // the settled half of the hold
   // Energy balance over the hold (loads constant, supports still): E + D - W stays at its value at
   // the hold's start unless energy is created (a non-conservative force, an unstable integrator)
@@ -111,8 +119,8 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
   long long flutter_samples = 0;
   int last_step = 0;
   double diagonal = 0;
-  json record = {{"scene", scene_id},       {"method", method},         {"integrator", spec.integrator},
-                 {"dt", dt},                {"ramp_steps", ramp_steps}, {"hold_steps", hold_steps}};
+  json record = {{"scene", scene_id}, {"method", method},         {"integrator", spec.integrator},
+                 {"dt", dt},          {"ramp_steps", ramp_steps}, {"hold_steps", hold_steps}};
   TimedRun run;
   TimedRunOptions options;
   options.on_step = [&](const StepState& st, const FeProblem& problem) {
@@ -151,14 +159,16 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
         state_rotations = st.rotations;
       }
       state_rotation->extract(problem.positions(st.displacement), state_rotations);
-      const double energy = kinetic + elastic_energy(problem.elements, problem.mesh, state_rotations, st.displacement);
+      const double energy = kinetic + elastic_energy(problem.elements, problem.mesh,
+                                                     state_rotations, st.displacement);
       if (st.step == ramp_steps) {
         hold_energy = energy;
         hold_displacement = st.displacement;
       } else {
         Eigen::VectorXd kv;
         problem.stiffness.multiply(st.velocity, kv);
-        dissipated += dt * (alpha * st.velocity.dot(problem.mass.cwiseProduct(st.velocity)) + beta * st.velocity.dot(kv));
+        dissipated += dt * (alpha * st.velocity.dot(problem.mass.cwiseProduct(st.velocity)) +
+                            beta * st.velocity.dot(kv));
       }
       const double work = problem.external_force.dot(st.displacement - hold_displacement);
       energy_excess = std::max(energy_excess, energy + dissipated - work - hold_energy);
@@ -171,7 +181,8 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
       std::vector<double> asymmetries(problem.mesh.tets.size());
       for (int e = 0; e < problem.mesh.num_tets(); ++e)
         asymmetries[e] = asymmetry(tangent.element_jacobian(e, positions, state_rotations[e]));
-      std::nth_element(asymmetries.begin(), asymmetries.begin() + asymmetries.size() / 2, asymmetries.end());
+      std::nth_element(asymmetries.begin(), asymmetries.begin() + asymmetries.size() / 2,
+                       asymmetries.end());
       asymmetry_median = asymmetries[asymmetries.size() / 2];
     }
     inverted_series.push_back(count_inverted(problem, problem.positions(st.displacement)));
@@ -191,8 +202,9 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
   });
   // A numerical fault (NaN, a lost factorization, a blow-up) is the measurement "diverged"; bad
   // input or an internal error means the case did not run.
-  const bool diverged = !result["completed"].get<bool>() &&
-                        (result["error"]["kind"] == "numerical" || result["error"]["kind"] == "not_converged");
+  const bool diverged =
+      !result["completed"].get<bool>() &&
+      (result["error"]["kind"] == "numerical" || result["error"]["kind"] == "not_converged");
   if (!result["completed"].get<bool>() && !diverged) {
     record["completed"] = false;
     record["error"] = result["error"];
@@ -200,22 +212,29 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
     return record;
   }
   record["completed"] = true;
-  record["status"] = diverged ? "diverged"
-                     : (flutter_max > thresholds.max_rad ||
-                        (flutter_samples > 0 && std::sqrt(flutter_rms_sum / flutter_samples) > thresholds.rms_rad))
-                         ? "flutter"
-                         : "stable";
+  record["status"] =
+      diverged ? "diverged"
+      : (flutter_max > thresholds.max_rad ||
+         (flutter_samples > 0 && std::sqrt(flutter_rms_sum / flutter_samples) > thresholds.rms_rad))
+          ? "flutter"
+          : "stable";
   record["diverged_step"] = diverged ? json(last_step + 1) : json(nullptr);
   if (diverged) record["divergence"] = result["error"];
-  record["flutter_rms_rad"] = flutter_samples > 0 && !diverged ? json(std::sqrt(flutter_rms_sum / flutter_samples)) : json(nullptr);
+  record["flutter_rms_rad"] = flutter_samples > 0 && !diverged
+                                  ? json(std::sqrt(flutter_rms_sum / flutter_samples))
+                                  : json(nullptr);
   record["flutter_max_rad"] = flutter_samples > 0 && !diverged ? json(flutter_max) : json(nullptr);
-  record["inverted_max"] = inverted_series.empty() ? 0 : *std::max_element(inverted_series.begin(), inverted_series.end());
+  record["inverted_max"] = inverted_series.empty()
+                               ? 0
+                               : *std::max_element(inverted_series.begin(), inverted_series.end());
   record["inverted_final"] = inverted_series.empty() ? 0 : inverted_series.back();
-  record["kinetic_energy_final"] = energy_series.empty() ? json(nullptr) : finite_or_null(energy_series.back());
+  record["kinetic_energy_final"] =
+      energy_series.empty() ? json(nullptr) : finite_or_null(energy_series.back());
   record["residual_final"] = diverged ? json(nullptr) : finite_or_null(run.result.residual);
   record["steps_run"] = last_step;
   record["asymmetry"] = asymmetry_median >= 0 ? json(asymmetry_median) : json(nullptr);
-  record["energy_error"] = !diverged && energy_peak > 0 ? finite_or_null(energy_excess / energy_peak) : json(nullptr);
+  record["energy_error"] =
+      !diverged && energy_peak > 0 ? finite_or_null(energy_excess / energy_peak) : json(nullptr);
   record["cause"] = nullptr;
   record["tets"] = run.tets;
   record["series"] = {{"rotation_change_rms_rad", rms_series},
@@ -224,7 +243,8 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
                       {"inverted", inverted_series}};
   if (pose && !diverged) {
     const BoundarySurface surface = boundary_surface(run.mesh);
-    json rest = json::array(), points = json::array(), values = json::array(), triangles = json::array();
+    json rest = json::array(), points = json::array(), values = json::array(),
+         triangles = json::array();
     for (int v : surface.vertices) {
       const Vec3& x0 = run.mesh.rest[v];
       const Vec3 x = x0 + run.result.displacement.segment<3>(3 * v);
@@ -250,8 +270,10 @@ void attribute_causes(std::vector<json*>& group) {
     std::ostringstream text;
     text << run["integrator"].get<std::string>() << " at dt " << run["dt"].get<double>() << ": "
          << run["status"].get<std::string>();
-    if (run["flutter_max_rad"].is_number()) text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad)";
-    if (run["diverged_step"].is_number()) text << " (at step " << run["diverged_step"].get<int>() << ")";
+    if (run["flutter_max_rad"].is_number())
+      text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad)";
+    if (run["diverged_step"].is_number())
+      text << " (at step " << run["diverged_step"].get<int>() << ")";
     return text.str();
   };
   for (json* r : group) {
@@ -260,7 +282,8 @@ void attribute_causes(std::vector<json*>& group) {
     const json* witness = nullptr;  // one of them stable: the failure is not the method's
     std::vector<const json*> others;
     for (const json* o : group)
-      if (o != r && (*o)["status"] != "failed" && (*o)["dt"].get<double>() <= (*r)["dt"].get<double>()) {
+      if (o != r && (*o)["status"] != "failed" &&
+          (*o)["dt"].get<double>() <= (*r)["dt"].get<double>()) {
         others.push_back(o);
         if ((*o)["status"] == "stable" && !witness) witness = o;
       }
@@ -273,8 +296,10 @@ void attribute_causes(std::vector<json*>& group) {
       (*r)["cause_detail"] = describe(*r) + "; but " + describe(*witness);
     } else if (others.empty() || newton_only_unconverged) {
       (*r)["cause"] = nullptr;
-      (*r)["cause_detail"] = describe(*r) + (others.empty() ? "; no run under the other integrator or at a smaller step"
-                                                            : "; Newton did not converge in the runs to compare");
+      (*r)["cause_detail"] =
+          describe(*r) + (others.empty()
+                              ? "; no run under the other integrator or at a smaller step"
+                              : "; Newton did not converge in the runs to compare");
     } else {
       std::string also;
       for (const json* o : others) also += "; also " + describe(*o);
@@ -291,21 +316,30 @@ json stability_verdicts(const json& runs) {
   std::map<std::string, json> by_method;
   for (const json& r : runs) {
     json& v = by_method[r["method"].get<std::string>()];
-    if (v.is_null()) v = {{"runs", 0}, {"not_stable", json::array()}, {"method_caused", 0}, {"integrator_caused", 0}};
+    if (v.is_null())
+      v = {{"runs", 0},
+           {"not_stable", json::array()},
+           {"method_caused", 0},
+           {"integrator_caused", 0}};
     v["runs"] = v["runs"].get<int>() + 1;
     if (r["status"] == "stable") continue;
-    v["not_stable"].push_back({{"scene", r["scene"]}, {"integrator", r["integrator"]}, {"dt", r["dt"]},
-                               {"status", r["status"]}, {"cause", r["cause"]}});
+    v["not_stable"].push_back({{"scene", r["scene"]},
+                               {"integrator", r["integrator"]},
+                               {"dt", r["dt"]},
+                               {"status", r["status"]},
+                               {"cause", r["cause"]}});
     if (r["cause"] == "method") v["method_caused"] = v["method_caused"].get<int>() + 1;
     if (r["cause"] == "integrator") v["integrator_caused"] = v["integrator_caused"].get<int>() + 1;
   }
   json out = json::object();
   for (auto& [method, v] : by_method) {
     const int by_method_count = v["method_caused"], by_integrator = v["integrator_caused"];
-    v["verdict"] = v["not_stable"].empty()  ? "stable in every run"
-                   : by_method_count > 0    ? "fails by itself in some scene (under both integrators, at both steps)"
-                   : by_integrator > 0      ? "stable once the integrator is: every failure goes with the linearly implicit step or the larger dt"
-                                            : "failures without an attributable cause";
+    v["verdict"] = v["not_stable"].empty() ? "stable in every run"
+                   : by_method_count > 0
+                       ? "fails by itself in some scene (under both integrators, at both steps)"
+                   : by_integrator > 0 ? "stable once the integrator is: every failure goes with "
+                                         "the linearly implicit step or the larger dt"
+                                       : "failures without an attributable cause";
     out[method] = v;
   }
   return out;
@@ -315,18 +349,20 @@ json stability_verdicts(const json& runs) {
 
 json run_stability_study(const ReportConfig& config) {
   const FlutterThresholds thresholds;
-  json out = {{"thresholds",
-               {{"flutter_max_rad", thresholds.max_rad},
-                {"flutter_rms_rad", thresholds.rms_rad},
-                {"blowup_factor", thresholds.blowup_factor},
-                {"window", "second half of the hold (loads constant)"},
-                {"statuses", "diverged: NaN/inf, a lost factorization or |u| > blowup_factor x diagonal; "
-                             "flutter: max or RMS rotation change per step above its threshold; stable otherwise"}}},
-              {"ramp_steps", config.stability_ramp()},
-              {"hold_steps", config.stability_hold()},
-              {"size", size_name(config.stability_size())},
-              {"runs", json::array()},
-              {"poses", json::array()}};
+  json out = {
+      {"thresholds",
+       {{"flutter_max_rad", thresholds.max_rad},
+        {"flutter_rms_rad", thresholds.rms_rad},
+        {"blowup_factor", thresholds.blowup_factor},
+        {"window", "second half of the hold (loads constant)"},
+        {"statuses",
+         "diverged: NaN/inf, a lost factorization or |u| > blowup_factor x diagonal; "
+         "flutter: max or RMS rotation change per step above its threshold; stable otherwise"}}},
+      {"ramp_steps", config.stability_ramp()},
+      {"hold_steps", config.stability_hold()},
+      {"size", size_name(config.stability_size())},
+      {"runs", json::array()},
+      {"poses", json::array()}};
   out["scenes"] = json::object();
   out["surfaces"] = json::object();
   for (const std::string& id : config.stability_scenes()) {
@@ -338,18 +374,20 @@ json run_stability_study(const ReportConfig& config) {
       std::vector<json> group;
       const auto run = [&](const StabilityRun& spec) {
         if (config.progress)
-          *config.progress << "report: stability: " << id << ": " << method << ", " << spec.integrator << ", dt 0.01/"
-                           << spec.refinement << std::endl;
+          *config.progress << "report: stability: " << id << ": " << method << ", "
+                           << spec.integrator << ", dt 0.01/" << spec.refinement << std::endl;
         json pose;
         const auto vtu_dir = config.vtu && spec.refinement == 1
                                  ? config.out_dir / "vtu" / id / (method + "-" + spec.integrator)
                                  : std::filesystem::path();
-        group.push_back(run_stability_case(scene, id, spec, config.stability_ramp(), config.stability_hold(),
+        group.push_back(run_stability_case(scene, id, spec, config.stability_ramp(),
+                                           config.stability_hold(),
                                            spec.refinement == 1 ? &pose : nullptr, vtu_dir));
         if (!pose.is_null()) {
           // The rest surface is the scene's, the same for every run: stored once.
           if (!out["surfaces"].contains(id))
-            out["surfaces"][id] = {{"rest_points", pose["rest_points"]}, {"triangles", pose["triangles"]}};
+            out["surfaces"][id] = {{"rest_points", pose["rest_points"]},
+                                   {"triangles", pose["triangles"]}};
           pose.erase("rest_points");
           pose.erase("triangles");
           out["poses"].push_back(std::move(pose));
@@ -359,8 +397,10 @@ json run_stability_study(const ReportConfig& config) {
       // The smaller step decides the cause of a run that is not stable; where both integrators
       // are stable at dt there is nothing to attribute, and only the full report runs it anyway.
       // The smoke report (seconds, for the report's own tests) never does.
-      const bool all_stable = std::all_of(group.begin(), group.end(), [](const json& r) { return r["status"] == "stable"; });
-      if (config.mode == ReportConfig::Mode::Full || (!all_stable && config.mode == ReportConfig::Mode::Quick))
+      const bool all_stable = std::all_of(group.begin(), group.end(),
+                                          [](const json& r) { return r["status"] == "stable"; });
+      if (config.mode == ReportConfig::Mode::Full ||
+          (!all_stable && config.mode == ReportConfig::Mode::Quick))
         for (const char* integrator : {"linear-implicit", "newton"}) run({method, integrator, 2});
       std::vector<json*> members;
       for (json& r : group) members.push_back(&r);

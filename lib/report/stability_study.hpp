@@ -16,7 +16,8 @@ namespace corofem {
 
 /// Status thresholds (rad per step, over the second half of the hold). In these scenes a settled
 /// body's elements turn by less than 1e-3 rad per step (the exact minimizer's runs show it), so a
-/// largest change above 0.1 rad (5.7 degrees) per step, or an RMS above 0.01, is no physical motion.
+/// largest change above 0.1 rad (5.7 degrees) per step, or an RMS above 0.01, is no physical
+/// motion.
 struct FlutterThresholds {
   double max_rad = 0.1;
   double rms_rad = 0.01;
@@ -37,8 +38,9 @@ nlohmann::json refined_scene(const nlohmann::json& scene, int k);
 /// One run of one scene; `scene` is a stability_scene() built for ramp_steps and hold_steps (at
 /// its own dt; refined here by spec.refinement). `pose`, if given, receives the final boundary
 /// positions colored by the largest rotation change per vertex.
-nlohmann::json run_stability_case(const nlohmann::json& scene, const std::string& scene_id, const StabilityRun& spec,
-                                  int ramp_steps, int hold_steps, nlohmann::json* pose = nullptr,
+nlohmann::json run_stability_case(const nlohmann::json& scene, const std::string& scene_id,
+                                  const StabilityRun& spec, int ramp_steps, int hold_steps,
+                                  nlohmann::json* pose = nullptr,
                                   const std::filesystem::path& vtu_dir = {});
 
 /// Sets "cause" (and "cause_detail") of every run of one scene and method that is not stable, from

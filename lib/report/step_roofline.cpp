@@ -9,13 +9,15 @@
 namespace corofem {
 namespace {
 
-constexpr double kLine = 64;        // bytes per cache line
-constexpr double kBlock = 72;       // a 3x3 block of doubles
-constexpr double kIndex = 4;        // int
+constexpr double kLine = 64;   // bytes per cache line
+constexpr double kBlock = 72;  // a 3x3 block of doubles
+constexpr double kIndex = 4;   // int
 constexpr double kVec3 = 24;
 
 /// Cache lines spanned by a member of `bytes` read out of a larger struct.
-double lines(double bytes) { return std::ceil(bytes / kLine) * kLine; }
+double lines(double bytes) {
+  return std::ceil(bytes / kLine) * kLine;
+}
 
 /// BRC storage of a matrix: values, column indices, row starts.
 double matrix_bytes(const BrcMatrix& a) {
@@ -48,7 +50,8 @@ double blocks_below_diagonal(const BrcMatrix& a) {
 
 Traffic gauss_seidel_sweep_from_zero(const BrcMatrix& a, double lower) {
   const double n = 3.0 * a.block_rows;
-  return {(kBlock + kIndex) * lower + kIndex * (a.block_rows + 1) + (kBlock + kIndex) * a.block_rows + 16 * n,
+  return {(kBlock + kIndex) * lower + kIndex * (a.block_rows + 1) +
+              (kBlock + kIndex) * a.block_rows + 16 * n,
           18.0 * lower + 15.0 * a.block_rows};
 }
 
@@ -94,8 +97,10 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
   // The stream of the method in use (the symmetric one stands in for the methods without one).
   const GalerkinMethod method = solver.params().galerkin;
   const auto stream = [&](int level) -> std::pair<std::size_t, std::size_t> {  // {bytes, pairs}
-    if (method == GalerkinMethod::Gather) return {h.gather(level).bytes(), h.gather(level).num_pairs()};
-    const GalerkinStream& s = method == GalerkinMethod::StreamFull ? h.full_stream(level) : h.stream(level);
+    if (method == GalerkinMethod::Gather)
+      return {h.gather(level).bytes(), h.gather(level).num_pairs()};
+    const GalerkinStream& s =
+        method == GalerkinMethod::StreamFull ? h.full_stream(level) : h.stream(level);
     return {s.bytes(), s.num_pairs()};
   };
   std::map<std::string, Traffic> parts;
@@ -104,7 +109,8 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
     const BrcMatrix& coarse = h.matrix(level);
     const double coarse_blocks = static_cast<double>(coarse.col_index.size());
     const auto [bytes, pairs] = stream(level - 1);
-    galerkin += {static_cast<double>(bytes) + kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) +
+    galerkin += {static_cast<double>(bytes) +
+                     kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) +
                      kBlock * coarse_blocks + 8 * (coarse_blocks - coarse.block_rows) / 2,
                  18.0 * static_cast<double>(pairs)};
   }
@@ -119,9 +125,10 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
   // The coarsest level: its values converted to CHOLMOD's lower-triangular CSC (about half the
   // blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's analysis counted.
   const BrcMatrix& coarsest = h.matrix(h.num_levels() - 1);
-  parts["coarsest"] = {kBlock * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
-                           8 * solver.coarsest_factor_nonzeros(),
-                       solver.coarsest_factorization_flops()};
+  parts["coarsest"] = {
+      kBlock * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
+          8 * solver.coarsest_factor_nonzeros(),
+      solver.coarsest_factorization_flops()};
   return parts;
 }
 
@@ -147,8 +154,8 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // the gradients and V lambda, V mu read out of ElementRest, the 16 target blocks of the
   // assembly map, rest positions and displacements, the step's matrix written once (zeroing
   // fused; the mass read and added into its diagonal), the force written.
-  t["assemble"] = {rotations + lines(4 * kVec3 + 16) * e + sizeof(std::array<int, 16>) * e + tets + kVec3 * v +
-                       8 * n + kBlock * blocks + 8 * n + 8 * n,
+  t["assemble"] = {rotations + lines(4 * kVec3 + 16) * e + sizeof(std::array<int, 16>) * e + tets +
+                       kVec3 * v + 8 * n + kBlock * blocks + 8 * n + 8 * n,
                    (60 + 10 * 35 + 16 * 9 + 117 + 138 + 72) * e};
   // b = M v + dt (f_ext - f_int), f_int from the assembly: mass, velocity, external force and
   // f_int read, b written.
@@ -161,12 +168,14 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   const std::vector<char> supported = problem.dirichlet.supported_vertices();
   for (int i = 0; i < k.block_rows; ++i)
     if (supported[i]) supported_blocks += 2 * (k.row_start[i + 1] - k.row_start[i]);
-  t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlock + kIndex) + 16 * n, 2 * n + 18 * supported_blocks};
+  t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlock + kIndex) + 16 * n,
+                 2 * n + 18 * supported_blocks};
   // The coarsest factorization and the smoothers' set-up count where they run: in the solve
   // when the solver defers them to it (MultigridSolver::defers_update).
   Traffic update, deferred;
   for (const auto& [part, traffic] : update_traffic(solver))
-    (solver.defers_update() && (part == "coarsest" || part == "smoothers") ? deferred : update) += traffic;
+    (solver.defers_update() && (part == "coarsest" || part == "smoothers") ? deferred : update) +=
+        traffic;
   t["update"] = update;
   // MG-PCG (linalg/preconditioned_cg.cpp): per iteration A p, one V-cycle and 14 vector passes
   // (two dots, two axpys, a norm, p = z + beta p); the start: r = b - A x, norms, r.z.
@@ -180,8 +189,8 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
 }
 
 nlohmann::json roofline_record(const std::map<std::string, Traffic>& traffic,
-                               const std::map<std::string, double>& measured_ms, const MachineRoofs& roofs,
-                               double working_set_bytes) {
+                               const std::map<std::string, double>& measured_ms,
+                               const MachineRoofs& roofs, double working_set_bytes) {
   nlohmann::json phases = nlohmann::json::object();
   double floor_total = 0;
   for (const auto& [phase, t] : traffic) {

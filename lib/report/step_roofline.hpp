@@ -1,6 +1,6 @@
 #pragma once
 // The roofline of a time step (issue 12): per phase of the paper's step (linearly implicit
-// Euler, energy-newton rotations, MG-PCG with the stream update) the bytes it must move and the
+// Euler, energy-newton rotations, MG-PCG with the gather update, the default) the bytes it must move and the
 // flops it must do, counted from the sizes of the data structures it touches, and the floor
 // that the machine's measured roofs put under its time: max(bytes / STREAM bandwidth,
 // flops / dense-product rate).
@@ -29,7 +29,9 @@ struct Traffic {
     return *this;
   }
 };
-inline Traffic operator*(double k, Traffic t) { return {k * t.bytes, k * t.flops}; }
+inline Traffic operator*(double k, Traffic t) {
+  return {k * t.bytes, k * t.flops};
+}
 
 /// The update phase's parts (MultigridSolver::update_parts_ms): galerkin, smoothers, coarsest.
 std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver);
@@ -52,7 +54,7 @@ struct MachineRoofs {
 ///  "floor_ms", "bound" (memory or compute), "measured_ms", "over_floor"}}}; `measured_ms` per
 /// phase and "step". TimedRun::roofline adds "update_parts" in the same form and "untimed_ms".
 nlohmann::json roofline_record(const std::map<std::string, Traffic>& traffic,
-                               const std::map<std::string, double>& measured_ms, const MachineRoofs& roofs,
-                               double working_set_bytes);
+                               const std::map<std::string, double>& measured_ms,
+                               const MachineRoofs& roofs, double working_set_bytes);
 
 }  // namespace corofem

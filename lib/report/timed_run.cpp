@@ -7,8 +7,8 @@
 
 #include "cholmod_oracle.hpp"
 #include "galerkin_oracle.hpp"
-#include "multigrid/multigrid_solver.hpp"
 #include "mesh/vertex_selection.hpp"
+#include "multigrid/multigrid_solver.hpp"
 #include "multigrid/transfer.hpp"
 #include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -25,7 +25,8 @@ namespace {
 /// medians.
 class OracleCheckedSolver : public LinearSolver {
  public:
-  OracleCheckedSolver(std::unique_ptr<LinearSolver> inner, std::vector<int> check_steps, TimedRun& out)
+  OracleCheckedSolver(std::unique_ptr<LinearSolver> inner, std::vector<int> check_steps,
+                      TimedRun& out)
       : inner_(std::move(inner)), check_steps_(std::move(check_steps)), out_(out) {}
   std::string name() const override { return inner_->name(); }
   LinearSolver& inner() { return *inner_; }
@@ -96,8 +97,10 @@ nlohmann::json TimedRun::roofline(int warmup, const MachineRoofs& roofs) const {
   // The update's parts, timed by the multigrid solver (means over every update of the run).
   std::map<std::string, double> parts;
   if (multigrid.contains("update_parts_ms"))
-    for (const auto& [part, ms] : multigrid["update_parts_ms"].items()) parts[part] = ms.get<double>();
-  record["update_parts"] = roofline_record(update_traffic, parts, roofs, working_set_bytes)["phases"];
+    for (const auto& [part, ms] : multigrid["update_parts_ms"].items())
+      parts[part] = ms.get<double>();
+  record["update_parts"] =
+      roofline_record(update_traffic, parts, roofs, working_set_bytes)["phases"];
   // Work of a step outside every named phase: each step's own remainder, then the median (a
   // difference of medians is not a median of differences, and can be negative).
   std::vector<double> untimed;
@@ -138,7 +141,8 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
   }
   if (options.on_step) simulation.keep_stiffness();  // it gets the problem, Ktilde included
   LinearSolver& under_test = checked ? checked->inner() : simulation.solver();
-  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) out.levels = mg->hierarchy().num_levels();
+  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test))
+    out.levels = mg->hierarchy().num_levels();
   out.result = simulation.run([&](const StepState& s) {
     auto phases = s.phase_ms;
     if (std::find(options.check_steps.begin(), options.check_steps.end(), s.step) !=
@@ -149,14 +153,17 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     const auto& iterations = simulation.extractor().stats().iterations;
     double sum = 0;
     for (std::uint8_t i : iterations) sum += i;
-    out.rotation_iterations.push_back(iterations.empty() ? 0.0 : sum / static_cast<double>(iterations.size()));
+    out.rotation_iterations.push_back(
+        iterations.empty() ? 0.0 : sum / static_cast<double>(iterations.size()));
     if (options.on_step) options.on_step(s, problem);
   });
   out.multigrid = simulation.describe_multigrid(under_test);
   if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
     const int warmup = std::min<int>(options.warmup_steps, static_cast<int>(out.solves.size()) - 1);
-    const std::vector<double> after(out.rotation_iterations.begin() + std::max(warmup, 0), out.rotation_iterations.end());
-    out.traffic = step_traffic(problem, *mg, median(after), out.median_iterations(std::max(warmup, 0)));
+    const std::vector<double> after(out.rotation_iterations.begin() + std::max(warmup, 0),
+                                    out.rotation_iterations.end());
+    out.traffic =
+        step_traffic(problem, *mg, median(after), out.median_iterations(std::max(warmup, 0)));
     out.update_traffic = update_traffic(*mg);
     const MultigridHierarchy& h = mg->hierarchy();
     out.working_set_bytes = static_cast<double>(sizeof(ElementRest) * problem.elements.size()) +
@@ -164,7 +171,8 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     for (int level = 0; level < h.num_levels(); ++level)
       out.working_set_bytes += 76.0 * static_cast<double>(h.matrix(level).col_index.size());
   }
-  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test); mg && options.time_matptap && have_petsc()) {
+  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test);
+      mg && options.time_matptap && have_petsc()) {
     // The Galerkin product a PETSc user would call, on the same matrices as our last update.
     const MultigridHierarchy& h = mg->hierarchy();
     std::vector<Transfer> transfers;
@@ -175,7 +183,9 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     for (int k = 0; k < 5; ++k) {
       const auto start = std::chrono::steady_clock::now();
       ptap.update(h.matrix(0));
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
     }
     out.matptap_ms = median(ms);
   }
@@ -200,7 +210,8 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
       exact->extract(final_positions, oracle);
       out.rotation_error_max_rad = 0;
       for (std::size_t e = 0; e < newton.size(); ++e)
-        out.rotation_error_max_rad = std::max(out.rotation_error_max_rad, angle_between(newton[e], oracle[e]));
+        out.rotation_error_max_rad =
+            std::max(out.rotation_error_max_rad, angle_between(newton[e], oracle[e]));
       out.rotation_elements_compared = static_cast<int>(newton.size());
     }
   }

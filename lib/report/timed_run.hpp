@@ -15,9 +15,9 @@
 namespace corofem {
 
 struct TimedRunOptions {
-  int warmup_steps = 0;            ///< steps left out of the medians
-  std::vector<int> check_steps;    ///< steps whose linear solve is checked against CHOLMOD
-  bool check_operators = false;    ///< Galerkin levels and rotations against the oracles, at the end
+  int warmup_steps = 0;          ///< steps left out of the medians
+  std::vector<int> check_steps;  ///< steps whose linear solve is checked against CHOLMOD
+  bool check_operators = false;  ///< Galerkin levels and rotations against the oracles, at the end
   /// Multigrid runs with PETSc built: time PETSc's MatPtAP (numeric reuse) on the final matrix.
   bool time_matptap = false;
   /// Called after every step with the problem (for study metrics; its stiffness is the step's
@@ -27,15 +27,16 @@ struct TimedRunOptions {
 
 struct TimedRun {
   int tets = 0, vertices = 0, levels = 1;
-  std::vector<std::map<std::string, double>> step_ms;  ///< per step: rotate, assemble, update, solve, step
-  std::vector<SolveStats> solves;                      ///< per step
+  std::vector<std::map<std::string, double>>
+      step_ms;                     ///< per step: rotate, assemble, update, solve, step
+  std::vector<SolveStats> solves;  ///< per step
   SimulationResult result;
-  TetMesh mesh;                                        ///< as run (rest positions, tets)
-  double rest_volume = 0, final_volume = 0;            ///< sums of signed tet volumes
+  TetMesh mesh;                              ///< as run (rest positions, tets)
+  double rest_volume = 0, final_volume = 0;  ///< sums of signed tet volumes
   /// Oracle checks (negative: not run).
-  double solve_error_max = -1;      ///< |x - x_cholmod| / |x_cholmod| over check_steps
-  double solve_residual_max = -1;   ///< relative residual the solver reached on those steps
-  double galerkin_error_max = -1;   ///< |E_h - R A R^T|_F / |R A R^T|_F over levels (Eigen oracle)
+  double solve_error_max = -1;     ///< |x - x_cholmod| / |x_cholmod| over check_steps
+  double solve_residual_max = -1;  ///< relative residual the solver reached on those steps
+  double galerkin_error_max = -1;  ///< |E_h - R A R^T|_F / |R A R^T|_F over levels (Eigen oracle)
   double rotation_error_max_rad = -1;  ///< energy-newton against energy-exact at the final state
   int rotation_elements_compared = 0;
   /// PETSc's MatPtAP in numeric-reuse mode on the run's final fine matrix and transfers, every
@@ -64,6 +65,7 @@ struct TimedRun {
 
 /// Parses `scene` (named `name` in messages) and runs it. Throws InputError, NumericalFault, or
 /// whatever on_step throws.
-TimedRun timed_run(const nlohmann::json& scene, const std::string& name, const TimedRunOptions& options);
+TimedRun timed_run(const nlohmann::json& scene, const std::string& name,
+                   const TimedRunOptions& options);
 
 }  // namespace corofem

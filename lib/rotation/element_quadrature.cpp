@@ -21,9 +21,11 @@ MomentArms moment_arms(const QuadraturePoints& rest) {
   return m;
 }
 
-double rotation_energy(const Mat3& q, const QuadraturePoints& rest, const QuadraturePoints& deformed) {
+double rotation_energy(const Mat3& q, const QuadraturePoints& rest,
+                       const QuadraturePoints& deformed) {
   double e = 0;
-  for (int g = 0; g < 4; ++g) e += rest.weight * (q.transpose() * deformed.offset[g] - rest.offset[g]).squaredNorm();
+  for (int g = 0; g < 4; ++g)
+    e += rest.weight * (q.transpose() * deformed.offset[g] - rest.offset[g]).squaredNorm();
   return e;
 }
 

@@ -33,6 +33,7 @@ struct MomentArms {
 MomentArms moment_arms(const QuadraturePoints& rest);
 
 /// E_e(Q) evaluated by the rule: sum_g w |Q^T z_g - y_g|^2 (z deformed, y rest offsets).
-double rotation_energy(const Mat3& q, const QuadraturePoints& rest, const QuadraturePoints& deformed);
+double rotation_energy(const Mat3& q, const QuadraturePoints& rest,
+                       const QuadraturePoints& deformed);
 
 }  // namespace corofem

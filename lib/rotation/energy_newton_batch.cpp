@@ -38,7 +38,9 @@ struct NewtonLanes {
   Mask solved;
 };
 
-COROFEM_LANES_INLINE Lanes splat(double s) { return Lanes{} + s; }
+COROFEM_LANES_INLINE Lanes splat(double s) {
+  return Lanes{} + s;
+}
 COROFEM_LANES_INLINE Lanes sqrt_lanes(Lanes x) {
   for (int l = 0; l < W; ++l) x[l] = std::sqrt(x[l]);
   return x;
@@ -62,13 +64,14 @@ COROFEM_LANES_INLINE Lanes dot(const Lanes (&x)[4], const Lanes (&y)[4]) {
 /// y = M x per lane.
 COROFEM_LANES_INLINE void multiply(const Sym4& m, const Lanes (&x)[4], Lanes (&y)[4]) {
   for (int r = 0; r < 4; ++r)
-    y[r] = m.m[kOff[r][0]] * x[0] + m.m[kOff[r][1]] * x[1] + m.m[kOff[r][2]] * x[2] + m.m[kOff[r][3]] * x[3];
+    y[r] = m.m[kOff[r][0]] * x[0] + m.m[kOff[r][1]] * x[1] + m.m[kOff[r][2]] * x[2] +
+           m.m[kOff[r][3]] * x[3];
 }
 
 /// N = horn_matrix(S^T) per lane: q^T N q = tr(R(q)^T S^T).
 COROFEM_LANES_INLINE void horn_lanes(const Lanes (&s)[9], Sym4& n) {
-  const Lanes s00 = s[0], s01 = s[1], s02 = s[2], s10 = s[3], s11 = s[4], s12 = s[5], s20 = s[6], s21 = s[7],
-              s22 = s[8];
+  const Lanes s00 = s[0], s01 = s[1], s02 = s[2], s10 = s[3], s11 = s[4], s12 = s[5], s20 = s[6],
+              s21 = s[7], s22 = s[8];
   n.m[0] = s00 + s11 + s22;
   n.m[1] = s00 - s11 - s22;
   n.m[2] = -s00 + s11 - s22;
@@ -122,7 +125,8 @@ COROFEM_LANES_INLINE void solve(const Cholesky4Lanes& f, const Lanes (&b)[4], La
 }
 
 /// The Hessian 4a(|q|^2 I + 2 q q^T) - 4N + 2 lambda I per lane (eq. 7).
-COROFEM_LANES_INLINE void hessian(const Sym4& n, const Lanes (&q)[4], Lanes q2, Lanes a, Lanes lambda, Sym4& h) {
+COROFEM_LANES_INLINE void hessian(const Sym4& n, const Lanes (&q)[4], Lanes q2, Lanes a,
+                                  Lanes lambda, Sym4& h) {
   for (int r = 0; r < 4; ++r)
     for (int c = r; c < 4; ++c) {
       const Lanes outer = 4 * a * (2 * q[r] * q[c]) - 4 * n.m[kOff[r][c]];
@@ -151,7 +155,8 @@ COROFEM_LANES_INLINE void newton_lanes(NewtonLanes& p, double tolerance, int max
       g2 += grad[r] * grad[r];
     }
     const Lanes constraint = q2 - 1;
-    const Mask within = sqrt_lanes(g2) / (4 * a) + (constraint < 0 ? -constraint : constraint) < tolerance;
+    const Mask within =
+        sqrt_lanes(g2) / (4 * a) + (constraint < 0 ? -constraint : constraint) < tolerance;
     converged |= active & within;
     active &= ~within;
     if (it == max_iterations) active = Mask{};
@@ -168,7 +173,8 @@ COROFEM_LANES_INLINE void newton_lanes(NewtonLanes& p, double tolerance, int max
       check += dq[r];
     }
     const Mask step = active & llt.ok & (check - check == 0);
-    handed_over |= active & ~step;  // not the definite case, or no finite step: the scalar routine decides
+    handed_over |=
+        active & ~step;  // not the definite case, or no finite step: the scalar routine decides
     for (int r = 0; r < 4; ++r) q[r] = step ? q[r] + dq[r] : q[r];
     lambda = step ? lambda + dl : lambda;
     iterations = step ? splat(it + 1) : iterations;
@@ -187,8 +193,9 @@ COROFEM_LANES_INLINE void newton_lanes(NewtonLanes& p, double tolerance, int max
 }
 
 /// Lanes from separate (S, a, warm) triples: the batched Newton and its outcomes.
-COROFEM_LANES_INLINE void rotations_of_triples(const Mat3 (&s)[W], const double (&a)[W], const Mat3 (&warm)[W],
-                                               double tolerance, int max_iterations, NewtonOutcome (&out)[W]) {
+COROFEM_LANES_INLINE void rotations_of_triples(const Mat3 (&s)[W], const double (&a)[W],
+                                               const Mat3 (&warm)[W], double tolerance,
+                                               int max_iterations, NewtonOutcome (&out)[W]) {
   NewtonLanes p;
   for (int l = 0; l < W; ++l) {
     for (int i = 0; i < 3; ++i)
@@ -212,8 +219,9 @@ COROFEM_LANES_INLINE void rotations_of_triples(const Mat3 (&s)[W], const double 
 /// One batch of the extractor, read and written in place: the moments S and a of eq. (3) from
 /// the deformed vertices (deformed_moment), the start from the warm rotation, Newton, and the
 /// rotation and inversion sign out, all across lanes.
-COROFEM_LANES_INLINE NewtonBatchCounts extract_lanes(const NewtonBatchInput& in, int first, int lanes,
-                                                     std::vector<Mat3>& rotations, std::uint8_t* iterations) {
+COROFEM_LANES_INLINE NewtonBatchCounts extract_lanes(const NewtonBatchInput& in, int first,
+                                                     int lanes, std::vector<Mat3>& rotations,
+                                                     std::uint8_t* iterations) {
   // Lane l is element first + l (the last batch repeats its last element). The lanes are put
   // together from the elements' numbers directly, in registers.
   const Tet* tet[W];
@@ -229,11 +237,12 @@ COROFEM_LANES_INLINE NewtonBatchCounts extract_lanes(const NewtonBatchInput& in,
   Lanes pos[4][3], arm[4][3], warm[9];
   for (int v = 0; v < 4; ++v)
     for (int k = 0; k < 3; ++k) {
-      pos[v][k] = Lanes{in.positions[(*tet[0])[v]][k], in.positions[(*tet[1])[v]][k], in.positions[(*tet[2])[v]][k],
-                        in.positions[(*tet[3])[v]][k]};
+      pos[v][k] = Lanes{in.positions[(*tet[0])[v]][k], in.positions[(*tet[1])[v]][k],
+                        in.positions[(*tet[2])[v]][k], in.positions[(*tet[3])[v]][k]};
       arm[v][k] = Lanes{rest[0]->h[v][k], rest[1]->h[v][k], rest[2]->h[v][k], rest[3]->h[v][k]};
     }
-  for (int k = 0; k < 9; ++k) warm[k] = Lanes{warm_of[0][k], warm_of[1][k], warm_of[2][k], warm_of[3][k]};
+  for (int k = 0; k < 9; ++k)
+    warm[k] = Lanes{warm_of[0][k], warm_of[1][k], warm_of[2][k], warm_of[3][k]};
   // deformed_moment across lanes: S = sum_v z_v h_v^T, a = c sum_v |z_v|^2, z from the centroid.
   Lanes mean[3], spread = {};
   for (int k = 0; k < 3; ++k) mean[k] = 0.25 * (pos[0][k] + pos[1][k] + pos[2][k] + pos[3][k]);
@@ -245,7 +254,8 @@ COROFEM_LANES_INLINE NewtonBatchCounts extract_lanes(const NewtonBatchInput& in,
     spread += z[0] * z[0] + z[1] * z[1] + z[2] * z[2];
   }
   p.a = Lanes{rest[0]->c, rest[1]->c, rest[2]->c, rest[3]->c} * spread;
-  const Lanes det = p.s[0] * (p.s[4] * p.s[8] - p.s[5] * p.s[7]) - p.s[1] * (p.s[3] * p.s[8] - p.s[5] * p.s[6]) +
+  const Lanes det = p.s[0] * (p.s[4] * p.s[8] - p.s[5] * p.s[7]) -
+                    p.s[1] * (p.s[3] * p.s[8] - p.s[5] * p.s[6]) +
                     p.s[2] * (p.s[3] * p.s[7] - p.s[4] * p.s[6]);
   quaternion_of_rotation(warm, p.q, sqrt_lanes);
   newton_lanes(p, in.tolerance, in.max_iterations);
@@ -273,8 +283,8 @@ COROFEM_LANES_INLINE NewtonBatchCounts extract_lanes(const NewtonBatchInput& in,
   return counts;
 }
 
-void rotations_of_triples_scalar(const Mat3 (&s)[W], const double (&a)[W], const Mat3 (&warm)[W], double tolerance,
-                                 int max_iterations, NewtonOutcome (&out)[W]) {
+void rotations_of_triples_scalar(const Mat3 (&s)[W], const double (&a)[W], const Mat3 (&warm)[W],
+                                 double tolerance, int max_iterations, NewtonOutcome (&out)[W]) {
   rotations_of_triples(s, a, warm, tolerance, max_iterations, out);
 }
 NewtonBatchCounts extract_lanes_scalar(const NewtonBatchInput& in, int first, int lanes,
@@ -283,14 +293,14 @@ NewtonBatchCounts extract_lanes_scalar(const NewtonBatchInput& in, int first, in
 }
 
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-__attribute__((target("avx2,fma"))) void rotations_of_triples_avx2(const Mat3 (&s)[W], const double (&a)[W],
-                                                                   const Mat3 (&warm)[W], double tolerance,
-                                                                   int max_iterations, NewtonOutcome (&out)[W]) {
+__attribute__((target("avx2,fma"))) void rotations_of_triples_avx2(
+    const Mat3 (&s)[W], const double (&a)[W], const Mat3 (&warm)[W], double tolerance,
+    int max_iterations, NewtonOutcome (&out)[W]) {
   rotations_of_triples(s, a, warm, tolerance, max_iterations, out);
 }
-__attribute__((target("avx2,fma"))) NewtonBatchCounts extract_lanes_avx2(const NewtonBatchInput& in, int first,
-                                                                         int lanes, std::vector<Mat3>& rotations,
-                                                                         std::uint8_t* iterations) {
+__attribute__((target("avx2,fma"))) NewtonBatchCounts extract_lanes_avx2(
+    const NewtonBatchInput& in, int first, int lanes, std::vector<Mat3>& rotations,
+    std::uint8_t* iterations) {
   return extract_lanes(in, first, lanes, rotations, iterations);
 }
 #endif
@@ -301,13 +311,14 @@ void energy_newton_rotations(const Mat3 (&s)[kNewtonLanes], const double (&a)[kN
                              const Mat3 (&warm)[kNewtonLanes], double tolerance, int max_iterations,
                              NewtonOutcome (&out)[kNewtonLanes]) {
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-  if (vector_block_kernels()) return rotations_of_triples_avx2(s, a, warm, tolerance, max_iterations, out);
+  if (vector_block_kernels())
+    return rotations_of_triples_avx2(s, a, warm, tolerance, max_iterations, out);
 #endif
   rotations_of_triples_scalar(s, a, warm, tolerance, max_iterations, out);
 }
 
-NewtonBatchCounts energy_newton_batch(const NewtonBatchInput& in, int first, int lanes, std::vector<Mat3>& rotations,
-                                      std::uint8_t* iterations) {
+NewtonBatchCounts energy_newton_batch(const NewtonBatchInput& in, int first, int lanes,
+                                      std::vector<Mat3>& rotations, std::uint8_t* iterations) {
 #ifdef COROFEM_HAVE_AVX2_KERNELS
   if (vector_block_kernels()) return extract_lanes_avx2(in, first, lanes, rotations, iterations);
 #endif

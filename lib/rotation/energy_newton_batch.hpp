@@ -42,7 +42,7 @@ struct NewtonBatchCounts {
 /// Elements [first, first + lanes), lanes <= kNewtonLanes: rotations[e] holds the warm start on
 /// entry and the rotation (energy_newton_rotation's contract, deformed_moment's S and a) on exit;
 /// iterations[e] the Newton steps taken.
-NewtonBatchCounts energy_newton_batch(const NewtonBatchInput& in, int first, int lanes, std::vector<Mat3>& rotations,
-                                      std::uint8_t* iterations);
+NewtonBatchCounts energy_newton_batch(const NewtonBatchInput& in, int first, int lanes,
+                                      std::vector<Mat3>& rotations, std::uint8_t* iterations);
 
 }  // namespace corofem

@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "core/threads.hpp"
-#include "rotation/rotation_factor.hpp"
 #include "rotation/energy_newton_batch.hpp"
 #include "rotation/polar_decomposition.hpp"
+#include "rotation/rotation_factor.hpp"
 
 namespace corofem {
 
@@ -37,13 +37,15 @@ std::vector<MomentArms> rest_moment_arms(const TetMesh& mesh) {
   return rest;
 }
 
-Mat3 deformed_moment(const MomentArms& rest, const Tet& tet, const std::vector<Vec3>& positions, double& a) {
+Mat3 deformed_moment(const MomentArms& rest, const Tet& tet, const std::vector<Vec3>& positions,
+                     double& a) {
   const Vec3 p[4] = {positions[tet[0]], positions[tet[1]], positions[tet[2]], positions[tet[3]]};
   const Vec3 mean = 0.25 * (p[0] + p[1] + p[2] + p[3]);
   Mat3 s = Mat3::Zero();
   double spread = 0;
   for (int v = 0; v < 4; ++v) {
-    const Vec3 z = p[v] - mean;  // sum_v h_v = 0: the mean drops out of S, and z keeps it well scaled
+    const Vec3 z =
+        p[v] - mean;  // sum_v h_v = 0: the mean drops out of S, and z keeps it well scaled
     s.noalias() += z * rest.h[v].transpose();
     spread += z.squaredNorm();
   }
@@ -121,7 +123,7 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
     const Vec4 nq = n * q;
     const double q2 = q.squaredNorm();
     const Vec4 grad = 4 * a * q2 * q - 4 * nq + 2 * lambda * q;  // eq. (5)
-    const double constraint = q2 - 1;                             // eq. (6)
+    const double constraint = q2 - 1;                            // eq. (6)
     if (grad.norm() / (4 * a) + std::abs(constraint) < tolerance) {
       converged = true;
       break;
@@ -184,15 +186,16 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
                                     std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
   const int tets = mesh_.num_tets();
-  const int batches = (tets + kNewtonLanes - 1) / kNewtonLanes;  // fixed by the mesh, not the threads
+  const int batches =
+      (tets + kNewtonLanes - 1) / kNewtonLanes;  // fixed by the mesh, not the threads
   int fallbacks = 0, inverted = 0;
-  const NewtonBatchInput in{mesh_.tets.data(), rest_.data(), positions.data(), params_.newton_tolerance,
-                            params_.newton_max_iterations};
+  const NewtonBatchInput in{mesh_.tets.data(), rest_.data(), positions.data(),
+                            params_.newton_tolerance, params_.newton_max_iterations};
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks, inverted) num_threads(threads_for(tets))
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kNewtonLanes;
-    const NewtonBatchCounts counts = energy_newton_batch(in, first, std::min(kNewtonLanes, tets - first), rotations,
-                                                         stats_.iterations.data());
+    const NewtonBatchCounts counts = energy_newton_batch(
+        in, first, std::min(kNewtonLanes, tets - first), rotations, stats_.iterations.data());
     fallbacks += counts.fallbacks;
     inverted += counts.inverted;
   }

@@ -21,13 +21,15 @@ std::vector<MomentArms> rest_moment_arms(const TetMesh& mesh);
 /// Quadrature of the deformed element: S = sum_g w z_g y_g^T = sum_v p_v h_v^T and
 /// a = sum_g w |z_g|^2, z_g the deformed offsets from the deformed centroid at the quadrature
 /// points.
-Mat3 deformed_moment(const MomentArms& rest, const Tet& tet, const std::vector<Vec3>& positions, double& a);
+Mat3 deformed_moment(const MomentArms& rest, const Tet& tet, const std::vector<Vec3>& positions,
+                     double& a);
 
 /// Outcome of one element's Newton solve.
 struct NewtonOutcome {
   Mat3 rotation;
   int iterations = 0;
-  bool fell_back = false;  ///< singular or indefinite Hessian, or no convergence: exact minimizer used
+  bool fell_back =
+      false;  ///< singular or indefinite Hessian, or no convergence: exact minimizer used
 };
 
 /// The quaternion (w, x, y, z) of a rotation matrix m (row-major), up to sign: the row of
@@ -38,12 +40,14 @@ struct NewtonOutcome {
 /// conditioned.
 template <class T, class Root>
 inline void quaternion_of_rotation(const T (&m)[9], T (&q)[4], const Root& root) {
-  const T t[4] = {1 + m[0] + m[4] + m[8], 1 + m[0] - m[4] - m[8], 1 - m[0] + m[4] - m[8], 1 - m[0] - m[4] + m[8]};
+  const T t[4] = {1 + m[0] + m[4] + m[8], 1 + m[0] - m[4] - m[8], 1 - m[0] + m[4] - m[8],
+                  1 - m[0] - m[4] + m[8]};
   const T wx = m[7] - m[5], wy = m[2] - m[6], wz = m[3] - m[1];
   const T xy = m[1] + m[3], xz = m[2] + m[6], yz = m[5] + m[7];
   const auto x_over_w = t[1] > t[0];
   T best = x_over_w ? t[1] : t[0];
-  T r0 = x_over_w ? wx : t[0], r1 = x_over_w ? t[1] : wx, r2 = x_over_w ? xy : wy, r3 = x_over_w ? xz : wz;
+  T r0 = x_over_w ? wx : t[0], r1 = x_over_w ? t[1] : wx, r2 = x_over_w ? xy : wy,
+    r3 = x_over_w ? xz : wz;
   const auto y_best = t[2] > best;
   best = y_best ? t[2] : best;
   r0 = y_best ? wy : r0;

@@ -15,7 +15,8 @@ Mat3 edge_frame(const Vec3& x0, const Vec3& x1, const Vec3& x2) {
 
 GramSchmidtFrameExtractor::GramSchmidtFrameExtractor(const TetMesh& mesh) : mesh_(mesh) {
   rest_frame_.reserve(mesh.tets.size());
-  for (const Tet& t : mesh.tets) rest_frame_.push_back(edge_frame(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]]));
+  for (const Tet& t : mesh.tets)
+    rest_frame_.push_back(edge_frame(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]]));
 }
 
 void GramSchmidtFrameExtractor::extract(const std::vector<Vec3>& positions,

@@ -14,8 +14,10 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, d
   iterations = 0;
   for (int it = 0; it < max_iterations; ++it) {
     const Mat3 r = q.toRotationMatrix();
-    const Vec3 numerator = r.col(0).cross(a.col(0)) + r.col(1).cross(a.col(1)) + r.col(2).cross(a.col(2));
-    const double denominator = std::abs(r.col(0).dot(a.col(0)) + r.col(1).dot(a.col(1)) + r.col(2).dot(a.col(2))) + 1e-9;
+    const Vec3 numerator =
+        r.col(0).cross(a.col(0)) + r.col(1).cross(a.col(1)) + r.col(2).cross(a.col(2));
+    const double denominator =
+        std::abs(r.col(0).dot(a.col(0)) + r.col(1).dot(a.col(1)) + r.col(2).dot(a.col(2))) + 1e-9;
     const Vec3 omega = numerator / denominator;
     const double angle = omega.norm();
     if (angle < tolerance) break;
@@ -29,7 +31,8 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, d
 Mueller2016Extractor::Mueller2016Extractor(const TetMesh& mesh, const RotationParams& params)
     : mesh_(mesh), params_(params), rest_edge_inverse_(rest_edge_inverses(mesh)) {}
 
-void Mueller2016Extractor::extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) {
+void Mueller2016Extractor::extract(const std::vector<Vec3>& positions,
+                                   std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
 #pragma omp parallel for schedule(static) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {

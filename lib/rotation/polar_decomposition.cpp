@@ -1,10 +1,10 @@
 #include "rotation/polar_decomposition.hpp"
 
-#include "core/threads.hpp"
-#include "rotation/svd_rotation.hpp"
-
 #include <Eigen/LU>
 #include <cmath>
+
+#include "core/threads.hpp"
+#include "rotation/svd_rotation.hpp"
 
 namespace corofem {
 
@@ -45,9 +45,9 @@ void PolarExtractor::extract(const std::vector<Vec3>& positions, std::vector<Mat
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     int iterations = 0;
-    rotations[e] = polar_rotation(
-        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e],
-        &iterations);
+    rotations[e] =
+        polar_rotation(deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]),
+                       rotations[e], &iterations);
     stats_.iterations[e] = static_cast<std::uint8_t>(iterations);
     fallbacks += iterations < 0;
   }

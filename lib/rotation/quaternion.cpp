@@ -1,9 +1,8 @@
 #include "rotation/quaternion.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/LU>
 
 namespace corofem {
 

@@ -19,8 +19,8 @@ nlohmann::json RotationParams::to_json() const {
 }
 
 std::vector<std::string> rotation_method_names() {
-  return {"energy-newton", "energy-exact", "polar",       "polar-fixed",
-          "polar-smoothed", "qr",          "mueller2016", "none"};
+  return {"energy-newton",  "energy-exact", "polar",       "polar-fixed",
+          "polar-smoothed", "qr",           "mueller2016", "none"};
 }
 
 std::unique_ptr<RotationExtractor> make_rotation_extractor(const std::string& name,

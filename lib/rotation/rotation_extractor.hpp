@@ -12,11 +12,12 @@ namespace corofem {
 
 /// Tunables of the iterative extractors; written into every record that uses them.
 struct RotationParams {
-  double newton_tolerance = 1e-9;  ///< energy-newton: |grad_q E| / (4 a) + |q.q - 1| (a ~ element size^2 V)
+  double newton_tolerance =
+      1e-9;  ///< energy-newton: |grad_q E| / (4 a) + |q.q - 1| (a ~ element size^2 V)
   int newton_max_iterations = 20;
-  int mueller_iterations = 10;     ///< mueller2016: iteration cap
-  double mueller_tolerance = 1e-9; ///< mueller2016: stop at |omega| < this (rad), as Mueller 2016
-  int smoothing_passes = 1;        ///< polar-smoothed: passes of 1-ring averaging
+  int mueller_iterations = 10;      ///< mueller2016: iteration cap
+  double mueller_tolerance = 1e-9;  ///< mueller2016: stop at |omega| < this (rad), as Mueller 2016
+  int smoothing_passes = 1;         ///< polar-smoothed: passes of 1-ring averaging
 
   nlohmann::json to_json() const;
 };

@@ -14,7 +14,8 @@ SmoothedPolarExtractor::SmoothedPolarExtractor(const TetMesh& mesh, const Rotati
       rings_(element_one_rings(mesh)) {
   volume_.reserve(mesh.tets.size());
   for (const Tet& t : mesh.tets)
-    volume_.push_back(signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]));
+    volume_.push_back(
+        signed_volume(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]], mesh.rest[t[3]]));
 }
 
 void SmoothedPolarExtractor::extract(const std::vector<Vec3>& positions,
@@ -24,8 +25,8 @@ void SmoothedPolarExtractor::extract(const std::vector<Vec3>& positions,
   std::vector<Eigen::Vector4d> q(nt), averaged(nt);
 #pragma omp parallel for schedule(static) num_threads(threads_for(nt))
   for (int e = 0; e < nt; ++e) {
-    const Mat3 r = polar_rotation(deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]),
-                                  rotations[e]);
+    const Mat3 r = polar_rotation(
+        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e]);
     q[e] = to_quaternion(r).coeffs();  // (x, y, z, w)
   }
   for (int pass = 0; pass < params_.smoothing_passes; ++pass) {

@@ -22,8 +22,8 @@ void InversionAwareSvdExtractor::extract(const std::vector<Vec3>& positions,
   stats_.iterations.assign(mesh_.tets.size(), 0);
 #pragma omp parallel for schedule(static) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e)
-    rotations[e] = rotation_factor(
-        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]));
+    rotations[e] =
+        rotation_factor(deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]));
 }
 
 }  // namespace corofem

@@ -18,15 +18,17 @@ MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_
   const double factor = std::ldexp(1.0, doublings);
   switch (spec.kind) {
     case MeshSpec::Kind::File:
-      throw InputError("scene '" + scene_name + "': multigrid level " + std::to_string(h) +
-                       " needs a coarse mesh: a mesh file cannot be re-meshed, so mesh.levels must "
-                       "give one per level below the fine one (or use analysis.hierarchy 'lattice')");
+      throw InputError(
+          "scene '" + scene_name + "': multigrid level " + std::to_string(h) +
+          " needs a coarse mesh: a mesh file cannot be re-meshed, so mesh.levels must "
+          "give one per level below the fine one (or use analysis.hierarchy 'lattice')");
     case MeshSpec::Kind::Surface:
     case MeshSpec::Kind::Quadruped:
       spec.size *= factor;
       break;
     case MeshSpec::Kind::Box:
-      for (int& n : spec.cells) n = std::max(std::min(n, 2), static_cast<int>(std::ceil(n / factor)));
+      for (int& n : spec.cells)
+        n = std::max(std::min(n, 2), static_cast<int>(std::ceil(n / factor)));
       break;
   }
   return spec;

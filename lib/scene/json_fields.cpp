@@ -11,19 +11,24 @@ namespace {
   throw InputError("scene '" + file + "': " + path + " " + what);
 }
 /// Nonzero and below the smallest normal double: arithmetic on it is slow and loses digits.
-bool is_denormal(double x) { return x != 0 && std::abs(x) < std::numeric_limits<double>::min(); }
+bool is_denormal(double x) {
+  return x != 0 && std::abs(x) < std::numeric_limits<double>::min();
+}
 }  // namespace
 
 JsonFields::JsonFields(const nlohmann::json& object, std::string path, std::string file)
     : object_(object), path_(std::move(path)), file_(std::move(file)) {
-  if (!object_.is_object()) error(file_, path_.empty() ? "(top level)" : path_, "must be an object");
+  if (!object_.is_object())
+    error(file_, path_.empty() ? "(top level)" : path_, "must be an object");
 }
 
 std::string JsonFields::path_of(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }
 
-bool JsonFields::has(const std::string& key) const { return object_.contains(key); }
+bool JsonFields::has(const std::string& key) const {
+  return object_.contains(key);
+}
 
 const nlohmann::json* JsonFields::get(const std::string& key) {
   known_.insert(key);
@@ -43,7 +48,8 @@ JsonFields JsonFields::object(const std::string& key) {
 
 /// The value at key; nullptr when it is missing and a fallback exists, an error when not.
 template <class T>
-const nlohmann::json* JsonFields::value_or_fallback(const std::string& key, const std::optional<T>& fallback) {
+const nlohmann::json* JsonFields::value_or_fallback(const std::string& key,
+                                                    const std::optional<T>& fallback) {
   const nlohmann::json* v = get(key);
   if (!v && !fallback) error(file_, path_of(key), "is required");
   return v;
@@ -55,7 +61,8 @@ double JsonFields::number(const std::string& key, std::optional<double> fallback
   if (!v->is_number()) error(file_, path_of(key), "must be a number");
   const double d = v->get<double>();
   if (!std::isfinite(d)) error(file_, path_of(key), "must be finite");
-  if (is_denormal(d)) error(file_, path_of(key), "must not be a denormal number (0 < |x| < 2.2e-308)");
+  if (is_denormal(d))
+    error(file_, path_of(key), "must not be a denormal number (0 < |x| < 2.2e-308)");
   return d;
 }
 
@@ -104,7 +111,8 @@ Vec3 json_vec3(const nlohmann::json& value, const std::string& path, const std::
     if (!value[i].is_number()) error(file, path, "must be an array of 3 numbers");
     v[i] = value[i].get<double>();
     if (!std::isfinite(v[i])) error(file, path, "must contain finite numbers");
-    if (is_denormal(v[i])) error(file, path, "must not contain a denormal number (0 < |x| < 2.2e-308)");
+    if (is_denormal(v[i]))
+      error(file, path, "must not contain a denormal number (0 < |x| < 2.2e-308)");
   }
   return v;
 }

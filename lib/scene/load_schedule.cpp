@@ -10,7 +10,8 @@ namespace corofem {
 
 LoadSchedule::LoadSchedule(const Scene& scene, const FeProblem& problem)
     : gravity_(Eigen::VectorXd::Zero(problem.num_dofs())), supports_(problem.dirichlet) {
-  if (scene.gravity.norm() > 0) gravity_ = gravity_load(problem.mesh, problem.materials, scene.gravity);
+  if (scene.gravity.norm() > 0)
+    gravity_ = gravity_load(problem.mesh, problem.materials, scene.gravity);
   for (const ForceSpec& force : scene.forces) {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(problem.num_dofs());
     add_spread_force(f, vertices_in_box(problem.mesh.rest, force.box), force.total);
@@ -30,7 +31,8 @@ LoadSchedule::LoadSchedule(const Scene& scene, const FeProblem& problem)
 void LoadSchedule::apply(int step, FeProblem& problem) const {
   problem.external_force = gravity_;
   for (std::size_t i = 0; i < forces_.size(); ++i)
-    if (const double s = force_timing_[i].factor(step); s != 0) problem.external_force += s * forces_[i];
+    if (const double s = force_timing_[i].factor(step); s != 0)
+      problem.external_force += s * forces_[i];
   problem.dirichlet = supports_;
   for (std::size_t i = 0; i < moves_.size(); ++i) {
     const MoveSpec& move = moves_[i];
@@ -41,15 +43,16 @@ void LoadSchedule::apply(int step, FeProblem& problem) const {
         Eigen::AngleAxisd(s * move.degrees * std::numbers::pi / 180, move.axis).toRotationMatrix();
     for (int v : move_vertices_[i]) {
       const Vec3& x = problem.mesh.rest[v];
-      problem.dirichlet.fix_vertex(v, s * move.translate + (rotation - Mat3::Identity()) * (x - move.center));
+      problem.dirichlet.fix_vertex(
+          v, s * move.translate + (rotation - Mat3::Identity()) * (x - move.center));
     }
   }
 }
 
 DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem) {
   const AnalysisSpec& a = scene.analysis;
-  DynamicOptions options{a.formulation == "corotational", a.dt, a.steps, a.rayleigh_alpha,
-                         a.rayleigh_beta, {}};
+  DynamicOptions options{
+      a.formulation == "corotational", a.dt, a.steps, a.rayleigh_alpha, a.rayleigh_beta, {}};
   options.newton = a.integrator == "newton";
   options.newton_settings.tolerance = a.tolerance;
   options.newton_settings.max_iterations = a.max_iterations;

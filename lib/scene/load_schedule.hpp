@@ -19,11 +19,11 @@ class LoadSchedule {
 
  private:
   Eigen::VectorXd gravity_;
-  std::vector<Eigen::VectorXd> forces_;      ///< each at full strength
+  std::vector<Eigen::VectorXd> forces_;  ///< each at full strength
   std::vector<LoadTiming> force_timing_;
   std::vector<MoveSpec> moves_;
   std::vector<std::vector<int>> move_vertices_;
-  DirichletConditions supports_;             ///< the scene's fixed boxes
+  DirichletConditions supports_;  ///< the scene's fixed boxes
 };
 
 /// The scene's analysis as DynamicOptions, with before_step driving a LoadSchedule. Applies step

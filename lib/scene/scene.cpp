@@ -8,9 +8,9 @@
 
 #include "core/errors.hpp"
 #include "core/memory_usage.hpp"
+#include "linalg/linear_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/json_fields.hpp"
-#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 namespace fs = std::filesystem;
@@ -20,16 +20,16 @@ namespace {
 // Ranges of scene numbers (README, "Scene limits"). Within them every product a run forms
 // (stiffness ~ E L, mass ~ rho L^3, M / dt^2, rho g L^3, forces over areas) stays between 1e-100
 // and 1e100, far from a double's range, however absurd the combination.
-constexpr double kMaxLength = 1e9;      // every coordinate, extent, size, translation, centre
-constexpr double kMinLength = 1e-9;     // extents and mesh sizes
-constexpr double kMinMaterial = 1e-9;   // young, density
-constexpr double kMaxYoung = 1e15;      // Pa: diamond is 1.2e12
+constexpr double kMaxLength = 1e9;     // every coordinate, extent, size, translation, centre
+constexpr double kMinLength = 1e-9;    // extents and mesh sizes
+constexpr double kMinMaterial = 1e-9;  // young, density
+constexpr double kMaxYoung = 1e15;     // Pa: diamond is 1.2e12
 constexpr double kMaxDensity = 1e9;
 constexpr double kMaxAcceleration = 1e9;  // gravity components
 constexpr double kMaxForce = 1e18;        // forces[].total components
 constexpr double kMinDt = 1e-9, kMaxDt = 1e6;
-constexpr double kMaxDamping = 1e9;       // rayleigh alpha (1/s) and beta (s)
-constexpr double kMinTolerance = 1e-15;   // below this no double residual gets
+constexpr double kMaxDamping = 1e9;      // rayleigh alpha (1/s) and beta (s)
+constexpr double kMinTolerance = 1e-15;  // below this no double residual gets
 
 std::string number_text(double x) {
   std::ostringstream text;
@@ -37,17 +37,21 @@ std::string number_text(double x) {
   return text.str();
 }
 
-std::string range_text(double lo, double hi) { return "in [" + number_text(lo) + ", " + number_text(hi) + "]"; }
+std::string range_text(double lo, double hi) {
+  return "in [" + number_text(lo) + ", " + number_text(hi) + "]";
+}
 
 /// A number key with its fallback, required to lie in [lo, hi].
-double number_in(JsonFields& f, const std::string& key, std::optional<double> fallback, double lo, double hi) {
+double number_in(JsonFields& f, const std::string& key, std::optional<double> fallback, double lo,
+                 double hi) {
   const double value = f.number(key, fallback);
   if (!(value >= lo && value <= hi)) f.fail(key, range_text(lo, hi));
   return value;
 }
 
 /// [x, y, z] with every |component| <= bound.
-Vec3 vec3_within(JsonFields& f, const std::string& key, std::optional<Vec3> fallback, double bound) {
+Vec3 vec3_within(JsonFields& f, const std::string& key, std::optional<Vec3> fallback,
+                 double bound) {
   const Vec3 v = f.vec3(key, fallback);
   if (!(v.cwiseAbs().maxCoeff() <= bound)) f.fail(key, "3 numbers within +-" + number_text(bound));
   return v;
@@ -58,9 +62,11 @@ AxisBox read_box(const nlohmann::json& value, const std::string& path, const std
     throw InputError("scene '" + file + "': " + path + " must be [[x0,y0,z0],[x1,y1,z1]]");
   AxisBox box{json_vec3(value[0], path + "[0]", file), json_vec3(value[1], path + "[1]", file)};
   if (!(std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()) <= kMaxLength))
-    throw InputError("scene '" + file + "': " + path + " must have coordinates within +-" + number_text(kMaxLength));
+    throw InputError("scene '" + file + "': " + path + " must have coordinates within +-" +
+                     number_text(kMaxLength));
   if ((box.lo.array() > box.hi.array()).any())
-    throw InputError("scene '" + file + "': " + path + " has a lower corner above its upper corner");
+    throw InputError("scene '" + file + "': " + path +
+                     " has a lower corner above its upper corner");
   return box;
 }
 
@@ -71,7 +77,8 @@ void for_each_entry(JsonFields& parent, const std::string& key, F&& read) {
   if (!list->is_array())
     throw InputError("scene '" + parent.file() + "': " + parent.path_of(key) + " must be an array");
   for (std::size_t i = 0; i < list->size(); ++i)
-    read(JsonFields((*list)[i], parent.path_of(key) + "[" + std::to_string(i) + "]", parent.file()));
+    read(
+        JsonFields((*list)[i], parent.path_of(key) + "[" + std::to_string(i) + "]", parent.file()));
 }
 
 std::string one_of(JsonFields& f, const std::string& key, const std::string& fallback,
@@ -88,10 +95,12 @@ MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
   MeshSpec m;
   m.reorder = f.boolean("reorder", false);
   if (!coarse)
-    for_each_entry(f, "levels", [&](JsonFields level) { m.levels.push_back(read_mesh(level, base, true)); });
+    for_each_entry(f, "levels",
+                   [&](JsonFields level) { m.levels.push_back(read_mesh(level, base, true)); });
   const int sources = f.has("file") + f.has("surface") + f.has("box") + f.has("shape");
   if (sources != 1)
-    f.fail("file", "given alone: a mesh is exactly one of file, surface+size, box+cells, shape+size");
+    f.fail("file",
+           "given alone: a mesh is exactly one of file, surface+size, box+cells, shape+size");
   if (f.has("file")) {
     m.kind = MeshSpec::Kind::File;
     m.path = base / f.string("file");
@@ -104,8 +113,10 @@ MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
       one_of(f, "shape", "", {"quadruped"});
     }
     m.size = number_in(f, "size", std::nullopt, kMinLength, kMaxLength);
-    if (m.kind == MeshSpec::Kind::Quadruped)  // gmsh gives about 2.6 / size^3 tets (11k at 0.062, 67k at 0.033)
-      require_memory_for_tets(2.6 / std::pow(m.size, 3), "scene '" + f.file() + "': " + f.path_of("size"));
+    if (m.kind == MeshSpec::Kind::Quadruped)  // gmsh gives about 2.6 / size^3 tets (11k at 0.062,
+                                              // 67k at 0.033)
+      require_memory_for_tets(2.6 / std::pow(m.size, 3),
+                              "scene '" + f.file() + "': " + f.path_of("size"));
   } else {
     m.kind = MeshSpec::Kind::Box;
     m.box = f.vec3("box");
@@ -128,7 +139,8 @@ MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
 }
 
 void check_material(JsonFields& f, const std::string& key, double value) {
-  if (key == "young" && !(value >= kMinMaterial && value <= kMaxYoung)) f.fail(key, range_text(kMinMaterial, kMaxYoung));
+  if (key == "young" && !(value >= kMinMaterial && value <= kMaxYoung))
+    f.fail(key, range_text(kMinMaterial, kMaxYoung));
   if (key == "poisson" && !(value > -1 && value < 0.5)) f.fail(key, "in (-1, 0.5)");
   if (key == "density" && !(value >= kMinMaterial && value <= kMaxDensity))
     f.fail(key, range_text(kMinMaterial, kMaxDensity));
@@ -149,8 +161,9 @@ void read_material(JsonFields f, Scene& s) {
       if (!r.has(key)) continue;
       const double v = r.number(key);
       check_material(r, key, v);
-      (std::string(key) == "young" ? region.young
-                                   : std::string(key) == "poisson" ? region.poisson : region.density) = v;
+      (std::string(key) == "young"     ? region.young
+       : std::string(key) == "poisson" ? region.poisson
+                                       : region.density) = v;
     }
     r.reject_unknown_keys();
     s.regions.push_back(region);
@@ -172,14 +185,17 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.integrator = one_of(f, "integrator", a.integrator, {"linear-implicit", "newton"});
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
-  a.galerkin = one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse", "gather"});
+  a.galerkin =
+      one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse", "gather"});
   a.hierarchy = one_of(f, "hierarchy", a.hierarchy, {"meshes", "lattice"});
   const bool multigrid = is_multigrid_solver(a.solver);
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
-  a.coarsest_max_vertices = integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
+  a.coarsest_max_vertices =
+      integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  a.smoother = one_of(f, "smoother", a.smoother, {"sequential", "multicolour", "domains", "hybrid"});
+  a.smoother =
+      one_of(f, "smoother", a.smoother, {"sequential", "multicolour", "domains", "hybrid"});
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);
@@ -188,7 +204,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.setup_reuse = f.boolean("setup_reuse", a.setup_reuse);
   if (a.setup_reuse && !is_library_amg(a.solver))
     std::cerr << "corofem: warning: scene '" << f.file() << "': " << f.path_of("setup_reuse")
-              << " belongs to petsc-gamg and hypre-boomeramg; ignored with solver '" << a.solver << "'\n";
+              << " belongs to petsc-gamg and hypre-boomeramg; ignored with solver '" << a.solver
+              << "'\n";
   if (const nlohmann::json* damping = f.get("rayleigh")) {
     JsonFields d(*damping, f.path_of("rayleigh"), f.file());
     a.rayleigh_alpha = number_in(d, "alpha", 0.0, 0.0, kMaxDamping);
@@ -199,9 +216,11 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     JsonFields r(*params, f.path_of("rotation_params"), f.file());
     RotationParams& p = a.rotation_params;
     p.newton_tolerance = number_in(r, "newton_tolerance", p.newton_tolerance, kMinTolerance, 0.5);
-    p.newton_max_iterations = integer_in(r, "newton_max_iterations", p.newton_max_iterations, 1, 100);
+    p.newton_max_iterations =
+        integer_in(r, "newton_max_iterations", p.newton_max_iterations, 1, 100);
     p.mueller_iterations = integer_in(r, "mueller_iterations", p.mueller_iterations, 1, 200);
-    p.mueller_tolerance = number_in(r, "mueller_tolerance", p.mueller_tolerance, kMinTolerance, 0.5);
+    p.mueller_tolerance =
+        number_in(r, "mueller_tolerance", p.mueller_tolerance, kMinTolerance, 0.5);
     p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
     r.reject_unknown_keys();
   }
@@ -278,7 +297,8 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
   if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == "meshes" && !remeshable)
-    throw InputError("scene '" + name + "': analysis.hierarchy 'meshes' needs mesh.levels for a "
+    throw InputError("scene '" + name +
+                     "': analysis.hierarchy 'meshes' needs mesh.levels for a "
                      "mesh read from a file (it cannot be re-meshed); or use 'lattice'");
   if (const nlohmann::json* output = top.get("output")) {
     JsonFields o(*output, "output", name);

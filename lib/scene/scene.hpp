@@ -20,7 +20,7 @@ struct MeshSpec {
   double size = 0;             ///< Surface, Quadruped: gmsh Mesh.MeshSizeMax
   Vec3 box = Vec3::Ones();     ///< Box: extents
   std::array<int, 3> cells{1, 1, 1};
-  bool reorder = false;        ///< sort vertices and tets for locality (mesh/locality_order.hpp)
+  bool reorder = false;  ///< sort vertices and tets for locality (mesh/locality_order.hpp)
   /// Coarser meshes of the same body for the multigrid hierarchy, finest first (`mesh.levels`);
   /// levels beyond them are re-meshed (scene/coarse_meshes.hpp).
   std::vector<MeshSpec> levels;
@@ -53,8 +53,8 @@ struct MoveSpec {
 };
 
 /// The `analysis` keys that belong to the multigrid solvers (ignored, with a warning, by others).
-inline constexpr const char* kMultigridAnalysisKeys[] = {"levels", "vcycles", "smoothing", "galerkin",
-                                                         "hierarchy", "smoother", "coarsest_max_vertices"};
+inline constexpr const char* kMultigridAnalysisKeys[] = {
+    "levels", "vcycles", "smoothing", "galerkin", "hierarchy", "smoother", "coarsest_max_vertices"};
 
 /// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
 inline bool is_multigrid_solver(const std::string& solver) {
@@ -68,18 +68,21 @@ inline bool is_library_amg(const std::string& solver) {
 }
 
 /// Solvers through PETSc (and hypre): the ones that distribute their solves under mpirun.
-inline bool is_petsc_solver(const std::string& solver) { return is_library_amg(solver) || solver == "petsc-mg"; }
+inline bool is_petsc_solver(const std::string& solver) {
+  return is_library_amg(solver) || solver == "petsc-mg";
+}
 
 struct AnalysisSpec {
-  std::string type = "static";              ///< static | dynamic
-  std::string formulation = "corotational"; ///< linear | corotational
+  std::string type = "static";               ///< static | dynamic
+  std::string formulation = "corotational";  ///< linear | corotational
   /// linear-implicit (dynamic: one linear solve per step; static: lagged-rotation iterations) |
   /// newton (fully implicit Euler / static Newton with the consistent tangent, sparse LU)
   std::string integrator = "linear-implicit";
-  std::string rotation = "polar";           ///< an extractor name (rotation_method_names())
+  std::string rotation = "polar";  ///< an extractor name (rotation_method_names())
   RotationParams rotation_params;
-  std::string solver = "cholmod";           ///< cholmod | multigrid | mgpcg
-  std::string galerkin = "gather";          ///< naive | stream | stream-full | reuse | gather (multigrid coarse operators)
+  std::string solver = "cholmod";  ///< cholmod | multigrid | mgpcg
+  std::string galerkin =
+      "gather";  ///< naive | stream | stream-full | reuse | gather (multigrid coarse operators)
   /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
   /// `mesh.levels` gives them) | lattice (covering Kuhn lattices)
   std::string hierarchy = "lattice";
@@ -87,7 +90,7 @@ struct AnalysisSpec {
   /// Lattice levels below the `levels` ones until the coarsest has at most this many vertices
   /// (0: none); see README "Multigrid"
   int coarsest_max_vertices = 0;
-  int vcycles = 0;          ///< 0: iterate to tolerance
+  int vcycles = 0;  ///< 0: iterate to tolerance
   int smoothing = 1;
   /// Gauss-Seidel ordering: hybrid (the default: l1 Gauss-Seidel in domains, Jacobi across them,
   /// every thread) | domains (exact Gauss-Seidel, boundaries by colours) | sequential (one

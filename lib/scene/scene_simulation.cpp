@@ -12,7 +12,8 @@ namespace corofem {
 namespace {
 
 double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 }  // namespace
@@ -42,10 +43,11 @@ nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) c
 SimulationResult SceneSimulation::run(const std::function<void(const StepState&)>& on_step) {
   const auto start = std::chrono::steady_clock::now();
   const AnalysisSpec& a = scene_.analysis;
-  SimulationResult result =
-      dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
-               : solve_static(problem_, *extractor_, *solver_,
-                              {corotational(), a.load_steps, a.tolerance, a.max_iterations, a.integrator == "newton"});
+  SimulationResult result = dynamic_
+                                ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
+                                : solve_static(problem_, *extractor_, *solver_,
+                                               {corotational(), a.load_steps, a.tolerance,
+                                                a.max_iterations, a.integrator == "newton"});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

@@ -1,12 +1,13 @@
 #include "scene/solver_factory.hpp"
 
-#include "solver/petsc_solver.hpp"
 #include "linalg/preconditioned_cg.hpp"
+#include "solver/petsc_solver.hpp"
 
 namespace corofem {
 
 std::vector<std::string> linear_solver_names() {
-  return {"cholmod", "multigrid", "mgpcg", "jacobi-pcg", "petsc-gamg", "hypre-boomeramg", "petsc-mg"};
+  return {"cholmod",    "multigrid",       "mgpcg",   "jacobi-pcg",
+          "petsc-gamg", "hypre-boomeramg", "petsc-mg"};
 }
 
 MultigridParams multigrid_params(const AnalysisSpec& a) {
@@ -29,13 +30,15 @@ std::vector<char> fixed_vertices(const DirichletConditions& bc) {
   return fixed;
 }
 
-std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a, const FeProblem& problem,
+std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a,
+                                                       const FeProblem& problem,
                                                        const std::vector<TetMesh>& coarse_meshes,
                                                        bool as_preconditioner) {
   const MultigridParams params = multigrid_params(a);
   return std::make_unique<MultigridSolver>(
       problem.stiffness,
-      build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy, coarse_meshes),
+      build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy,
+                      coarse_meshes),
       params, as_preconditioner);
 }
 
@@ -46,11 +49,13 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
   if (is_library_amg(a.solver))
     return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000, {}, 1, a.setup_reuse);
   if (a.solver == "petsc-mg") {  // PETSc's own multigrid on our hierarchy's transfers
-    if (!have_petsc()) return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);  // says why
+    if (!have_petsc())
+      return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);  // says why
     const MultigridParams params = multigrid_params(a);
     return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000,
-                             build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy,
-                                             coarse_meshes).transfers,
+                             build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet),
+                                             params.hierarchy, coarse_meshes)
+                                 .transfers,
                              a.smoothing);
   }
   return make_multigrid_solver(a, problem, coarse_meshes, a.solver == "mgpcg");

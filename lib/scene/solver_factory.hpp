@@ -11,7 +11,8 @@ MultigridParams multigrid_params(const AnalysisSpec& analysis);
 
 /// The analysis's solver for the problem's pattern, rest positions and supports. Multigrid on the
 /// meshes hierarchy takes its levels from `coarse_meshes` (scene/coarse_meshes.hpp).
-std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& analysis, const FeProblem& problem,
+std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& analysis,
+                                                 const FeProblem& problem,
                                                  const std::vector<TetMesh>& coarse_meshes = {});
 
 /// Multigrid (V-cycles, or the preconditioner of CG) on the analysis's hierarchy.

@@ -29,9 +29,10 @@ MpiLaunch mpi_launch() {
     const int announced = launcher_size();
     if (announced == 1) return l;
 #ifndef COROFEM_HAVE_PETSC
-    throw InputError("launched on " + std::to_string(announced) +
-                     " MPI ranks, but this build of corofem has no PETSc and so no MPI (install petsc-dev, as "
-                     "ci/setup does, and rebuild)");
+    throw InputError(
+        "launched on " + std::to_string(announced) +
+        " MPI ranks, but this build of corofem has no PETSc and so no MPI (install petsc-dev, as "
+        "ci/setup does, and rebuild)");
 #else
     petsc::ensure_session();
     MPI_Comm_rank(PETSC_COMM_WORLD, &l.rank);

@@ -17,8 +17,12 @@ PetscPtapHierarchy::PetscPtapHierarchy(const BrcMatrix&, const std::vector<Trans
 }
 PetscPtapHierarchy::~PetscPtapHierarchy() = default;
 void PetscPtapHierarchy::update(const BrcMatrix&) {}
-int PetscPtapHierarchy::num_levels() const { return 0; }
-Eigen::SparseMatrix<double> PetscPtapHierarchy::level(int) const { return {}; }
+int PetscPtapHierarchy::num_levels() const {
+  return 0;
+}
+Eigen::SparseMatrix<double> PetscPtapHierarchy::level(int) const {
+  return {};
+}
 
 #else
 
@@ -35,7 +39,8 @@ struct PetscPtapHierarchy::Impl {
   bool symbolic_done = false;
 };
 
-PetscPtapHierarchy::PetscPtapHierarchy(const BrcMatrix& fine_pattern, const std::vector<Transfer>& transfers)
+PetscPtapHierarchy::PetscPtapHierarchy(const BrcMatrix& fine_pattern,
+                                       const std::vector<Transfer>& transfers)
     : impl_(std::make_unique<Impl>(fine_pattern)) {
   for (const Transfer& t : transfers) impl_->prolongations.push_back(petsc::prolongation(t));
   impl_->coarse.assign(transfers.size(), nullptr);
@@ -48,19 +53,23 @@ void PetscPtapHierarchy::update(const BrcMatrix& a) {
   const MatReuse reuse = impl_->symbolic_done ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
   Mat previous = impl_->fine.mat();
   for (std::size_t h = 0; h < impl_->coarse.size(); ++h) {
-    petsc::check(MatPtAP(previous, impl_->prolongations[h], reuse, PETSC_DEFAULT, &impl_->coarse[h]), "MatPtAP");
+    petsc::check(
+        MatPtAP(previous, impl_->prolongations[h], reuse, PETSC_DEFAULT, &impl_->coarse[h]),
+        "MatPtAP");
     previous = impl_->coarse[h];
   }
   impl_->symbolic_done = true;
 }
 
-int PetscPtapHierarchy::num_levels() const { return 1 + static_cast<int>(impl_->coarse.size()); }
+int PetscPtapHierarchy::num_levels() const {
+  return 1 + static_cast<int>(impl_->coarse.size());
+}
 
 Eigen::SparseMatrix<double> PetscPtapHierarchy::level(int h) const {
   const Mat m = h == 0 ? impl_->fine.mat() : impl_->coarse[h - 1];
   PetscInt rows = 0, cols = 0;
   petsc::check(MatGetSize(m, &rows, &cols), "MatGetSize");
-  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<Eigen::Triplet<double> > triplets;
   for (PetscInt r = 0; r < rows; ++r) {
     PetscInt count = 0;
     const PetscInt* columns = nullptr;

@@ -14,18 +14,23 @@ namespace corofem {
 
 #ifndef COROFEM_HAVE_PETSC
 
-bool have_petsc() { return false; }
+bool have_petsc() {
+  return false;
+}
 
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&, double, int,
-                                                std::vector<Transfer>, int, bool) {
-  throw InputError("analysis.solver '" + kind +
-                   "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
-                   "libhypre-dev, as ci/setup does, and rebuild)");
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&,
+                                                double, int, std::vector<Transfer>, int, bool) {
+  throw InputError(
+      "analysis.solver '" + kind +
+      "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
+      "libhypre-dev, as ci/setup does, and rebuild)");
 }
 
 #else
 
-bool have_petsc() { return true; }
+bool have_petsc() {
+  return true;
+}
 
 namespace {
 
@@ -35,8 +40,13 @@ class PetscSolver : public LinearSolver {
  public:
   PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations,
               std::vector<Transfer> transfers, int smoothing, bool setup_reuse)
-      : kind_(std::move(kind)), rest_(rest), tolerance_(tolerance), max_iterations_(max_iterations),
-        transfers_(std::move(transfers)), smoothing_(smoothing), setup_reuse_(setup_reuse) {
+      : kind_(std::move(kind)),
+        rest_(rest),
+        tolerance_(tolerance),
+        max_iterations_(max_iterations),
+        transfers_(std::move(transfers)),
+        smoothing_(smoothing),
+        setup_reuse_(setup_reuse) {
     petsc::ensure_session();
     comm_ = PETSC_COMM_WORLD;
     MPI_Comm_size(comm_, &ranks_);
@@ -66,8 +76,10 @@ class PetscSolver : public LinearSolver {
     const petsc::OwnedBlocks& own = a_->rows();
     const PetscInt n = static_cast<PetscInt>(b.size()), local = 3 * own.size();
     Vec vb, vx;
-    check(VecCreateMPIWithArray(comm_, 3, local, n, b.data() + 3 * own.begin, &vb), "VecCreateMPIWithArray");
-    check(VecCreateMPIWithArray(comm_, 3, local, n, x.data() + 3 * own.begin, &vx), "VecCreateMPIWithArray");
+    check(VecCreateMPIWithArray(comm_, 3, local, n, b.data() + 3 * own.begin, &vb),
+          "VecCreateMPIWithArray");
+    check(VecCreateMPIWithArray(comm_, 3, local, n, x.data() + 3 * own.begin, &vx),
+          "VecCreateMPIWithArray");
     const PetscErrorCode solved = KSPSolve(ksp_, vb, vx);
     VecDestroy(&vb);
     VecDestroy(&vx);
@@ -81,9 +93,11 @@ class PetscSolver : public LinearSolver {
     check(KSPGetResidualNorm(ksp_, &residual), "KSPGetResidualNorm");
     stats.iterations = static_cast<int>(iterations);
     stats.residual = residual / b_norm;
-    if (!std::isfinite(stats.residual)) throw NumericalFault(kind_ + ": residual became non-finite");
+    if (!std::isfinite(stats.residual))
+      throw NumericalFault(kind_ + ": residual became non-finite");
     if (reason < 0 && reason != KSP_DIVERGED_ITS)
-      throw NumericalFault(kind_ + ": PETSc's CG stopped (KSPConvergedReason " + std::to_string(reason) + ")");
+      throw NumericalFault(kind_ + ": PETSc's CG stopped (KSPConvergedReason " +
+                           std::to_string(reason) + ")");
     require_converged(stats, tolerance_, kind_, "CG iterations");
     return stats;
   }
@@ -96,10 +110,11 @@ class PetscSolver : public LinearSolver {
     std::vector<int> counts(ranks_), starts(ranks_);
     for (int r = 0; r < ranks_; ++r) {
       starts[r] = static_cast<int>(3 * petsc::share_start(a_->rows().count, r, ranks_));
-      counts[r] = static_cast<int>(3 * petsc::share_start(a_->rows().count, r + 1, ranks_)) - starts[r];
+      counts[r] =
+          static_cast<int>(3 * petsc::share_start(a_->rows().count, r + 1, ranks_)) - starts[r];
     }
-    if (MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, x.data(), counts.data(), starts.data(), MPI_DOUBLE,
-                       comm_) != MPI_SUCCESS)
+    if (MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, x.data(), counts.data(), starts.data(),
+                       MPI_DOUBLE, comm_) != MPI_SUCCESS)
       throw NumericalFault(kind_ + ": MPI_Allgatherv of the solution failed");
   }
 
@@ -135,7 +150,9 @@ class PetscSolver : public LinearSolver {
     const auto option = [&](const std::string& key, const char* value) {
       PetscBool set = PETSC_FALSE;  // the user's PETSC_OPTIONS win
       check(PetscOptionsHasName(nullptr, prefix.c_str(), key.c_str(), &set), "PetscOptionsHasName");
-      if (!set) check(PetscOptionsSetValue(nullptr, ("-" + prefix + key.substr(1)).c_str(), value), "PetscOptionsSetValue");
+      if (!set)
+        check(PetscOptionsSetValue(nullptr, ("-" + prefix + key.substr(1)).c_str(), value),
+              "PetscOptionsSetValue");
     };
     if (mg) {
       // PETSc numbers the levels from the coarsest (0); ours from the finest. Level l's
@@ -187,7 +204,8 @@ class PetscSolver : public LinearSolver {
   }
 
   std::string kind_;
-  MPI_Comm comm_ = MPI_COMM_NULL;  ///< PETSC_COMM_WORLD: one rank, or the ranks of mpirun (solver/mpi_launch.hpp)
+  MPI_Comm comm_ = MPI_COMM_NULL;  ///< PETSC_COMM_WORLD: one rank, or the ranks of mpirun
+                                   ///< (solver/mpi_launch.hpp)
   int ranks_ = 1;
   std::vector<Vec3> rest_;
   double tolerance_;
@@ -202,11 +220,13 @@ class PetscSolver : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind,
+                                                const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
-                                                std::vector<Transfer> transfers, int smoothing, bool setup_reuse) {
-  return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations, std::move(transfers),
-                                       smoothing, setup_reuse);
+                                                std::vector<Transfer> transfers, int smoothing,
+                                                bool setup_reuse) {
+  return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations,
+                                       std::move(transfers), smoothing, setup_reuse);
 }
 
 #endif

@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "linalg/linear_solver.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "multigrid/transfer.hpp"
-#include "linalg/linear_solver.hpp"
 
 namespace corofem {
 
@@ -31,9 +31,10 @@ bool have_petsc();
 
 /// `kind`: "petsc-gamg", "hypre-boomeramg" or "petsc-mg" (with the hierarchy's `transfers`, finest
 /// first). Throws InputError naming analysis.solver when this build has no PETSc.
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>& rest_positions,
+std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind,
+                                                const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
-                                                std::vector<Transfer> transfers = {}, int smoothing = 1,
-                                                bool setup_reuse = false);
+                                                std::vector<Transfer> transfers = {},
+                                                int smoothing = 1, bool setup_reuse = false);
 
 }  // namespace corofem

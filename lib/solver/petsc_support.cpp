@@ -7,7 +7,9 @@
 namespace corofem::petsc {
 
 void check(PetscErrorCode code, const char* what) {
-  if (code != 0) throw NumericalFault(std::string("PETSc: ") + what + " failed (error " + std::to_string(code) + ")");
+  if (code != 0)
+    throw NumericalFault(std::string("PETSc: ") + what + " failed (error " + std::to_string(code) +
+                         ")");
 }
 
 namespace {
@@ -27,20 +29,24 @@ class Session {
 /// An AIJ matrix of block size 3 on `comm` with this rank's rows of `rows` and columns split as
 /// `cols`, its pattern from the (global) coordinates i, j of its entries; values come later, in
 /// the same order, through MatSetValuesCOO (one path for one rank and for many).
-Mat aij_from_coo(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols, std::vector<PetscInt> i,
-                 std::vector<PetscInt> j) {
+Mat aij_from_coo(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols,
+                 std::vector<PetscInt> i, std::vector<PetscInt> j) {
   Mat m = nullptr;
   check(MatCreate(comm, &m), "MatCreate");
-  check(MatSetSizes(m, 3 * rows.size(), 3 * cols.size(), 3 * rows.count, 3 * cols.count), "MatSetSizes");
+  check(MatSetSizes(m, 3 * rows.size(), 3 * cols.size(), 3 * rows.count, 3 * cols.count),
+        "MatSetSizes");
   check(MatSetType(m, MATAIJ), "MatSetType");
   check(MatSetBlockSize(m, 3), "MatSetBlockSize");
-  check(MatSetPreallocationCOO(m, static_cast<PetscCount>(i.size()), i.data(), j.data()), "MatSetPreallocationCOO");
+  check(MatSetPreallocationCOO(m, static_cast<PetscCount>(i.size()), i.data(), j.data()),
+        "MatSetPreallocationCOO");
   return m;
 }
 
 }  // namespace
 
-void ensure_session() { static Session session; }
+void ensure_session() {
+  static Session session;
+}
 
 PetscInt share_start(PetscInt count, int rank, int size) {
   return static_cast<PetscInt>(static_cast<long long>(count) * rank / size);

@@ -26,6 +26,8 @@ bool set_vector_block_kernels(bool on) {
   return previous;
 }
 
-const char* block_kernels_name() { return vector_block_kernels() ? "avx2-fma" : "scalar"; }
+const char* block_kernels_name() {
+  return vector_block_kernels() ? "avx2-fma" : "scalar";
+}
 
 }  // namespace corofem

@@ -12,14 +12,12 @@
 // is the portable one. The two sum in different orders, so they agree to round-off, not in bits;
 // every caller uses one form in a process (its bits then do not depend on the threads).
 // The Galerkin stream's scatter likewise: 9 scalar multiply-adds a pair against 2 4-wide FMAs
-// and one scalar (the dragon's update, Galerkin part, 13.9 -> 8.8 ms at 1 thread, 7.8 -> 5.3 ms
-// at 2). The FMA rounds once where the scalar form rounds twice: round-off again.
+// and one scalar (the update's Galerkin part is bound by those instructions). The FMA rounds once
+// where the scalar form rounds twice: round-off again.
 // The Gauss-Seidel sweeps read values stored a few rows before: there x_j is put together from
 // 8-byte loads, because one 4-wide load over three 8-byte stores still in flight cannot be
-// forwarded from them (that form ran the 2-thread sweeps at 0.7x the scalar ones). In the
-// dragon's step (MG-PCG, 3 levels, medians of 3 alternated runs at 2 threads) the AVX2 sweeps
-// take the fine smoothing from 10.7 to 8.7 ms and the coarse levels from 6.9 to 5.0 ms per
-// solve; BM_BlockKernels' isolated fine sweeps gain less (1.1-1.2x at 1 thread, none at 2).
+// forwarded from them (that form was slower than the scalar sweeps). The sweeps gain more inside
+// the step, where their rows are partly cached, than in BM_BlockKernels' isolated sweeps.
 #include <cstddef>
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -33,7 +31,9 @@ namespace detail {
 extern bool vector_block_kernels_on;
 }
 /// Whether the block passes use the AVX2/FMA form (this CPU has it, and it is not switched off).
-inline bool vector_block_kernels() { return detail::vector_block_kernels_on; }
+inline bool vector_block_kernels() {
+  return detail::vector_block_kernels_on;
+}
 /// Switches the AVX2 form off (false) or back on where the CPU has it; for tests and
 /// comparisons. Returns the previous setting.
 bool set_vector_block_kernels(bool on);
@@ -45,8 +45,8 @@ const char* block_kernels_name();
 /// streams the matrix downwards, as the hardware prefetchers expect). Scalar form: each row's
 /// three terms summed left to right, block by block.
 template <bool Backward, class Source>
-inline void block_row_sum_scalar(const int* col, const double* v, int begin, int end, const Source& source,
-                                 double s[3]) {
+inline void block_row_sum_scalar(const int* col, const double* v, int begin, int end,
+                                 const Source& source, double s[3]) {
   double s0 = 0, s1 = 0, s2 = 0;
   for (int n = begin; n < end; ++n) {
     const int k = Backward ? end - 1 - (n - begin) : n;
@@ -68,15 +68,18 @@ inline void block_row_sum_scalar(const int* col, const double* v, int begin, int
 /// Backward: the blocks from end - 1 down; Fresh: x holds values stored a few rows before (a
 /// sweep), so x_j is put together from 8-byte loads, which the stores can forward to.
 template <bool Backward = false, bool Fresh = false, class Source>
-__attribute__((target("avx2,fma"))) inline void block_row_sum_avx2(const int* col, const double* v, int begin,
-                                                                     int end, const Source& source, double s[3]) {
+__attribute__((target("avx2,fma"))) inline void block_row_sum_avx2(const int* col, const double* v,
+                                                                   int begin, int end,
+                                                                   const Source& source,
+                                                                   double s[3]) {
   const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
   __m256d a0 = _mm256_setzero_pd(), a1 = a0, a2 = a0;
   for (int n = begin; n < end; ++n) {
     const int k = Backward ? end - 1 - (n - begin) : n;
     const double* m = v + 9 * static_cast<std::ptrdiff_t>(k);
     const double* xj = source(col[k]);
-    const __m256d x = Fresh ? _mm256_set_pd(0.0, xj[2], xj[1], xj[0]) : _mm256_maskload_pd(xj, first3);
+    const __m256d x =
+        Fresh ? _mm256_set_pd(0.0, xj[2], xj[1], xj[0]) : _mm256_maskload_pd(xj, first3);
     a0 = _mm256_fmadd_pd(_mm256_loadu_pd(m), x, a0);
     a1 = _mm256_fmadd_pd(_mm256_loadu_pd(m + 3), x, a1);
     a2 = _mm256_fmadd_pd(_mm256_maskload_pd(m + 6, first3), x, a2);
@@ -91,9 +94,11 @@ __attribute__((target("avx2,fma"))) inline void block_row_sum_avx2(const int* co
 
 /// The sum in the form chosen for this process (Backward and Fresh as for the AVX2 form).
 template <bool Backward = false, bool Fresh = false, class Source>
-inline void block_row_sum(const int* col, const double* v, int begin, int end, const Source& source, double s[3]) {
+inline void block_row_sum(const int* col, const double* v, int begin, int end, const Source& source,
+                          double s[3]) {
 #ifdef COROFEM_HAVE_AVX2_KERNELS
-  if (vector_block_kernels()) return block_row_sum_avx2<Backward, Fresh>(col, v, begin, end, source, s);
+  if (vector_block_kernels())
+    return block_row_sum_avx2<Backward, Fresh>(col, v, begin, end, source, s);
 #endif
   block_row_sum_scalar<Backward>(col, v, begin, end, source, s);
 }
@@ -101,8 +106,8 @@ inline void block_row_sum(const int* col, const double* v, int begin, int end, c
 /// y_j += A_kj^T x_k over the blocks [begin, end) of row k (columns j): for a symmetric matrix
 /// these are the blocks A_jk = A_kj^T of column k, so a sweep that reads row k can add x_k's
 /// part of (A x)_j for the rows j it will not read again. Scalar form.
-inline void add_transposed_row_scalar(const int* col, const double* v, int begin, int end, const double* xk,
-                                      double* y) {
+inline void add_transposed_row_scalar(const int* col, const double* v, int begin, int end,
+                                      const double* xk, double* y) {
   for (int n = begin; n < end; ++n) {
     const double* m = v + 9 * static_cast<std::ptrdiff_t>(n);
     double* yj = y + 3 * col[n];
@@ -116,10 +121,13 @@ inline void add_transposed_row_scalar(const int* col, const double* v, int begin
 /// The same in AVX2: A^T x as x_0 (row 0) + x_1 (row 1) + x_2 (row 2), three FMAs a block (the
 /// scalar form, with its 9 loads and 3 reductions a block, made the fused sweep slower than a
 /// sweep and a separate product).
-__attribute__((target("avx2,fma"))) inline void add_transposed_row_avx2(const int* col, const double* v, int begin,
-                                                                       int end, const double* xk, double* y) {
+__attribute__((target("avx2,fma"))) inline void add_transposed_row_avx2(const int* col,
+                                                                        const double* v, int begin,
+                                                                        int end, const double* xk,
+                                                                        double* y) {
   const __m256i first3 = _mm256_set_epi64x(0, -1, -1, -1);
-  const __m256d x0 = _mm256_broadcast_sd(xk), x1 = _mm256_broadcast_sd(xk + 1), x2 = _mm256_broadcast_sd(xk + 2);
+  const __m256d x0 = _mm256_broadcast_sd(xk), x1 = _mm256_broadcast_sd(xk + 1),
+                x2 = _mm256_broadcast_sd(xk + 2);
   for (int n = begin; n < end; ++n) {
     const double* m = v + 9 * static_cast<std::ptrdiff_t>(n);
     __m256d t = _mm256_mul_pd(_mm256_loadu_pd(m), x0);
@@ -136,7 +144,8 @@ __attribute__((target("avx2,fma"))) inline void add_transposed_row_avx2(const in
 #endif
 
 /// The transposed row in the form chosen for this process.
-inline void add_transposed_row(const int* col, const double* v, int begin, int end, const double* xk, double* y) {
+inline void add_transposed_row(const int* col, const double* v, int begin, int end,
+                               const double* xk, double* y) {
 #ifdef COROFEM_HAVE_AVX2_KERNELS
   if (vector_block_kernels()) return add_transposed_row_avx2(col, v, begin, end, xk, y);
 #endif
@@ -150,7 +159,8 @@ inline void add_scaled_block_scalar(double* e, double w, const double* a) {
 
 #ifdef COROFEM_HAVE_AVX2_KERNELS
 /// The same in AVX2: two 4-wide FMAs and one scalar one.
-__attribute__((target("avx2,fma"))) inline void add_scaled_block_avx2(double* e, double w, const double* a) {
+__attribute__((target("avx2,fma"))) inline void add_scaled_block_avx2(double* e, double w,
+                                                                      const double* a) {
   const __m256d weight = _mm256_set1_pd(w);
   _mm256_storeu_pd(e, _mm256_fmadd_pd(weight, _mm256_loadu_pd(a), _mm256_loadu_pd(e)));
   _mm256_storeu_pd(e + 4, _mm256_fmadd_pd(weight, _mm256_loadu_pd(a + 4), _mm256_loadu_pd(e + 4)));

@@ -14,7 +14,9 @@ int BrcMatrix::find(int i, int j) const {
   return (it != last && *it == j) ? static_cast<int>(it - col_index.begin()) : -1;
 }
 
-void BrcMatrix::set_zero() { std::fill(values.begin(), values.end(), 0.0); }
+void BrcMatrix::set_zero() {
+  std::fill(values.begin(), values.end(), 0.0);
+}
 
 void BrcMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   y.resize(3 * block_rows);
@@ -22,10 +24,12 @@ void BrcMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   auto source = [xs](int j) { return xs + 3 * j; };
 #pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks()))
   for (int i = 0; i < block_rows; ++i)
-    block_row_sum(col_index.data(), values.data(), row_start[i], row_start[i + 1], source, y.data() + 3 * i);
+    block_row_sum(col_index.data(), values.data(), row_start[i], row_start[i + 1], source,
+                  y.data() + 3 * i);
 }
 
-void BrcMatrix::residual(const Eigen::VectorXd& b, const Eigen::VectorXd& x, Eigen::VectorXd& r) const {
+void BrcMatrix::residual(const Eigen::VectorXd& b, const Eigen::VectorXd& x,
+                         Eigen::VectorXd& r) const {
   r.resize(3 * block_rows);
   const double* xs = x.data();
   auto source = [xs](int j) { return xs + 3 * j; };

@@ -6,7 +6,8 @@ BrcToEigen::BrcToEigen(const BrcMatrix& pattern, Part part) {
   // Tag each value with its BRC position, let Eigen sort into columns, then read the tags back.
   const bool upper = part == Part::SymmetricUpper;
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(upper ? pattern.values.size() / 2 + 3 * pattern.block_rows : pattern.values.size());
+  triplets.reserve(upper ? pattern.values.size() / 2 + 3 * pattern.block_rows
+                         : pattern.values.size());
   for (int i = 0; i < pattern.block_rows; ++i)
     for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k)
       for (int r = 0; r < 3; ++r)
@@ -32,6 +33,8 @@ void BrcToEigen::update(const BrcMatrix& a) {
   for (std::size_t n = 0; n < source_.size(); ++n) dst[n] = a.values[source_[n]];
 }
 
-Eigen::SparseMatrix<double> to_eigen(const BrcMatrix& a) { return BrcToEigen(a).matrix(); }
+Eigen::SparseMatrix<double> to_eigen(const BrcMatrix& a) {
+  return BrcToEigen(a).matrix();
+}
 
 }  // namespace corofem
