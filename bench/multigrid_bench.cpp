@@ -13,6 +13,7 @@
 #include "core/statistics.hpp"
 #include "core/threads.hpp"
 #include "galerkin_oracle.hpp"
+#include "io/solver_record.hpp"
 #include "linalg/preconditioned_cg.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "solver/petsc_galerkin.hpp"
@@ -419,7 +420,7 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
       o.ms.push_back(time_ms([&] { o.mg = o.pcg->solve(system.rhs, x); }));
     }
   }
-  const nlohmann::json d = pcg.describe();
+  const nlohmann::json d = describe(pcg);
   state.counters["rho"] = rho.convergence_factor;
   state.counters["mgpcg_iterations"] = mg.iterations;
   state.counters["jacobi_iterations"] = jc.iterations;

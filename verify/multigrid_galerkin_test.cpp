@@ -256,8 +256,7 @@ TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
   HierarchyParams params;
   params.kind = HierarchyKind::Meshes;
   const BuiltHierarchy built = build_hierarchy(fine, fixed, params, coarse);
-  EXPECT_GT(built.levels[0]["outside_points"].get<int>(), 0)
-      << "the jitter should leave points outside";
+  EXPECT_GT(built.levels[0].fit.outside, 0) << "the jitter should leave points outside";
   check_hierarchy(a, built.transfers, 3);
   // PETSc's MatPtAP (issue 14's rival product) on the same matrices: symbolic + numeric, then
   // numeric reuse with new values, each level against our stream's (both exact sums of the

@@ -231,7 +231,7 @@ TEST(MultigridSolver, CoarsestMaxVerticesAddsLatticeLevelsBelowTheMeshes) {
     const Transfer& t = built.transfers[h];
     EXPECT_EQ(t.fine, built.transfers[h - 1].coarse);
     EXPECT_LE(2 * t.coarse, t.fine) << "level " << h + 1 << " does not halve";
-    EXPECT_EQ(built.levels[h]["source"], "lattice below the coarsest");
+    EXPECT_EQ(built.levels[h].kind, CoarseLevelOrigin::Kind::LatticeBelowCoarsest);
   }
   // This body coarsens by halves all the way: it stops at the limit.
   EXPECT_LE(built.transfers.back().coarse, params.coarsest_max_vertices);

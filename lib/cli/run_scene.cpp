@@ -6,6 +6,7 @@
 
 #include "core/memory_usage.hpp"
 #include "io/run_context.hpp"
+#include "io/solver_record.hpp"
 #include "io/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
 #include "scene/scene_simulation.hpp"
@@ -46,11 +47,11 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
       {"formulation", a.formulation},
       {"integrator", a.integrator},
       {"rotation", corotational ? a.rotation : "none"},
-      {"rotation_params", a.rotation_params.to_json()},
+      {"rotation_params", to_json(a.rotation_params)},
       {"solver",
        a.integrator == "newton" && corotational ? "sparse LU (UMFPACK), Newton" : solver->name()}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
-    r["analysis"]["multigrid"] = multigrid_params(a).to_json();
+    r["analysis"]["multigrid"] = to_json(multigrid_params(a));
     r["multigrid"] = simulation.describe_multigrid(*mg);
   }
   r["converged"] = result.converged;

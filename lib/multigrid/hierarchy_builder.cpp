@@ -18,13 +18,6 @@ std::string hierarchy_name(HierarchyKind kind) {
   return kind == HierarchyKind::Meshes ? "meshes" : "lattice";
 }
 
-nlohmann::json HierarchyParams::to_json() const {
-  nlohmann::json j = {{"kind", hierarchy_name(kind)}, {"levels", levels}};
-  if (kind == HierarchyKind::Lattice) j["first_cell_factor"] = first_cell_factor;
-  if (coarsest_max_vertices > 0) j["coarsest_max_vertices"] = coarsest_max_vertices;
-  return j;
-}
-
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes) {
@@ -36,11 +29,11 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
   double spacing = mean_edge_length(fine);  // of the last level built
   for (int h = 1; h < params.levels; ++h) {
     CoarseLevel coarse;
-    nlohmann::json info;
+    CoarseLevelOrigin origin;
     if (params.kind == HierarchyKind::Lattice) {
       coarse = make_lattice_level(points, level_fixed, cell);
       if (coarse.transfer.coarse == 0) break;  // nothing left to coarsen
-      info = {{"source", "lattice"}, {"cell", cell}};
+      origin.cell = cell;
       spacing = cell;
       cell *= 2;
     } else {
@@ -48,20 +41,11 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
         throw InputError("multigrid hierarchy 'meshes' needs " + std::to_string(params.levels - 1) +
                          " coarse meshes, got " + std::to_string(coarse_meshes.size()));
       const TetMesh& mesh = coarse_meshes[h - 1];
-      MeshLevelFit fit;
-      coarse = make_mesh_level(points, level_fixed, mesh, mesh.source, &fit);
+      origin = {CoarseLevelOrigin::Kind::Mesh, mesh.source, mesh.num_vertices(), mesh.num_tets()};
+      coarse = make_mesh_level(points, level_fixed, mesh, mesh.source, &origin.fit);
       spacing = mean_edge_length(mesh);
-      info = {{"source", mesh.source},
-              {"mesh_vertices", mesh.num_vertices()},
-              {"mesh_tets", mesh.num_tets()},
-              {"outside_points", fit.outside},
-              {"far_outside_points", fit.far_outside},
-              {"located_points", fit.located},
-              {"max_outside_distance_edges", fit.max_outside_distance},
-              {"max_abs_weight", fit.max_abs_weight},
-              {"dropped_vertices", fit.dropped_vertices}};
     }
-    built.levels.push_back(info);
+    built.levels.push_back(origin);
     built.transfers.push_back(std::move(coarse.transfer));
     points = std::move(coarse.points);
     level_fixed.clear();  // coarse levels have no fixed vertices
@@ -72,7 +56,10 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
     spacing *= 2;
     CoarseLevel coarse = make_lattice_level(points, level_fixed, spacing);
     if (2 * coarse.transfer.coarse > static_cast<int>(points.size())) break;  // not worth a level
-    built.levels.push_back({{"source", "lattice below the coarsest"}, {"cell", spacing}});
+    CoarseLevelOrigin origin;
+    origin.kind = CoarseLevelOrigin::Kind::LatticeBelowCoarsest;
+    origin.cell = spacing;
+    built.levels.push_back(origin);
     built.transfers.push_back(std::move(coarse.transfer));
     points = std::move(coarse.points);
   }

@@ -2,12 +2,12 @@
 // Hierarchy builders: the transfers of every level of a multigrid hierarchy, by one of
 //  - meshes: coarser tet meshes of the same body, as in the paper (non-nested; mesh_level.hpp);
 //  - lattice: covering Kuhn lattices with the cell doubling per level (lattice_level.hpp).
-// The parameters are written into every record of a multigrid solve.
+// The parameters are written into every record of a multigrid solve (io/multigrid_record.hpp).
 #include <map>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "multigrid/mesh_level.hpp"
 #include "multigrid/transfer.hpp"
 
 namespace corofem {
@@ -24,14 +24,23 @@ struct HierarchyParams {
   /// until the coarsest has at most this many vertices: its factorization, every step, then
   /// costs little (0 = none added). Stops when a lattice level would not halve the vertices.
   int coarsest_max_vertices = 0;
+};
 
-  nlohmann::json to_json() const;
+/// Where a coarse level came from: a coarse mesh of the body (its size, and how the level above
+/// fits in it) or a lattice (its cell).
+struct CoarseLevelOrigin {
+  enum class Kind { Mesh, Lattice, LatticeBelowCoarsest };
+  Kind kind = Kind::Lattice;
+  std::string mesh;  ///< Mesh: its name (the source it was read or meshed from)
+  int mesh_vertices = 0, mesh_tets = 0;
+  MeshLevelFit fit;  ///< Mesh: the level above located in it
+  double cell = 0;   ///< Lattice kinds: the cell size
 };
 
 struct BuiltHierarchy {
-  std::vector<Transfer> transfers;                  ///< level h to h + 1
-  nlohmann::json levels = nlohmann::json::array();  ///< per coarse level: where it came from, fit
-  std::map<std::string, double> setup_ms;           ///< what building it cost, by part
+  std::vector<Transfer> transfers;         ///< level h to h + 1
+  std::vector<CoarseLevelOrigin> levels;   ///< per coarse level
+  std::map<std::string, double> setup_ms;  ///< what building it cost, by part
 };
 
 /// Transfers for `params.levels` levels below the fine mesh. `fixed` per fine vertex (its DOFs

@@ -6,7 +6,6 @@
 #include <optional>
 
 #include "core/errors.hpp"
-#include "core/statistics.hpp"
 #include "core/threads.hpp"
 #include "linalg/cholmod_factorization.hpp"
 #include "linalg/preconditioned_cg.hpp"
@@ -39,32 +38,6 @@ std::map<std::string, double> means(const std::map<std::string, double>& totals,
 
 }  // namespace
 
-nlohmann::json MultigridParams::smoother_json() const {
-  nlohmann::json j = {{"kind", "block-gauss-seidel"},
-                      {"ordering", smoother_ordering_name(smoother)},
-                      {"pre_smoothing", pre_smoothing},
-                      {"post_smoothing", post_smoothing}};
-  if (smoother == SmootherOrdering::Hybrid) j["domain_blocks"] = kHybridDomainBlocks;
-  if (smoother == SmootherOrdering::Domains) j["domain_vertices"] = kDomainVertices;
-  return j;
-}
-
-nlohmann::json MultigridParams::to_json() const {
-  const char* names[] = {"naive", "stream", "stream-full", "reuse", "gather"};
-  return {{"hierarchy", hierarchy.to_json()},
-          {"transfer", "barycentric in the containing or nearest coarse tet"},
-          {"galerkin", names[static_cast<int>(galerkin)]},
-          {"smoother", smoother_json()},
-          {"cycle",
-           {{"kind", "V"},
-            {"vcycles", vcycles},
-            {"max_iterations", max_iterations},
-            {"tolerance", tolerance},
-            {"coarsest", "cholmod"},
-            {"coarsest_factorization",
-             overlap_factorization ? "beside the first descent at 2+ threads" : "in the update"}}}};
-}
-
 struct MultigridSolver::Coarsest {
   std::optional<BrcToEigen> converter;
   CholmodFactorization cholmod;
@@ -80,46 +53,10 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       residual_(hierarchy_.num_levels()),
       coarse_b_(hierarchy_.num_levels()),
       coarse_x_(hierarchy_.num_levels()),
-      level_info_(std::move(built.levels)),
+      level_origins_(std::move(built.levels)),
       setup_ms_(std::move(built.setup_ms)) {
   // The method's streams now, in the set-up, not in the first step's update.
   timed(setup_ms_, "galerkin_streams", [&] { hierarchy_.prepare(params_.galerkin); });
-}
-
-nlohmann::json MultigridSolver::describe() const {
-  nlohmann::json levels = nlohmann::json::array();
-  double blocks = 0;
-  for (int h = 0; h < hierarchy_.num_levels(); ++h) {
-    const BrcMatrix& a = hierarchy_.matrix(h);
-    nlohmann::json level = {
-        {"level", h}, {"vertices", a.block_rows}, {"blocks", a.col_index.size()}};
-    if (h > 0 && h - 1 < static_cast<int>(level_info_.size()))
-      level["built_from"] = level_info_[h - 1];
-    levels.push_back(level);
-    blocks += static_cast<double>(a.col_index.size());
-  }
-  std::vector<double> rho, iterations;
-  for (const SolveStats& s : solve_log_) {
-    if (s.iterations == 0) continue;  // a zero right-hand side: nothing was solved
-    rho.push_back(s.convergence_factor);
-    iterations.push_back(s.iterations);
-  }
-  auto median_or_null = [](const std::vector<double>& v) -> nlohmann::json {
-    return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v));
-  };
-  return {
-      {"params", params_.to_json()},
-      {"hierarchy", hierarchy_name(params_.hierarchy.kind)},
-      {"levels", levels},
-      {"operator_complexity", blocks / static_cast<double>(hierarchy_.matrix(0).col_index.size())},
-      {"setup_ms", setup_ms_},
-      {"update_parts_ms", update_parts_ms()},
-      {"solve_parts_ms", solve_parts_ms()},
-      {"solves", rho.size()},
-      {"rho", median_or_null(rho)},
-      {"iterations", median_or_null(iterations)},
-      {"coarsest_shifts", coarsest_shifts_},
-      {"deferred_updates", deferred_updates_}};
 }
 
 MultigridSolver::~MultigridSolver() = default;

@@ -4,7 +4,6 @@
 // solver ("multigrid") or as the preconditioner of CG ("mgpcg").
 #include <functional>
 #include <map>
-#include <nlohmann/json.hpp>
 
 #include "linalg/gauss_seidel.hpp"
 #include "linalg/linear_solver.hpp"
@@ -13,7 +12,8 @@
 
 namespace corofem {
 
-/// The parameters of every component, written into every record of a multigrid solve.
+/// The parameters of every component, written into every record of a multigrid solve
+/// (io/multigrid_record.hpp).
 struct MultigridParams {
   HierarchyParams hierarchy;  ///< builder and level count
   int pre_smoothing = 1;      ///< forward Gauss-Seidel sweeps before the coarse correction
@@ -26,9 +26,6 @@ struct MultigridParams {
   /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial
   /// residual and first descent (see MultigridSolver::defers_update), not in the update.
   bool overlap_factorization = true;
-
-  nlohmann::json to_json() const;
-  nlohmann::json smoother_json() const;  ///< the smoother's part of to_json()
 };
 
 class MultigridSolver : public LinearSolver {
@@ -70,12 +67,16 @@ class MultigridSolver : public LinearSolver {
   /// iteration (CG's product and vector updates). A pre-smoothing of one sweep from zero forms
   /// its residual in passing: that residual then counts in fine_smooth (no "fine_residual").
   std::map<std::string, double> solve_parts_ms() const;
-  /// The record's `multigrid`: parameters, per level vertices, blocks and fit, operator
-  /// complexity, setup times, the median rho and iterations over the solves so far, and how many
-  /// updates had their coarsest factorization run in the next solve (`deferred_updates`).
-  nlohmann::json describe() const;
   /// How many coarsest-level factorizations needed the semidefinite shift (see set_matrix).
   int coarsest_shifts() const { return coarsest_shifts_; }
+  /// Updates whose coarsest factorization ran in the next solve (run_overlapped_pcg).
+  int deferred_updates() const { return deferred_updates_; }
+  /// Where each coarse level came from (level h + 1 at h).
+  const std::vector<CoarseLevelOrigin>& level_origins() const { return level_origins_; }
+  /// What the set-up cost, by part: the builder's and the Galerkin streams'.
+  const std::map<std::string, double>& setup_ms() const { return setup_ms_; }
+  /// Every solve's statistics, in order.
+  const std::vector<SolveStats>& solve_log() const { return solve_log_; }
 
  private:
   SolveStats run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
@@ -105,7 +106,7 @@ class MultigridSolver : public LinearSolver {
   bool update_pending_ = false;
   int deferred_updates_ = 0;  ///< updates whose factorization ran in a solve (run_overlapped_pcg)
   int coarsest_shifts_ = 0;
-  nlohmann::json level_info_;
+  std::vector<CoarseLevelOrigin> level_origins_;
   std::map<std::string, double> setup_ms_;
   std::map<std::string, double> update_ms_;  ///< totals over the updates
   int updates_ = 0;

@@ -1,9 +1,9 @@
 #pragma once
 // The roofline of a time step (issue 12): per phase of the paper's step (linearly implicit
-// Euler, energy-newton rotations, MG-PCG with the gather update, the default) the bytes it must move and the
-// flops it must do, counted from the sizes of the data structures it touches, and the floor
-// that the machine's measured roofs put under its time: max(bytes / STREAM bandwidth,
-// flops / dense-product rate).
+// Euler, energy-newton rotations, MG-PCG with the gather update, the default) the bytes it must
+// move and the flops it must do, counted from the sizes of the data structures it touches, and the
+// floor that the machine's measured roofs put under its time: max(bytes / STREAM bandwidth, flops /
+// dense-product rate).
 //
 // Bytes are compulsory traffic: every array a phase reads or writes counted once per pass over
 // it (vertex arrays gathered through the tets once, not per element), a member read out of a

@@ -10,14 +10,6 @@
 
 namespace corofem {
 
-nlohmann::json RotationParams::to_json() const {
-  return {{"newton_tolerance", newton_tolerance},
-          {"newton_max_iterations", newton_max_iterations},
-          {"mueller_iterations", mueller_iterations},
-          {"mueller_tolerance", mueller_tolerance},
-          {"smoothing_passes", smoothing_passes}};
-}
-
 std::vector<std::string> rotation_method_names() {
   return {"energy-newton",  "energy-exact", "polar",       "polar-fixed",
           "polar-smoothed", "qr",           "mueller2016", "none"};

@@ -2,7 +2,6 @@
 // Per-element rotation extraction: one interface, every method (PAPER_NOTES section 2).
 #include <cstdint>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -10,7 +9,8 @@
 
 namespace corofem {
 
-/// Tunables of the iterative extractors; written into every record that uses them.
+/// Tunables of the iterative extractors; written into every record that uses them
+/// (io/multigrid_record.hpp).
 struct RotationParams {
   double newton_tolerance =
       1e-9;  ///< energy-newton: |grad_q E| / (4 a) + |q.q - 1| (a ~ element size^2 V)
@@ -18,8 +18,6 @@ struct RotationParams {
   int mueller_iterations = 10;      ///< mueller2016: iteration cap
   double mueller_tolerance = 1e-9;  ///< mueller2016: stop at |omega| < this (rad), as Mueller 2016
   int smoothing_passes = 1;         ///< polar-smoothed: passes of 1-ring averaging
-
-  nlohmann::json to_json() const;
 };
 
 /// What the last extract() did, per element.

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "io/solver_record.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/load_schedule.hpp"
@@ -35,7 +36,7 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
 nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) const {
   const auto* mg = dynamic_cast<const MultigridSolver*>(&solver);
   if (!mg) return nullptr;
-  nlohmann::json d = mg->describe();
+  nlohmann::json d = describe(*mg);
   d["setup_ms"]["coarse_meshes"] = coarse_meshing_ms_;
   return d;
 }

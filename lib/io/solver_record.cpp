@@ -1,0 +1,114 @@
+#include "io/solver_record.hpp"
+
+#include <vector>
+
+#include "core/statistics.hpp"
+
+namespace corofem {
+
+nlohmann::json to_json(const RotationParams& p) {
+  return {{"newton_tolerance", p.newton_tolerance},
+          {"newton_max_iterations", p.newton_max_iterations},
+          {"mueller_iterations", p.mueller_iterations},
+          {"mueller_tolerance", p.mueller_tolerance},
+          {"smoothing_passes", p.smoothing_passes}};
+}
+
+nlohmann::json to_json(const HierarchyParams& p) {
+  nlohmann::json j = {{"kind", hierarchy_name(p.kind)}, {"levels", p.levels}};
+  if (p.kind == HierarchyKind::Lattice) j["first_cell_factor"] = p.first_cell_factor;
+  if (p.coarsest_max_vertices > 0) j["coarsest_max_vertices"] = p.coarsest_max_vertices;
+  return j;
+}
+
+namespace {
+
+nlohmann::json smoother_json(const MultigridParams& p) {
+  nlohmann::json j = {{"kind", "block-gauss-seidel"},
+                      {"ordering", smoother_ordering_name(p.smoother)},
+                      {"pre_smoothing", p.pre_smoothing},
+                      {"post_smoothing", p.post_smoothing}};
+  if (p.smoother == SmootherOrdering::Hybrid) j["domain_blocks"] = kHybridDomainBlocks;
+  if (p.smoother == SmootherOrdering::Domains) j["domain_vertices"] = kDomainVertices;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const MultigridParams& p) {
+  const char* names[] = {"naive", "stream", "stream-full", "reuse", "gather"};
+  return {
+      {"hierarchy", to_json(p.hierarchy)},
+      {"transfer", "barycentric in the containing or nearest coarse tet"},
+      {"galerkin", names[static_cast<int>(p.galerkin)]},
+      {"smoother", smoother_json(p)},
+      {"cycle",
+       {{"kind", "V"},
+        {"vcycles", p.vcycles},
+        {"max_iterations", p.max_iterations},
+        {"tolerance", p.tolerance},
+        {"coarsest", "cholmod"},
+        {"coarsest_factorization",
+         p.overlap_factorization ? "beside the first descent at 2+ threads" : "in the update"}}}};
+}
+
+nlohmann::json to_json(const CoarseLevelOrigin& o) {
+  switch (o.kind) {
+    case CoarseLevelOrigin::Kind::Mesh:
+      return {{"source", o.mesh},
+              {"mesh_vertices", o.mesh_vertices},
+              {"mesh_tets", o.mesh_tets},
+              {"outside_points", o.fit.outside},
+              {"far_outside_points", o.fit.far_outside},
+              {"located_points", o.fit.located},
+              {"max_outside_distance_edges", o.fit.max_outside_distance},
+              {"max_abs_weight", o.fit.max_abs_weight},
+              {"dropped_vertices", o.fit.dropped_vertices}};
+    case CoarseLevelOrigin::Kind::Lattice:
+      return {{"source", "lattice"}, {"cell", o.cell}};
+    case CoarseLevelOrigin::Kind::LatticeBelowCoarsest:
+      return {{"source", "lattice below the coarsest"}, {"cell", o.cell}};
+  }
+  return nullptr;
+}
+
+nlohmann::json describe(const MultigridSolver& solver) {
+  const MultigridHierarchy& hierarchy = solver.hierarchy();
+  const std::vector<CoarseLevelOrigin>& origins = solver.level_origins();
+  nlohmann::json levels = nlohmann::json::array();
+  double blocks = 0;
+  for (int h = 0; h < hierarchy.num_levels(); ++h) {
+    const BrcMatrix& a = hierarchy.matrix(h);
+    nlohmann::json level = {
+        {"level", h}, {"vertices", a.block_rows}, {"blocks", a.col_index.size()}};
+    if (h > 0 && h - 1 < static_cast<int>(origins.size()))
+      level["built_from"] = to_json(origins[h - 1]);
+    levels.push_back(level);
+    blocks += static_cast<double>(a.col_index.size());
+  }
+  std::vector<double> rho, iterations;
+  for (const SolveStats& s : solver.solve_log()) {
+    if (s.iterations == 0) continue;  // a zero right-hand side: nothing was solved
+    rho.push_back(s.convergence_factor);
+    iterations.push_back(s.iterations);
+  }
+  auto median_or_null = [](const std::vector<double>& v) -> nlohmann::json {
+    return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v));
+  };
+  const MultigridParams& params = solver.params();
+  return {
+      {"params", to_json(params)},
+      {"hierarchy", hierarchy_name(params.hierarchy.kind)},
+      {"levels", levels},
+      {"operator_complexity", blocks / static_cast<double>(hierarchy.matrix(0).col_index.size())},
+      {"setup_ms", solver.setup_ms()},
+      {"update_parts_ms", solver.update_parts_ms()},
+      {"solve_parts_ms", solver.solve_parts_ms()},
+      {"solves", rho.size()},
+      {"rho", median_or_null(rho)},
+      {"iterations", median_or_null(iterations)},
+      {"coarsest_shifts", solver.coarsest_shifts()},
+      {"deferred_updates", solver.deferred_updates()}};
+}
+
+}  // namespace corofem

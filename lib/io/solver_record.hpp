@@ -1,0 +1,24 @@
+#pragma once
+// The records' entries for the numerical components: their parameters and what a multigrid
+// solver measured, written from their typed structs (the numerics themselves hold no JSON).
+#include <nlohmann/json.hpp>
+
+#include "multigrid/multigrid_solver.hpp"
+#include "rotation/rotation_extractor.hpp"
+
+namespace corofem {
+
+nlohmann::json to_json(const RotationParams& params);
+nlohmann::json to_json(const HierarchyParams& params);
+/// The hierarchy, transfer, Galerkin method, smoother and cycle.
+nlohmann::json to_json(const MultigridParams& params);
+/// Where a coarse level came from: `source`, and a mesh's size and fit or a lattice's cell.
+nlohmann::json to_json(const CoarseLevelOrigin& origin);
+
+/// The record's `multigrid`: parameters, per level vertices, blocks and origin, operator
+/// complexity, setup times, the mean parts of an update and a solve, the median rho and
+/// iterations over the solves so far, the coarsest level's semidefinite shifts, and how many
+/// updates had their coarsest factorization run in the next solve (`deferred_updates`).
+nlohmann::json describe(const MultigridSolver& solver);
+
+}  // namespace corofem
