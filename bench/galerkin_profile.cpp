@@ -5,6 +5,7 @@
 // Usage: corofem_profile METHOD MODEL N [--models DIR]
 #include <cstring>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "bench_support.hpp"
@@ -49,7 +50,12 @@ int main(int argc, char** argv) {
     }
     MultigridHierarchy h(system.matrix,
                          bench::paper_transfers(model, HierarchyKind::Meshes).transfers);
-    const GalerkinMethod m = galerkin_method(method);
+    const std::optional<GalerkinMethod> found = kGalerkinMethods.find(method);
+    if (!found) {
+      std::cerr << "galerkin_profile: unknown method '" << method << "'\n";
+      return 2;
+    }
+    const GalerkinMethod m = *found;
     h.prepare(m);  // the method's streams, built before the profiled updates
     for (int i = 0; i < updates; ++i) h.update(system.matrix, m);
     // Machine-readable facts for the script: blocks of K and of all levels.

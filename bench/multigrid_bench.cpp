@@ -80,14 +80,14 @@ void BM_GalerkinUpdate(benchmark::State& state, const std::string& method,
     else if (petsc)
       petsc->update(a);
     else
-      h.update(a, galerkin_method(method));
+      h.update(a, *kGalerkinMethods.find(method));
     benchmark::ClobberMemory();
   }
   state.counters["levels"] = h.num_levels();
   state.counters["fine_blocks"] = a.num_blocks();
   if (method == "stream" || method == "stream-full" || method == "gather") {
-    const double bytes = stream_update_bytes(h, galerkin_method(method));
-    state.counters["stream_MB"] = h.stream_bytes(galerkin_method(method)) / 1e6;
+    const double bytes = stream_update_bytes(h, *kGalerkinMethods.find(method));
+    state.counters["stream_MB"] = h.stream_bytes(*kGalerkinMethods.find(method)) / 1e6;
     state.counters["bytes_per_update"] = bytes;
     state.counters["GB_per_s"] =
         benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsIterationInvariantRate);
@@ -191,7 +191,7 @@ void BM_StreamTriad(benchmark::State& state) {
 MultigridSolver& paper_solver(const std::string& model, bool pcg,
                               HierarchyKind kind = HierarchyKind::Meshes) {
   static std::map<std::string, std::unique_ptr<MultigridSolver>> cache;
-  auto& slot = cache[model + (pcg ? "/pcg/" : "/") + hierarchy_name(kind)];
+  auto& slot = cache[model + (pcg ? "/pcg/" : "/") + kHierarchyKinds.name(kind)];
   if (!slot) {
     MultigridParams params;
     params.hierarchy.kind = kind;
@@ -308,7 +308,7 @@ void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
   }
   state.counters["product_ms"] = median(product_ms);
   for (std::size_t s = 0; s < smoothers.size(); ++s) {
-    const std::string name = smoother_ordering_name(orderings[s]);
+    const std::string name = kSmootherOrderings.name(orderings[s]);
     state.counters[name + "_sweep_ms"] = median(sweep_ms[s]);
     state.counters[name + "_over_product"] = median(sweep_ms[s]) / median(product_ms);
   }
@@ -394,7 +394,7 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
        {SmootherOrdering::Multicolour, SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
     MultigridParams p = params, s = stationary;
     p.smoother = s.smoother = ordering;
-    Ordered o{smoother_ordering_name(ordering),
+    Ordered o{kSmootherOrderings.name(ordering),
               std::make_unique<MultigridSolver>(system.matrix, built, s, false),
               std::make_unique<MultigridSolver>(system.matrix, built, p, true),
               {},

@@ -89,7 +89,7 @@ AnalysisSpec analysis(const std::string& solver, double tolerance, const std::st
   a.setup_reuse = setup_reuse;
   a.coarsest_max_vertices = coarsest_max_vertices;
   a.solver = solver;
-  a.hierarchy = hierarchy;
+  a.hierarchy = *kHierarchyKinds.find(hierarchy);
   a.levels = 3;
   a.tolerance = tolerance;
   return a;
@@ -277,13 +277,16 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     for (int k = 0; k < 3; ++k) {
       AnalysisSpec a = analysis("multigrid", 1e-10, k == 1 ? "lattice" : "meshes");
       a.vcycles = 12;
-      if (k == 2) a.smoother = "multicolour";  // the threaded ordering, against the sequential one
+      if (k == 2)
+        a.smoother =
+            SmootherOrdering::Multicolour;  // the threaded ordering, against the sequential one
       auto solver = make_linear_solver(a, p, coarse);
       solver->set_matrix(system);
       Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
       rho[k] = solver->solve(b, x).convergence_factor;
       std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, "
-                << a.hierarchy << " hierarchy, " << a.smoother << " Gauss-Seidel, rho = " << rho[k]
+                << kHierarchyKinds.name(a.hierarchy) << " hierarchy, "
+                << kSmootherOrderings.name(a.smoother) << " Gauss-Seidel, rho = " << rho[k]
                 << " over 12 V(1,1) cycles\n";
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius

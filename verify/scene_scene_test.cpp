@@ -62,12 +62,12 @@ TEST(Scene, CoarseMeshesAndHierarchy) {
   ASSERT_EQ(s.mesh.levels.size(), 2u);
   EXPECT_EQ(s.mesh.levels[0].kind, MeshSpec::Kind::Box);
   EXPECT_EQ(s.mesh.levels[1].path, std::filesystem::path("/base/c.msh"));
-  EXPECT_EQ(s.analysis.hierarchy, "meshes");  // the default where coarse meshes exist
+  EXPECT_EQ(s.analysis.hierarchy, HierarchyKind::Meshes);  // the default where coarse meshes exist
   // A mesh file without coarse meshes cannot be re-meshed: lattice by default, meshes refused.
   j = minimal();
   j["mesh"] = {{"file", "a.msh"}};
   j["analysis"] = {{"solver", "multigrid"}};
-  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.hierarchy, "lattice");
+  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.hierarchy, HierarchyKind::Lattice);
   j["analysis"]["hierarchy"] = "meshes";
   EXPECT_THROW(parse_scene(j, "/", "s.json"), InputError);
 }

@@ -233,8 +233,8 @@ TEST_F(ThreadsTest, EveryGalerkinMethodIsTheOneThreadBitsOnEveryLevel) {
       ScopedThreadCount threads(n);
       MultigridHierarchy hierarchy(a, {first.transfer, second.transfer});
       ASSERT_EQ(hierarchy.num_levels(), 3);
-      hierarchy.update(a, galerkin_method(name));
-      hierarchy.update(a, galerkin_method(name));  // reuse's second update differs from its first
+      hierarchy.update(a, *kGalerkinMethods.find(name));
+      hierarchy.update(a, *kGalerkinMethods.find(name));  // reuse's second differs from its first
       for (int h = 1; h < hierarchy.num_levels(); ++h) {
         if (n == 1) one.push_back(hierarchy.matrix(h).values);
         EXPECT_TRUE(same_bits(hierarchy.matrix(h).values, one[h - 1]))
@@ -284,7 +284,7 @@ TEST_F(ThreadsTest, ParallelSmoothersAreTheSameBitsAtEveryCountAndSmooth) {
   // Domains of 200 rows: this small mesh gets several, with boundaries between them.
   for (const SmootherOrdering ordering :
        {SmootherOrdering::Multicolour, SmootherOrdering::Domains}) {
-    SCOPED_TRACE(smoother_ordering_name(ordering));
+    SCOPED_TRACE(kSmootherOrderings.name(ordering));
     Eigen::VectorXd one;
     for (const int n : kThreadCounts) {
       ScopedThreadCount threads(n);
@@ -422,7 +422,7 @@ TEST_F(ThreadsTest, ForwardSweepFromZeroIsTheFullSweepAndReadsOnlyTheLowerBlocks
     for (const SmootherOrdering ordering :
          {SmootherOrdering::Sequential, SmootherOrdering::Multicolour, SmootherOrdering::Domains,
           SmootherOrdering::Hybrid}) {
-      SCOPED_TRACE(smoother_ordering_name(ordering));
+      SCOPED_TRACE(kSmootherOrderings.name(ordering));
       const bool lower_only =
           ordering == SmootherOrdering::Sequential || ordering == SmootherOrdering::Hybrid;
       for (const int n : kThreadCounts) {
@@ -478,7 +478,7 @@ TEST_F(ThreadsTest, SweepFromZeroWithResidualIsTheSweepAndItsResidual) {
     for (const SmootherOrdering ordering :
          {SmootherOrdering::Sequential, SmootherOrdering::Multicolour, SmootherOrdering::Domains,
           SmootherOrdering::Hybrid}) {
-      SCOPED_TRACE(smoother_ordering_name(ordering));
+      SCOPED_TRACE(kSmootherOrderings.name(ordering));
       Eigen::VectorXd first_r;
       for (const int n : kThreadCounts) {
         ScopedThreadCount threads(n);

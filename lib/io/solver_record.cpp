@@ -15,7 +15,7 @@ nlohmann::json to_json(const RotationParams& p) {
 }
 
 nlohmann::json to_json(const HierarchyParams& p) {
-  nlohmann::json j = {{"kind", hierarchy_name(p.kind)}, {"levels", p.levels}};
+  nlohmann::json j = {{"kind", kHierarchyKinds.name(p.kind)}, {"levels", p.levels}};
   if (p.kind == HierarchyKind::Lattice) j["first_cell_factor"] = p.first_cell_factor;
   if (p.coarsest_max_vertices > 0) j["coarsest_max_vertices"] = p.coarsest_max_vertices;
   return j;
@@ -25,7 +25,7 @@ namespace {
 
 nlohmann::json smoother_json(const MultigridParams& p) {
   nlohmann::json j = {{"kind", "block-gauss-seidel"},
-                      {"ordering", smoother_ordering_name(p.smoother)},
+                      {"ordering", kSmootherOrderings.name(p.smoother)},
                       {"pre_smoothing", p.pre_smoothing},
                       {"post_smoothing", p.post_smoothing}};
   if (p.smoother == SmootherOrdering::Hybrid) j["domain_blocks"] = kHybridDomainBlocks;
@@ -36,11 +36,10 @@ nlohmann::json smoother_json(const MultigridParams& p) {
 }  // namespace
 
 nlohmann::json to_json(const MultigridParams& p) {
-  const char* names[] = {"naive", "stream", "stream-full", "reuse", "gather"};
   return {
       {"hierarchy", to_json(p.hierarchy)},
       {"transfer", "barycentric in the containing or nearest coarse tet"},
-      {"galerkin", names[static_cast<int>(p.galerkin)]},
+      {"galerkin", kGalerkinMethods.name(p.galerkin)},
       {"smoother", smoother_json(p)},
       {"cycle",
        {{"kind", "V"},
@@ -98,7 +97,7 @@ nlohmann::json describe(const MultigridSolver& solver) {
   const MultigridParams& params = solver.params();
   return {
       {"params", to_json(params)},
-      {"hierarchy", hierarchy_name(params.hierarchy.kind)},
+      {"hierarchy", kHierarchyKinds.name(params.hierarchy.kind)},
       {"levels", levels},
       {"operator_complexity", blocks / static_cast<double>(hierarchy.matrix(0).col_index.size())},
       {"setup_ms", solver.setup_ms()},

@@ -9,28 +9,6 @@
 
 namespace corofem {
 
-SmootherOrdering smoother_ordering(const std::string& name) {
-  if (name == "sequential") return SmootherOrdering::Sequential;
-  if (name == "multicolour") return SmootherOrdering::Multicolour;
-  if (name == "domains") return SmootherOrdering::Domains;
-  if (name == "hybrid") return SmootherOrdering::Hybrid;
-  throw InputError("analysis.smoother: unknown ordering '" + name +
-                   "' (known: sequential, multicolour, domains, hybrid)");
-}
-
-const char* smoother_ordering_name(SmootherOrdering ordering) {
-  switch (ordering) {
-    case SmootherOrdering::Multicolour:
-      return "multicolour";
-    case SmootherOrdering::Domains:
-      return "domains";
-    case SmootherOrdering::Hybrid:
-      return "hybrid";
-    default:
-      return "sequential";
-  }
-}
-
 namespace {
 
 /// Greedy colouring of the rows `which` (ascending) in the block graph: each takes the smallest

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "core/name_table.hpp"
 #include "sparse/brc_matrix.hpp"
 
 namespace corofem {
@@ -32,9 +33,12 @@ enum class SmootherOrdering { Sequential, Multicolour, Domains, Hybrid };
 /// The domains' default size: vertices for the domains ordering, blocks for the hybrid one.
 inline constexpr int kDomainVertices = 4096;
 inline constexpr int kHybridDomainBlocks = 24576;
-SmootherOrdering smoother_ordering(
-    const std::string& name);  ///< "sequential" | "multicolour" | "domains" | "hybrid"
-const char* smoother_ordering_name(SmootherOrdering ordering);
+/// The orderings' names in scenes and records.
+inline constexpr NameTable<SmootherOrdering, 4> kSmootherOrderings{
+    {{{SmootherOrdering::Sequential, "sequential"},
+      {SmootherOrdering::Multicolour, "multicolour"},
+      {SmootherOrdering::Domains, "domains"},
+      {SmootherOrdering::Hybrid, "hybrid"}}}};
 
 class BlockGaussSeidel {
  public:

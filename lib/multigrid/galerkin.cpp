@@ -236,14 +236,4 @@ void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
   }
 }
 
-GalerkinMethod galerkin_method(const std::string& name) {
-  if (name == "naive") return GalerkinMethod::Naive;
-  if (name == "stream") return GalerkinMethod::Stream;
-  if (name == "stream-full") return GalerkinMethod::StreamFull;
-  if (name == "reuse") return GalerkinMethod::Reuse;
-  if (name == "gather") return GalerkinMethod::Gather;
-  throw InputError("analysis.galerkin: unknown method '" + name +
-                   "' (known: naive, stream, stream-full, reuse, gather)");
-}
-
 }  // namespace corofem

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/name_table.hpp"
 #include "multigrid/transfer.hpp"
 #include "sparse/brc_matrix.hpp"
 
@@ -110,9 +111,14 @@ MirrorPairs galerkin_mirror_pairs(const BrcMatrix& e);
 /// threads share the pairs (an orphaned omp for, with its barrier); outside one, on one thread.
 void mirror_blocks(const MirrorPairs& mirror, double* ev);
 
-/// Method names for scenes and benchmarks: "naive", "stream" (symmetric), "stream-full" (the
-/// paper's format), "reuse", "gather" (the stream's pairs by destination: galerkin_gather.hpp).
+/// The methods, and their names in scenes and records: "stream" is the symmetric format,
+/// "stream-full" the paper's, "gather" the stream's pairs by destination (galerkin_gather.hpp).
 enum class GalerkinMethod { Naive, Stream, StreamFull, Reuse, Gather };
-GalerkinMethod galerkin_method(const std::string& name);
+inline constexpr NameTable<GalerkinMethod, 5> kGalerkinMethods{
+    {{{GalerkinMethod::Naive, "naive"},
+      {GalerkinMethod::Stream, "stream"},
+      {GalerkinMethod::StreamFull, "stream-full"},
+      {GalerkinMethod::Reuse, "reuse"},
+      {GalerkinMethod::Gather, "gather"}}}};
 
 }  // namespace corofem

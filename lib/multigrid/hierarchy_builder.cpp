@@ -8,16 +8,6 @@
 
 namespace corofem {
 
-HierarchyKind hierarchy_kind(const std::string& name) {
-  if (name == "meshes") return HierarchyKind::Meshes;
-  if (name == "lattice") return HierarchyKind::Lattice;
-  throw InputError("unknown multigrid hierarchy '" + name + "' (meshes, lattice)");
-}
-
-std::string hierarchy_name(HierarchyKind kind) {
-  return kind == HierarchyKind::Meshes ? "meshes" : "lattice";
-}
-
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes) {

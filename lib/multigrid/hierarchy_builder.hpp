@@ -7,14 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "core/name_table.hpp"
 #include "multigrid/mesh_level.hpp"
 #include "multigrid/transfer.hpp"
 
 namespace corofem {
 
 enum class HierarchyKind { Meshes, Lattice };
-HierarchyKind hierarchy_kind(const std::string& name);  ///< "meshes" | "lattice"
-std::string hierarchy_name(HierarchyKind kind);
+/// The builders' names in scenes and records.
+inline constexpr NameTable<HierarchyKind, 2> kHierarchyKinds{
+    {{{HierarchyKind::Meshes, "meshes"}, {HierarchyKind::Lattice, "lattice"}}}};
 
 struct HierarchyParams {
   HierarchyKind kind = HierarchyKind::Lattice;

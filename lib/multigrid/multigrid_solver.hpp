@@ -22,7 +22,8 @@ struct MultigridParams {
   int max_iterations = 500;   ///< cap on V-cycles / CG iterations
   double tolerance = 1e-8;    ///< relative residual |b - A x| / |b|
   GalerkinMethod galerkin = GalerkinMethod::Gather;
-  SmootherOrdering smoother = SmootherOrdering::Sequential;  ///< the Gauss-Seidel sweeps' order
+  /// The Gauss-Seidel sweeps' order: hybrid, the one that threads with the sequential locality.
+  SmootherOrdering smoother = SmootherOrdering::Hybrid;
   /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial
   /// residual and first descent (see MultigridSolver::defers_update), not in the update.
   bool overlap_factorization = true;

@@ -49,7 +49,7 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
 
 std::vector<TetMesh> coarse_meshes(const Scene& scene) {
   const AnalysisSpec& a = scene.analysis;
-  if (!is_multigrid_solver(a.solver) || a.hierarchy != "meshes") return {};
+  if (!is_multigrid_solver(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
   return coarse_meshes(scene.mesh, a.levels, scene.name);
 }
 

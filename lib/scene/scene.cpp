@@ -91,6 +91,12 @@ std::string one_of(JsonFields& f, const std::string& key, const std::string& fal
   f.fail(key, "one of: " + list + " (got '" + value + "')");
 }
 
+/// A setting given by name: its value in `table` (one of its names, else the message above).
+template <class Enum, std::size_t N>
+Enum one_of(JsonFields& f, const std::string& key, Enum fallback, const NameTable<Enum, N>& table) {
+  return *table.find(one_of(f, key, table.name(fallback), table.names()));
+}
+
 MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
   MeshSpec m;
   m.reorder = f.boolean("reorder", false);
@@ -185,17 +191,15 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.integrator = one_of(f, "integrator", a.integrator, {"linear-implicit", "newton"});
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
-  a.galerkin =
-      one_of(f, "galerkin", a.galerkin, {"naive", "stream", "stream-full", "reuse", "gather"});
-  a.hierarchy = one_of(f, "hierarchy", a.hierarchy, {"meshes", "lattice"});
+  a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
+  a.hierarchy = one_of(f, "hierarchy", a.hierarchy, kHierarchyKinds);
   const bool multigrid = is_multigrid_solver(a.solver);
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
   a.coarsest_max_vertices =
       integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  a.smoother =
-      one_of(f, "smoother", a.smoother, {"sequential", "multicolour", "domains", "hybrid"});
+  a.smoother = one_of(f, "smoother", a.smoother, kSmootherOrderings);
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);
@@ -293,10 +297,11 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   });
   // Coarse meshes are the default hierarchy wherever there are some: given, or re-meshable.
   const bool remeshable = !s.mesh.levels.empty() || s.mesh.kind != MeshSpec::Kind::File;
-  s.analysis.hierarchy = remeshable ? "meshes" : "lattice";
+  s.analysis.hierarchy = remeshable ? HierarchyKind::Meshes : HierarchyKind::Lattice;
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
-  if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == "meshes" && !remeshable)
+  if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == HierarchyKind::Meshes &&
+      !remeshable)
     throw InputError("scene '" + name +
                      "': analysis.hierarchy 'meshes' needs mesh.levels for a "
                      "mesh read from a file (it cannot be re-meshed); or use 'lattice'");

@@ -10,6 +10,7 @@
 
 #include "element/material.hpp"
 #include "mesh/vertex_selection.hpp"
+#include "multigrid/multigrid_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
@@ -81,11 +82,13 @@ struct AnalysisSpec {
   std::string rotation = "polar";  ///< an extractor name (rotation_method_names())
   RotationParams rotation_params;
   std::string solver = "cholmod";  ///< cholmod | multigrid | mgpcg
-  std::string galerkin =
-      "gather";  ///< naive | stream | stream-full | reuse | gather (multigrid coarse operators)
+  /// The multigrid's settings, parsed from their names (kGalerkinMethods, kHierarchyKinds,
+  /// kSmootherOrderings), each with the one default of its component's params.
+  /// naive | stream | stream-full | reuse | gather (multigrid coarse operators)
+  GalerkinMethod galerkin = MultigridParams{}.galerkin;
   /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
   /// `mesh.levels` gives them) | lattice (covering Kuhn lattices)
-  std::string hierarchy = "lattice";
+  HierarchyKind hierarchy = MultigridParams{}.hierarchy.kind;
   int levels = 1;
   /// Lattice levels below the `levels` ones until the coarsest has at most this many vertices
   /// (0: none); see README "Multigrid"
@@ -95,7 +98,7 @@ struct AnalysisSpec {
   /// Gauss-Seidel ordering: hybrid (the default: l1 Gauss-Seidel in domains, Jacobi across them,
   /// every thread) | domains (exact Gauss-Seidel, boundaries by colours) | sequential (one
   /// thread) | multicolour (every thread, a worse rho); see README "Multigrid"
-  std::string smoother = "hybrid";
+  SmootherOrdering smoother = MultigridParams{}.smoother;
   double dt = 0.01;
   int steps = 1;
   int load_steps = 1;

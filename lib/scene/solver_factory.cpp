@@ -12,14 +12,14 @@ std::vector<std::string> linear_solver_names() {
 
 MultigridParams multigrid_params(const AnalysisSpec& a) {
   MultigridParams p;
-  p.hierarchy.kind = hierarchy_kind(a.hierarchy);
+  p.hierarchy.kind = a.hierarchy;
   p.hierarchy.levels = a.levels;
   p.hierarchy.coarsest_max_vertices = a.coarsest_max_vertices;
   p.pre_smoothing = p.post_smoothing = a.smoothing;
   p.vcycles = a.vcycles;
   p.tolerance = a.tolerance;
-  p.galerkin = galerkin_method(a.galerkin);
-  p.smoother = smoother_ordering(a.smoother);
+  p.galerkin = a.galerkin;
+  p.smoother = a.smoother;
   return p;
 }
 
