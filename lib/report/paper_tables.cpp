@@ -87,6 +87,233 @@ json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warm
           {"coarsest_factorization_in", coarsest_factorization_phase(pcg)}};
 }
 
+/// What every table of one model shares: its scene and names, the step counts, and the main run
+/// (the paper's method, energy-newton + MG-PCG), which several tables compare against.
+struct ModelTables {
+  std::string id, paper_model;
+  json scene;
+  int warmup = 0;
+  std::vector<int> check_steps;
+  MachineRoofs roofs, roofs_one;  ///< at the run's thread count and at one thread
+  std::ostream* progress = nullptr;
+  TimedRun main;
+  bool main_completed = false;
+
+  void say(const std::string& what) const {
+    if (progress) *progress << "report: tables: " << id << ": " << what << std::endl;
+  }
+  double main_median_ms(const char* phase) const { return main.median_ms(phase, warmup); }
+};
+
+/// The one-thread columns of Table 1: a run of their own at two or more threads, which must
+/// give the all-thread run's bits; the main run itself at one.
+json one_thread_columns(const ModelTables& m, const TimedRun& single_run, bool separate) {
+  const TimedRun& run = separate ? single_run : m.main;
+  json one = phase_medians(run, m.warmup);
+  one["roofline"] = run.roofline(m.warmup, m.roofs_one);
+  one["separate_run"] = separate;
+  one["linear_iterations"] = run.result.linear_iterations;
+  // Every kernel gives the same bits at every thread count: so must the whole run.
+  const Eigen::VectorXd& u1 = run.result.displacement;
+  const Eigen::VectorXd& u = m.main.result.displacement;
+  one["same_displacement_bits"] =
+      u1.size() == u.size() && std::memcmp(u1.data(), u.data(), u.size() * sizeof(double)) == 0;
+  return one;
+}
+
+/// Our Galerkin update (the scene's method) against PETSc's MatPtAP (numeric reuse, one thread)
+/// on the same matrices; null where PETSc did not run.
+json galerkin_vs_matptap(const TimedRun& main, const TimedRun& one_thread_run) {
+  const auto galerkin_ms = [](const TimedRun& run) -> json {
+    if (!run.multigrid.is_object() || !run.multigrid.contains("update_parts_ms")) return nullptr;
+    return run.multigrid["update_parts_ms"].value("galerkin", 0.0);
+  };
+  if (main.matptap_ms < 0) return nullptr;
+  const json ours_one = galerkin_ms(one_thread_run);
+  return {{"matptap_ms", main.matptap_ms},
+          {"galerkin", main.multigrid.value("params", json::object()).value("galerkin", "")},
+          {"galerkin_ms", galerkin_ms(main)},
+          {"galerkin_one_thread_ms", ours_one},
+          {"matptap_over_galerkin_one_thread", ours_one.is_number() && ours_one.get<double>() > 0
+                                                   ? json(main.matptap_ms / ours_one.get<double>())
+                                                   : json(nullptr)}};
+}
+
+/// Table 1: the paper's method, its phases at the run's thread count and at one thread, the naive
+/// Galerkin update and CHOLMOD beside it; sets m.main.
+json table1_row(ModelTables& m, int threads) {
+  m.say("energy-newton + MG-PCG");
+  json row =
+      record_case({{"model", m.id}, {"scene", m.scene}, {"paper_model", m.paper_model}}, [&] {
+        TimedRunOptions options;
+        options.warmup_steps = m.warmup;
+        options.check_steps = m.check_steps;
+        options.check_operators = true;
+        TimedRunOptions with_matptap = options;  // MatPtAP timed once, after the main run
+        with_matptap.time_matptap = true;
+        m.main = timed_run(m.scene, m.id, with_matptap);
+        TimedRun
+            single_run;  // the same run on one thread (the paper's setting), unless this one is
+        if (threads > 1) {
+          m.say("energy-newton + MG-PCG on one thread");
+          const ScopedThreadCount one(1);
+          single_run = timed_run(m.scene, m.id, options);
+        }
+        m.say("naive Galerkin update");
+        const TimedRun naive = timed_run(with_analysis(m.scene, {{"galerkin", "naive"}}), m.id, {});
+        m.say("CHOLMOD step");
+        const TimedRun cholmod =
+            timed_run(with_analysis(m.scene, {{"solver", "cholmod"}}), m.id, {});
+        const TimedRun& main = m.main;
+        return json{
+            {"tets", main.tets},
+            {"threads", threads},
+            {"phases_ms", phase_medians(main, m.warmup)},
+            {"one_thread", one_thread_columns(m, single_run, threads > 1)},
+            {"vertices", main.vertices},
+            {"levels", main.levels},
+            {"rotate_ms", m.main_median_ms("rotate")},
+            {"assemble_ms", m.main_median_ms("assemble")},
+            {"update_ms", m.main_median_ms("update")},
+            {"update_naive_ms", naive.median_ms("update", m.warmup)},
+            {"coarsest_factorization_in", coarsest_factorization_phase(main)},
+            {"solve_ms", m.main_median_ms("solve")},
+            {"step_ms", m.main_median_ms("step")},
+            {"tps", tps_of(main, m.warmup)},
+            {"solve_iterations", main.median_iterations(m.warmup)},
+            {"linear_iterations", main.result.linear_iterations},
+            {"solve_accuracy",
+             {{"relative_residual_max", main.solve_residual_max},
+              {"error_vs_cholmod_max", main.solve_error_max},
+              {"checked_steps", m.check_steps}}},
+            {"cholmod_step_ms", cholmod.median_ms("step", m.warmup)},
+            {"cholmod_factorize_ms", cholmod.median_ms("update", m.warmup)},
+            {"speedup_vs_cholmod", cholmod.median_ms("step", m.warmup) / m.main_median_ms("step")},
+            {"inverted_max", main.result.inverted_max},
+            {"roofline", main.roofline(m.warmup, m.roofs)},
+            {"galerkin_vs_matptap", galerkin_vs_matptap(main, threads > 1 ? single_run : main)},
+            {"paper", paper_table1_row(m.paper_model)}};
+      });
+  m.main_completed = row["completed"].get<bool>();
+  return row;
+}
+
+/// The verification summary: the main run's oracle checks.
+json verification_row(const ModelTables& m) {
+  const TimedRun& main = m.main;
+  return {{"model", m.id},
+          {"checks",
+           {{{"oracle", "CHOLMOD solve of the same step"},
+             {"quantity", "relative error of the MG-PCG solution"},
+             {"largest", main.solve_error_max},
+             {"count", m.check_steps.size()}},
+            {{"oracle", "Eigen sparse R A R^T"},
+             {"quantity", "relative Frobenius error of every coarse level"},
+             {"largest", main.galerkin_error_max},
+             {"count", main.levels - 1}},
+            {{"oracle", "energy-exact (closed-form minimizer)"},
+             {"quantity", "energy-newton rotation angle error (rad)"},
+             {"largest", main.rotation_error_max_rad},
+             {"count", main.rotation_elements_compared}}}}};
+}
+
+/// Table 2: polar decomposition with spatial smoothing.
+json table2_row(const ModelTables& m) {
+  m.say("polar + smoothing");
+  return record_case({{"model", m.id}, {"paper_model", m.paper_model}}, [&] {
+    const TimedRun polar =
+        timed_run(with_analysis(m.scene, {{"rotation", "polar-smoothed"}}), m.id, {});
+    return json{{"tets", polar.tets},
+                {"tps", tps_of(polar, m.warmup)},
+                {"rotate_ms", polar.median_ms("rotate", m.warmup)},
+                {"paper_tps", paper_table2_tps(m.paper_model)}};
+  });
+}
+
+/// Figure 1: small strain against corotated.
+json small_strain_row(const ModelTables& m) {
+  m.say("small strain");
+  return record_case({{"model", m.id}}, [&] {
+    const TimedRun linear =
+        timed_run(with_analysis(m.scene, {{"formulation", "linear"}}), m.id, {});
+    if (!m.main_completed) throw NumericalFault("the corotated run of this model failed");
+    return json{{"tps", tps_of(linear, m.warmup)},
+                {"corotated_tps", tps_of(m.main, m.warmup)},
+                {"volume_change", linear.final_volume / linear.rest_volume - 1},
+                {"corotated_volume_change", m.main.final_volume / m.main.rest_volume - 1}};
+  });
+}
+
+/// Multigrid quality: the paper's re-meshed hierarchy or the covering lattice.
+json multigrid_row(const ModelTables& m, const char* hierarchy) {
+  m.say(std::string("multigrid quality: ") + hierarchy);
+  return record_case({{"model", m.id}}, [&] {
+    const json on = with_analysis(m.scene, {{"hierarchy", hierarchy}});
+    const std::string kind =
+        m.main.multigrid.is_null() ? "" : m.main.multigrid.value("hierarchy", "");
+    const TimedRun pcg = kind == hierarchy ? m.main : timed_run(on, m.id, {});
+    const TimedRun vcycle =
+        timed_run(with_analysis(on, {{"solver", "multigrid"}, {"vcycles", 0}}), m.id, {});
+    return multigrid_quality_row(pcg, vcycle, m.warmup);
+  });
+}
+
+/// The baseline preconditioner at the same accuracy, on the scene and on the scene 100x stiffer:
+/// M + dt^2 K is mass-dominated at the paper's soft materials (Jacobi's CG iterations grow as
+/// sqrt(cond), the V-cycle's barely), so the comparison says where each wins.
+json jacobi_row(const ModelTables& m, double young_scale) {
+  m.say("Jacobi-PCG" + std::string(young_scale > 1 ? ", 100x stiffer" : ""));
+  return record_case({{"model", m.id}, {"young_scale", young_scale}}, [&] {
+    const json stiffer = with_young_scaled(m.scene, young_scale);
+    const TimedRun jacobi = timed_run(with_analysis(stiffer, {{"solver", "jacobi-pcg"}}), m.id, {});
+    const TimedRun mgpcg = young_scale == 1.0 ? m.main : timed_run(stiffer, m.id, {});
+    const bool ran = !mgpcg.step_ms.empty();
+    return json{
+        {"step_ms", jacobi.median_ms("step", m.warmup)},
+        {"solve_ms", jacobi.median_ms("solve", m.warmup)},
+        {"iterations", jacobi.median_iterations(m.warmup)},
+        {"mgpcg_step_ms", ran ? json(mgpcg.median_ms("step", m.warmup)) : json(nullptr)},
+        {"mgpcg_iterations", ran ? json(mgpcg.median_iterations(m.warmup)) : json(nullptr)}};
+  });
+}
+
+/// An algebraic multigrid users would pick instead, to the same tolerance, its setup timed as the
+/// update phase (a new matrix every step), as ours is; or with its setup reused across steps
+/// (GAMG's interpolation, BoomerAMG's whole hierarchy).
+json rival_row(const ModelTables& m, const std::string& rival, bool reuse) {
+  m.say(rival + (reuse ? " (setup reuse)" : ""));
+  return record_case({{"model", m.id}, {"solver", rival}, {"setup_reuse", reuse}}, [&] {
+    const TimedRun run =
+        timed_run(with_analysis(m.scene, {{"solver", rival}, {"setup_reuse", reuse}}), m.id, {});
+    const bool ran = !m.main.step_ms.empty();
+    const double mgpcg_step = ran ? m.main_median_ms("step") : 0.0;
+    return json{
+        {"step_ms", run.median_ms("step", m.warmup)},
+        {"update_ms", run.median_ms("update", m.warmup)},
+        {"solve_ms", run.median_ms("solve", m.warmup)},
+        {"iterations", run.median_iterations(m.warmup)},
+        {"mgpcg_step_ms", mgpcg_step > 0 ? json(mgpcg_step) : json(nullptr)},
+        {"mgpcg_update_ms", ran ? json(m.main_median_ms("update")) : json(nullptr)},
+        {"mgpcg_solve_ms", ran ? json(m.main_median_ms("solve")) : json(nullptr)},
+        {"step_over_mgpcg",
+         mgpcg_step > 0 ? json(run.median_ms("step", m.warmup) / mgpcg_step) : json(nullptr)}};
+  });
+}
+
+json table_settings(const ReportConfig& config, int warmup, int measured,
+                    const std::vector<int>& check_steps) {
+  return {{"warmup_steps", warmup},
+          {"measured_steps", measured},
+          {"statistic", "median over the measured steps"},
+          {"rotation", "energy-newton"},
+          {"solver", "mgpcg"},
+          {"accuracy", "MG-PCG to relative residual " + std::to_string(config.default_tolerance()) +
+                           " per step, warm-started from the previous velocity"},
+          {"tolerance", config.default_tolerance()},
+          {"dt", 0.01},
+          {"oracle_check_steps", check_steps}};
+}
+
 }  // namespace
 
 json run_paper_tables(const ReportConfig& config) {
@@ -96,17 +323,9 @@ json run_paper_tables(const ReportConfig& config) {
                  {"rival_solvers", json::array()}};
   const int warmup = config.table_warmup(), measured = config.table_measured();
   const int steps = warmup + measured;
-  tables["settings"] = {
-      {"warmup_steps", warmup},
-      {"measured_steps", measured},
-      {"statistic", "median over the measured steps"},
-      {"rotation", "energy-newton"},
-      {"solver", "mgpcg"},
-      {"accuracy", "MG-PCG to relative residual " + std::to_string(config.default_tolerance()) +
-                       " per step, warm-started from the previous velocity"},
-      {"tolerance", config.default_tolerance()},
-      {"dt", 0.01},
-      {"oracle_check_steps", nlohmann::json::array()}};
+  std::vector<int> check_steps{warmup + 1, warmup + measured / 2, steps};
+  check_steps.erase(std::unique(check_steps.begin(), check_steps.end()), check_steps.end());
+  tables["settings"] = table_settings(config, warmup, measured, check_steps);
   // The rooflines' roofs, this machine's, measured before the runs at the run's thread count
   // and at one thread (Table 1 is measured at both).
   const int threads = thread_count();
@@ -121,216 +340,34 @@ json run_paper_tables(const ReportConfig& config) {
   tables["dense_gflops"] = roofs.dense_gflops;
   tables["one_thread_roofs"] = {{"stream_triad_GBps", roofs_one.stream_gbps},
                                 {"dense_gflops", roofs_one.dense_gflops}};
-  std::vector<int> check_steps{warmup + 1, warmup + measured / 2, steps};
-  check_steps.erase(std::unique(check_steps.begin(), check_steps.end()), check_steps.end());
-  tables["settings"]["oracle_check_steps"] = check_steps;
   for (const std::string& model : config.models()) {
     for (SceneSize size : config.table_sizes(model)) {
-      const std::string id = model + "-" + size_name(size);
+      ModelTables m;
+      m.id = model + "-" + size_name(size);
       // The paper's row sits beside ours only at the paper's size (not beside quick runs).
-      const std::string paper_model = config.with_models()
-                                          ? (size == file_model_size(model) ? model : "")
-                                          : paper_model_of(size);
-      const json scene =
-          table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
-      auto say = [&](const std::string& what) {
-        if (config.progress)
-          *config.progress << "report: tables: " << id << ": " << what << std::endl;
-      };
-      json base = {{"model", id}, {"scene", scene}, {"paper_model", paper_model}};
-      // Table 1: the paper's method.
-      TimedRun main;
-      say("energy-newton + MG-PCG");
-      json row = record_case(base, [&] {
-        TimedRunOptions options;
-        options.warmup_steps = warmup;
-        options.check_steps = check_steps;
-        options.check_operators = true;
-        TimedRunOptions with_matptap = options;  // MatPtAP timed once, after the main run
-        with_matptap.time_matptap = true;
-        main = timed_run(scene, id, with_matptap);
-        // The same run on one thread (the paper's setting), unless this one is.
-        json one_thread = nullptr;
-        TimedRun single_run;
-        if (threads > 1) {
-          say("energy-newton + MG-PCG on one thread");
-          const ScopedThreadCount one(1);
-          single_run = timed_run(scene, id, options);
-          one_thread = phase_medians(single_run, warmup);
-          one_thread["roofline"] = single_run.roofline(warmup, roofs_one);
-          one_thread["separate_run"] = true;
-          one_thread["linear_iterations"] = single_run.result.linear_iterations;
-          // Every kernel gives the same bits at every thread count: so must the whole run.
-          const Eigen::VectorXd& u1 = single_run.result.displacement;
-          const Eigen::VectorXd& u = main.result.displacement;
-          one_thread["same_displacement_bits"] =
-              u1.size() == u.size() &&
-              std::memcmp(u1.data(), u.data(), u.size() * sizeof(double)) == 0;
-        }
-        say("naive Galerkin update");
-        const TimedRun naive = timed_run(with_analysis(scene, {{"galerkin", "naive"}}), id, {});
-        say("CHOLMOD step");
-        const TimedRun cholmod = timed_run(with_analysis(scene, {{"solver", "cholmod"}}), id, {});
-        json all = phase_medians(main, warmup);
-        // Our Galerkin update (the scene's method) against PETSc's MatPtAP (numeric reuse, one
-        // thread) on the same matrices.
-        const auto galerkin_ms = [](const TimedRun& run) -> json {
-          if (!run.multigrid.is_object() || !run.multigrid.contains("update_parts_ms"))
-            return nullptr;
-          return run.multigrid["update_parts_ms"].value("galerkin", 0.0);
-        };
-        json ours_one = threads > 1 ? galerkin_ms(single_run) : galerkin_ms(main);
-        json matptap = nullptr;
-        if (main.matptap_ms >= 0)
-          matptap = {
-              {"matptap_ms", main.matptap_ms},
-              {"galerkin", main.multigrid.value("params", json::object()).value("galerkin", "")},
-              {"galerkin_ms", galerkin_ms(main)},
-              {"galerkin_one_thread_ms", ours_one},
-              {"matptap_over_galerkin_one_thread",
-               ours_one.is_number() && ours_one.get<double>() > 0
-                   ? json(main.matptap_ms / ours_one.get<double>())
-                   : json(nullptr)}};
-        if (one_thread.is_null()) {  // this run is on one thread
-          one_thread = all;
-          one_thread["roofline"] = main.roofline(warmup, roofs_one);
-          one_thread["separate_run"] = false;
-          one_thread["linear_iterations"] = main.result.linear_iterations;
-          one_thread["same_displacement_bits"] = true;
-        }
-        return json{{"tets", main.tets},
-                    {"threads", threads},
-                    {"phases_ms", all},
-                    {"one_thread", one_thread},
-                    {"vertices", main.vertices},
-                    {"levels", main.levels},
-                    {"rotate_ms", main.median_ms("rotate", warmup)},
-                    {"assemble_ms", main.median_ms("assemble", warmup)},
-                    {"update_ms", main.median_ms("update", warmup)},
-                    {"update_naive_ms", naive.median_ms("update", warmup)},
-                    {"coarsest_factorization_in", coarsest_factorization_phase(main)},
-                    {"solve_ms", main.median_ms("solve", warmup)},
-                    {"step_ms", main.median_ms("step", warmup)},
-                    {"tps", tps_of(main, warmup)},
-                    {"solve_iterations", main.median_iterations(warmup)},
-                    {"linear_iterations", main.result.linear_iterations},
-                    {"solve_accuracy",
-                     {{"relative_residual_max", main.solve_residual_max},
-                      {"error_vs_cholmod_max", main.solve_error_max},
-                      {"checked_steps", check_steps}}},
-                    {"cholmod_step_ms", cholmod.median_ms("step", warmup)},
-                    {"cholmod_factorize_ms", cholmod.median_ms("update", warmup)},
-                    {"speedup_vs_cholmod",
-                     cholmod.median_ms("step", warmup) / main.median_ms("step", warmup)},
-                    {"inverted_max", main.result.inverted_max},
-                    {"roofline", main.roofline(warmup, roofs)},
-                    {"galerkin_vs_matptap", matptap},
-                    {"paper", paper_table1_row(paper_model)}};
-      });
-      tables["table1"].push_back(row);
-      if (row["completed"]) {
-        tables["verification"].push_back(
-            {{"model", id},
-             {"checks",
-              {{{"oracle", "CHOLMOD solve of the same step"},
-                {"quantity", "relative error of the MG-PCG solution"},
-                {"largest", main.solve_error_max},
-                {"count", check_steps.size()}},
-               {{"oracle", "Eigen sparse R A R^T"},
-                {"quantity", "relative Frobenius error of every coarse level"},
-                {"largest", main.galerkin_error_max},
-                {"count", main.levels - 1}},
-               {{"oracle", "energy-exact (closed-form minimizer)"},
-                {"quantity", "energy-newton rotation angle error (rad)"},
-                {"largest", main.rotation_error_max_rad},
-                {"count", main.rotation_elements_compared}}}}});
-      }
-      // Table 2: polar decomposition with spatial smoothing.
-      say("polar + smoothing");
-      tables["table2"].push_back(record_case({{"model", id}, {"paper_model", paper_model}}, [&] {
-        const TimedRun polar =
-            timed_run(with_analysis(scene, {{"rotation", "polar-smoothed"}}), id, {});
-        return json{{"tets", polar.tets},
-                    {"tps", tps_of(polar, warmup)},
-                    {"rotate_ms", polar.median_ms("rotate", warmup)},
-                    {"paper_tps", paper_table2_tps(paper_model)}};
-      }));
-      // Figure 1: small strain against corotated.
-      say("small strain");
-      tables["small_strain"].push_back(record_case({{"model", id}}, [&] {
-        const TimedRun linear =
-            timed_run(with_analysis(scene, {{"formulation", "linear"}}), id, {});
-        if (!row["completed"]) throw NumericalFault("the corotated run of this model failed");
-        return json{{"tps", tps_of(linear, warmup)},
-                    {"corotated_tps", tps_of(main, warmup)},
-                    {"volume_change", linear.final_volume / linear.rest_volume - 1},
-                    {"corotated_volume_change", main.final_volume / main.rest_volume - 1}};
-      }));
-      // Multigrid quality: the paper's re-meshed hierarchy against the covering lattice.
-      for (const char* hierarchy : {"meshes", "lattice"}) {
-        say(std::string("multigrid quality: ") + hierarchy);
-        tables["multigrid"].push_back(record_case({{"model", id}}, [&] {
-          const json on = with_analysis(scene, {{"hierarchy", hierarchy}});
-          const std::string kind =
-              main.multigrid.is_null() ? "" : main.multigrid.value("hierarchy", "");
-          const TimedRun pcg = kind == hierarchy ? main : timed_run(on, id, {});
-          const TimedRun vcycle =
-              timed_run(with_analysis(on, {{"solver", "multigrid"}, {"vcycles", 0}}), id, {});
-          return multigrid_quality_row(pcg, vcycle, warmup);
-        }));
-      }
-      // The baseline preconditioner at the same accuracy, on the scene and on the scene 100x
-      // stiffer: M + dt^2 K is mass-dominated at the paper's soft materials (Jacobi's CG
-      // iterations grow as sqrt(cond), the V-cycle's barely), so the comparison says where each
-      // wins.
-      for (const double young_scale : {1.0, 100.0}) {
-        say("Jacobi-PCG" + std::string(young_scale > 1 ? ", 100x stiffer" : ""));
-        tables["jacobi_pcg"].push_back(
-            record_case({{"model", id}, {"young_scale", young_scale}}, [&] {
-              const json stiffer = with_young_scaled(scene, young_scale);
-              const TimedRun jacobi =
-                  timed_run(with_analysis(stiffer, {{"solver", "jacobi-pcg"}}), id, {});
-              const TimedRun mgpcg = young_scale == 1.0 ? main : timed_run(stiffer, id, {});
-              return json{
-                  {"step_ms", jacobi.median_ms("step", warmup)},
-                  {"solve_ms", jacobi.median_ms("solve", warmup)},
-                  {"iterations", jacobi.median_iterations(warmup)},
-                  {"mgpcg_step_ms",
-                   mgpcg.step_ms.empty() ? json(nullptr) : json(mgpcg.median_ms("step", warmup))},
-                  {"mgpcg_iterations",
-                   mgpcg.step_ms.empty() ? json(nullptr) : json(mgpcg.median_iterations(warmup))}};
-            }));
-      }
-      // The algebraic multigrid users would pick instead, to the same tolerance, their setup
-      // timed as the update phase (a new matrix every step), as ours is; the AMGs also with
-      // their setup reused across steps (GAMG's interpolation, BoomerAMG's whole hierarchy).
-      const std::vector<std::pair<std::string, bool>> rivals = {{"petsc-gamg", false},
-                                                                {"hypre-boomeramg", false},
-                                                                {"petsc-mg", false},
-                                                                {"petsc-gamg", true},
-                                                                {"hypre-boomeramg", true}};
-      for (const auto& [rival, reuse] : rivals) {
-        say(rival + (reuse ? " (setup reuse)" : ""));
-        tables["rival_solvers"].push_back(
-            record_case({{"model", id}, {"solver", rival}, {"setup_reuse", reuse}}, [&] {
-              const TimedRun run = timed_run(
-                  with_analysis(scene, {{"solver", rival}, {"setup_reuse", reuse}}), id, {});
-              const double mgpcg_step = main.step_ms.empty() ? 0.0 : main.median_ms("step", warmup);
-              return json{
-                  {"step_ms", run.median_ms("step", warmup)},
-                  {"update_ms", run.median_ms("update", warmup)},
-                  {"solve_ms", run.median_ms("solve", warmup)},
-                  {"iterations", run.median_iterations(warmup)},
-                  {"mgpcg_step_ms", mgpcg_step > 0 ? json(mgpcg_step) : json(nullptr)},
-                  {"mgpcg_update_ms",
-                   main.step_ms.empty() ? json(nullptr) : json(main.median_ms("update", warmup))},
-                  {"mgpcg_solve_ms",
-                   main.step_ms.empty() ? json(nullptr) : json(main.median_ms("solve", warmup))},
-                  {"step_over_mgpcg", mgpcg_step > 0
-                                          ? json(run.median_ms("step", warmup) / mgpcg_step)
-                                          : json(nullptr)}};
-            }));
-      }
+      m.paper_model = config.with_models() ? (size == file_model_size(model) ? model : "")
+                                           : paper_model_of(size);
+      m.scene = table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
+      m.warmup = warmup;
+      m.check_steps = check_steps;
+      m.roofs = roofs;
+      m.roofs_one = roofs_one;
+      m.progress = config.progress;
+      tables["table1"].push_back(table1_row(m, threads));
+      if (m.main_completed) tables["verification"].push_back(verification_row(m));
+      tables["table2"].push_back(table2_row(m));
+      tables["small_strain"].push_back(small_strain_row(m));
+      for (const char* hierarchy : {"meshes", "lattice"})
+        tables["multigrid"].push_back(multigrid_row(m, hierarchy));
+      for (const double young_scale : {1.0, 100.0})
+        tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
+      for (const auto& [rival, reuse] :
+           std::vector<std::pair<std::string, bool>>{{"petsc-gamg", false},
+                                                     {"hypre-boomeramg", false},
+                                                     {"petsc-mg", false},
+                                                     {"petsc-gamg", true},
+                                                     {"hypre-boomeramg", true}})
+        tables["rival_solvers"].push_back(rival_row(m, rival, reuse));
     }
   }
   return tables;
