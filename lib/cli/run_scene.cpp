@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "core/memory_usage.hpp"
+#include "core/number_text.hpp"
 #include "io/run_context.hpp"
 #include "io/solver_record.hpp"
 #include "io/vtu_writer.hpp"
@@ -59,6 +60,10 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   r["iterations"] = result.iterations;
   r["steps"] = result.steps;
   r["linear_iterations"] = result.linear_iterations;
+  if (scene.analysis.type == "dynamic")
+    r["last_solve_residual"] = result.last_solve_residual;
+  else
+    r["load_increment_cuts"] = result.increment_cuts;
   r["residual"] = result.residual;
   r["inverted_max"] = result.inverted_max;
   r["timings_ms"] = result.timings_ms;
@@ -97,10 +102,24 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
     write_vtu(*scene.output.vtu, problem.mesh, result.displacement, result.rotations);
     r["vtu"] = scene.output.vtu->string();
   }
-  if (progress)
-    *progress << "corofem: " << (result.converged ? "converged" : "did not converge") << ", "
-              << result.iterations << " iterations, residual " << result.residual << ", "
-              << result.timings_ms["total"] << " ms\n";
+  if (progress) {
+    // What the run did: a dynamic run's steps and solves (its equilibrium residual says only how
+    // far from rest it ended), a static run's convergence to equilibrium.
+    *progress << "corofem: ";
+    if (scene.analysis.type == "dynamic")
+      *progress << result.steps << " steps, "
+                << general_number(static_cast<double>(result.linear_iterations) /
+                                  std::max(result.steps, 1))
+                << " solver iterations per step, last solve's relative residual "
+                << general_number(result.last_solve_residual);
+    else
+      *progress << (result.converged ? "converged" : "did not converge") << ", "
+                << result.iterations << " iterations, residual " << general_number(result.residual)
+                << (result.increment_cuts > 0
+                        ? " (load increments halved " + std::to_string(result.increment_cuts) + "x)"
+                        : "");
+    *progress << ", " << general_number(result.timings_ms["total"]) << " ms\n";
+  }
   return {std::move(r), result.converged};
 }
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
@@ -94,9 +95,9 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
                      newton.jacobian, clock);
   if (!report.converged)
     throw NotConverged("step " + std::to_string(step) + ": Newton did not reach " +
-                       std::to_string(options.newton_settings.tolerance) + " in " +
+                       general_number(options.newton_settings.tolerance) + " in " +
                        std::to_string(report.iterations) + " iterations (residual " +
-                       std::to_string(report.residual) + ")");
+                       general_number(report.residual) + ")");
   velocity = v1;
   result.rotations = rotations;
   return {report.iterations + 1, report.residual, 0.0};  // the predictor's solve counts
@@ -181,6 +182,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       });
     }
     result.linear_iterations += stats.iterations;
+    result.last_solve_residual = stats.residual;
     result.displacement += dt * velocity;
     clock.time("checks", [&] {
       check_finite(problem, result.displacement, "displacement", "step " + std::to_string(step));

@@ -1,7 +1,10 @@
 #include "integrate/static_solver.hpp"
 
 #include <memory>
+#include <string>
+#include <vector>
 
+#include "core/number_text.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
 #include "fem/rotation_tangent.hpp"
@@ -9,6 +12,77 @@
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
+
+namespace {
+
+/// The most times a run halves a Newton increment that did not converge.
+constexpr int kMaxIncrementCuts = 8;
+
+/// One load increment's Newton iterations on g(u) = f_int(u) - f with the consistent tangent,
+/// from `u` (its fixed DOFs set to the scaled prescribed values first). Returns whether it
+/// converged; counts into `result`.
+bool newton_increment(FeProblem& problem, RotationExtractor& rotate, const RotationTangent& tangent,
+                      SparseLuSolve& lu, BrcMatrix& jacobian_matrix, double scale,
+                      const Eigen::VectorXd& f, double f_norm, const StaticOptions& options,
+                      const std::string& where, Eigen::VectorXd& u, SimulationResult& result,
+                      PhaseClock& clock) {
+  for (int i = 0; i < u.size(); ++i)
+    if (problem.dirichlet.fixed[i]) u[i] = scale * problem.dirichlet.value[i];
+  std::vector<Vec3> positions;
+  const auto residual = [&](const Eigen::VectorXd& z) {
+    positions = problem.positions(z);
+    result.inverted_max = std::max(result.inverted_max, count_inverted(problem, positions));
+    clock.time("rotate", [&] { rotate.extract(positions, result.rotations); });
+    return Eigen::VectorXd(internal_forces(problem, result.rotations, z) - f);
+  };
+  const auto jacobian = [&](BrcMatrix& j) {
+    clock.time("assemble", [&] { tangent.assemble(positions, result.rotations, j); });
+  };
+  const NewtonReport report =
+      newton_iterate(u, residual, jacobian, problem.dirichlet, f_norm > 0 ? f_norm : 1.0,
+                     {options.tolerance, options.max_iterations}, lu, jacobian_matrix, clock);
+  check_finite(problem, u, "displacement", where);
+  result.iterations += report.iterations;
+  result.linear_iterations += report.iterations;
+  result.residual = report.residual;
+  return report.converged;
+}
+
+/// One load increment of the lagged-rotation iteration: extract the rotations at x + u, solve
+/// Ktilde du = f - f_int(u), until the residual is below the tolerance (a linear problem: one
+/// solve). Returns whether it converged; counts into `result`.
+bool lagged_increment(FeProblem& problem, RotationExtractor& rotate, LinearSolver& solver,
+                      double scale, const Eigen::VectorXd& f, double f_norm,
+                      const StaticOptions& options, const std::string& where, Eigen::VectorXd& u,
+                      SimulationResult& result, PhaseClock& clock) {
+  Eigen::VectorXd elastic, du = Eigen::VectorXd::Zero(problem.num_dofs());
+  for (int it = 0; it <= options.max_iterations; ++it) {
+    const auto p = problem.positions(u);
+    result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
+    linearize(problem, rotate, p, u, result.rotations, elastic, clock);
+    const Eigen::VectorXd r = f - elastic;
+    check_finite(problem, r, "force", where + ", iteration " + std::to_string(it));
+    result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
+    // A linear solve is exact after one step; corotated steps iterate the lagged rotations.
+    if (it > 0 && (!options.corotational || result.residual < options.tolerance)) return true;
+    if (it == options.max_iterations) return false;
+    // Ktilde du = r, with du taking fixed DOFs to their (scaled) prescribed values.
+    DirichletConditions bc = problem.dirichlet;
+    bc.value = scale * problem.dirichlet.value - u;
+    BrcMatrix system = problem.stiffness;
+    Eigen::VectorXd b = r;
+    apply_dirichlet(bc, system, b);
+    clock.time("update", [&] { solver.set_matrix(system); });
+    du.setZero();
+    result.linear_iterations += clock.time("solve", [&] { return solver.solve(b, du); }).iterations;
+    u += du;
+    ++result.iterations;
+    check_finite(problem, u, "displacement", where + ", iteration " + std::to_string(it + 1));
+  }
+  return false;
+}
+
+}  // namespace
 
 SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
                               LinearSolver& solver, const StaticOptions& options) {
@@ -19,8 +93,6 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   Eigen::VectorXd& u = result.displacement;
   u = Eigen::VectorXd::Zero(problem.num_dofs());
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
-  Eigen::VectorXd elastic, du = Eigen::VectorXd::Zero(problem.num_dofs());
-  const int increments = options.corotational ? options.load_steps : 1;
   result.converged = true;
   std::unique_ptr<RotationTangent> tangent;
   std::unique_ptr<SparseLuSolve> lu;
@@ -30,74 +102,47 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
     lu = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;
   }
-  for (int inc = 1; inc <= increments; ++inc) {
-    const double scale = static_cast<double>(inc) / increments;
+  // The load fraction reached is done / denominator, in integers, so that uncut the k-th
+  // increment's scale is exactly k / load_steps. A Newton increment that does not converge (full
+  // Newton steps from far away can diverge) is retried from the last converged state at half
+  // the size, at most kMaxIncrementCuts times in a run.
+  long long done = 0, denominator = options.corotational ? options.load_steps : 1;
+  Eigen::VectorXd converged_u = u;
+  std::vector<Mat3> converged_rotations = result.rotations;
+  while (done < denominator) {
+    const double scale = static_cast<double>(done + 1) / static_cast<double>(denominator);
     const Eigen::VectorXd f = scale * problem.external_force;
     const double f_norm = free_norm(problem.dirichlet, f);
-    bool inc_converged = false;
-    if (tangent) {
-      // g(u) = f_int(u) - f, J = d f_int / du; fixed DOFs at their (scaled) prescribed values.
-      for (int i = 0; i < u.size(); ++i)
-        if (problem.dirichlet.fixed[i]) u[i] = scale * problem.dirichlet.value[i];
-      std::vector<Vec3> positions;
-      const auto residual = [&](const Eigen::VectorXd& z) {
-        positions = problem.positions(z);
-        result.inverted_max = std::max(result.inverted_max, count_inverted(problem, positions));
-        clock.time("rotate", [&] { rotate.extract(positions, result.rotations); });
-        return Eigen::VectorXd(internal_forces(problem, result.rotations, z) - f);
-      };
-      const auto jacobian = [&](BrcMatrix& j) {
-        clock.time("assemble", [&] { tangent->assemble(positions, result.rotations, j); });
-      };
-      const NewtonReport report =
-          newton_iterate(u, residual, jacobian, problem.dirichlet, f_norm > 0 ? f_norm : 1.0,
-                         {options.tolerance, options.max_iterations}, *lu, jacobian_matrix, clock);
-      check_finite(problem, u, "displacement", "load increment " + std::to_string(inc));
-      result.iterations += report.iterations;
-      result.linear_iterations += report.iterations;
-      result.residual = report.residual;
-      inc_converged = report.converged;
+    const std::string where =
+        "load increment " + std::to_string(done + 1) + " of " + std::to_string(denominator);
+    const bool converged =
+        tangent ? newton_increment(problem, rotate, *tangent, *lu, jacobian_matrix, scale, f,
+                                   f_norm, options, where, u, result, clock)
+                : lagged_increment(problem, rotate, solver, scale, f, f_norm, options, where, u,
+                                   result, clock);
+    if (converged) {
+      ++done;
+      ++result.steps;
+      converged_u = u;
+      converged_rotations = result.rotations;
+      continue;
     }
-    for (int it = 0; !tangent && it <= options.max_iterations; ++it) {
-      const auto p = problem.positions(u);
-      result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
-      linearize(problem, rotate, p, u, result.rotations, elastic, clock);
-      const Eigen::VectorXd r = f - elastic;
-      check_finite(problem, r, "force",
-                   "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it));
-      result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
-      // A linear solve is exact after one step; corotated steps iterate the lagged rotations.
-      if (it > 0 && (!options.corotational || result.residual < options.tolerance)) {
-        inc_converged = true;
-        break;
-      }
-      if (it == options.max_iterations) break;
-      // Ktilde du = r, with du taking fixed DOFs to their (scaled) prescribed values.
-      DirichletConditions bc = problem.dirichlet;
-      bc.value = scale * problem.dirichlet.value - u;
-      BrcMatrix system = problem.stiffness;
-      Eigen::VectorXd b = r;
-      apply_dirichlet(bc, system, b);
-      clock.time("update", [&] { solver.set_matrix(system); });
-      du.setZero();
-      result.linear_iterations +=
-          clock.time("solve", [&] { return solver.solve(b, du); }).iterations;
-      u += du;
-      ++result.iterations;
-      check_finite(
-          problem, u, "displacement",
-          "load increment " + std::to_string(inc) + ", iteration " + std::to_string(it + 1));
+    if (tangent && result.increment_cuts < kMaxIncrementCuts) {
+      u = converged_u;
+      result.rotations = converged_rotations;
+      done *= 2;
+      denominator *= 2;
+      ++result.increment_cuts;
+      continue;
     }
-    result.steps = inc;
-    if (!inc_converged) {
-      result.converged = false;
-      result.message = "load increment " + std::to_string(inc) + " of " +
-                       std::to_string(increments) + " did not reach tolerance " +
-                       std::to_string(options.tolerance) + " in " +
-                       std::to_string(options.max_iterations) + " iterations (residual " +
-                       std::to_string(result.residual) + ")";
-      break;
-    }
+    result.converged = false;
+    result.message =
+        where + " did not reach tolerance " + general_number(options.tolerance) + " in " +
+        std::to_string(options.max_iterations) + " iterations (residual " +
+        general_number(result.residual) +
+        (result.increment_cuts > 0 ? ", after " + std::to_string(result.increment_cuts) + " cuts)"
+                                   : ")");
+    break;
   }
   return result;
 }

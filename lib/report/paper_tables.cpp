@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/machine_roofs.hpp"
+#include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
@@ -307,7 +308,7 @@ json table_settings(const ReportConfig& config, int warmup, int measured,
           {"statistic", "median over the measured steps"},
           {"rotation", "energy-newton"},
           {"solver", "mgpcg"},
-          {"accuracy", "MG-PCG to relative residual " + std::to_string(config.default_tolerance()) +
+          {"accuracy", "MG-PCG to relative residual " + general_number(config.default_tolerance()) +
                            " per step, warm-started from the previous velocity"},
           {"tolerance", config.default_tolerance()},
           {"dt", 0.01},

@@ -188,7 +188,8 @@ int integer_in(JsonFields& f, const std::string& key, int fallback, int lo, int 
 void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.type = one_of(f, "type", a.type, {"static", "dynamic"});
   a.formulation = one_of(f, "formulation", a.formulation, {"linear", "corotational"});
-  a.integrator = one_of(f, "integrator", a.integrator, {"linear-implicit", "newton"});
+  a.integrator = one_of(f, "integrator", a.type == "static" ? "newton" : "linear-implicit",
+                        {"linear-implicit", "newton"});
   a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
   a.solver = one_of(f, "solver", a.solver, linear_solver_names());
   a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
