@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <ostream>
+#include <string>
 
 #include "core/memory_usage.hpp"
 #include "core/number_text.hpp"
@@ -14,6 +15,30 @@
 #include "scene/solver_factory.hpp"
 
 namespace corofem {
+
+namespace {
+
+/// What the run did: a dynamic run's steps and solves (its equilibrium residual says only how far
+/// from rest it ended), a static run's convergence to equilibrium.
+std::string closing_line(const Scene& scene, SimulationResult& result) {
+  std::string line = "corofem: ";
+  if (scene.analysis.type == "dynamic") {
+    line +=
+        std::to_string(result.steps) + " steps, " +
+        general_number(static_cast<double>(result.linear_iterations) / std::max(result.steps, 1)) +
+        " solver iterations per step, last solve's relative residual " +
+        general_number(result.last_solve_residual);
+  } else {
+    line += std::string(result.converged ? "converged" : "did not converge") + ", " +
+            std::to_string(result.iterations) + " iterations, residual " +
+            general_number(result.residual);
+    if (result.increment_cuts > 0)
+      line += " (load increments halved " + std::to_string(result.increment_cuts) + "x)";
+  }
+  return line + ", " + general_number(result.timings_ms["total"]) + " ms\n";
+}
+
+}  // namespace
 
 SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   if (progress) *progress << "corofem: building '" << scene.name << "'\n";
@@ -102,24 +127,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
     write_vtu(*scene.output.vtu, problem.mesh, result.displacement, result.rotations);
     r["vtu"] = scene.output.vtu->string();
   }
-  if (progress) {
-    // What the run did: a dynamic run's steps and solves (its equilibrium residual says only how
-    // far from rest it ended), a static run's convergence to equilibrium.
-    *progress << "corofem: ";
-    if (scene.analysis.type == "dynamic")
-      *progress << result.steps << " steps, "
-                << general_number(static_cast<double>(result.linear_iterations) /
-                                  std::max(result.steps, 1))
-                << " solver iterations per step, last solve's relative residual "
-                << general_number(result.last_solve_residual);
-    else
-      *progress << (result.converged ? "converged" : "did not converge") << ", "
-                << result.iterations << " iterations, residual " << general_number(result.residual)
-                << (result.increment_cuts > 0
-                        ? " (load increments halved " + std::to_string(result.increment_cuts) + "x)"
-                        : "");
-    *progress << ", " << general_number(result.timings_ms["total"]) << " ms\n";
-  }
+  if (progress) *progress << closing_line(scene, result);
   return {std::move(r), result.converged};
 }
 
