@@ -7,24 +7,15 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "fem/corotated_assembly.hpp"
-#include "fem/corotated_system.hpp"
-#include "fem/rotation_tangent.hpp"
-#include "io/vtu_writer.hpp"
 #include "report/case_record.hpp"
+#include "report/stability_monitor.hpp"
 #include "report/timed_run.hpp"
-#include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
 using nlohmann::json;
 
 namespace {
-
-/// Thrown by the step observer when the displacement leaves any physical range.
-struct BlowUp : NumericalFault {
-  using NumericalFault::NumericalFault;
-};
 
 /// The boundary surface: faces that belong to one tet only, each oriented with its normal
 /// pointing away from that tet's fourth vertex (outward), as indices into `vertices`.
@@ -71,6 +62,63 @@ double round4(double x) {
   return std::isfinite(x) ? std::round(x * 1e4) / 1e4 : 0.0;
 }
 
+/// The record's measurements of a run that completed or diverged: its status, flutter, energy,
+/// inversions and series.
+void add_measurements(const StabilityMonitor& monitor, const TimedRun& run, bool diverged,
+                      const json& result, json& record) {
+  record["completed"] = true;
+  record["status"] = diverged ? "diverged" : monitor.flutters() ? "flutter" : "stable";
+  record["diverged_step"] = diverged ? json(monitor.last_step() + 1) : json(nullptr);
+  if (diverged) record["divergence"] = result["error"];
+  const bool flutter_measured = monitor.flutter_rms_rad() >= 0 && !diverged;
+  record["flutter_rms_rad"] = flutter_measured ? json(monitor.flutter_rms_rad()) : json(nullptr);
+  record["flutter_max_rad"] = flutter_measured ? json(monitor.flutter_max_rad()) : json(nullptr);
+  const std::vector<int>& inverted = monitor.inverted_series();
+  record["inverted_max"] =
+      inverted.empty() ? 0 : *std::max_element(inverted.begin(), inverted.end());
+  record["inverted_final"] = inverted.empty() ? 0 : inverted.back();
+  const std::vector<double>& kinetic = monitor.kinetic_series();
+  record["kinetic_energy_final"] = kinetic.empty() ? json(nullptr) : finite_or_null(kinetic.back());
+  record["residual_final"] = diverged ? json(nullptr) : finite_or_null(run.result.residual);
+  record["steps_run"] = monitor.last_step();
+  record["asymmetry"] =
+      monitor.asymmetry_median() >= 0 ? json(monitor.asymmetry_median()) : json(nullptr);
+  record["energy_error"] = !diverged && monitor.energy_error() >= 0
+                               ? finite_or_null(monitor.energy_error())
+                               : json(nullptr);
+  record["cause"] = nullptr;
+  record["tets"] = run.tets;
+  record["series"] = {{"rotation_change_rms_rad", monitor.rms_series()},
+                      {"rotation_change_max_rad", monitor.max_series()},
+                      {"kinetic_energy", kinetic},
+                      {"inverted", inverted}};
+}
+
+/// The final pose of a run's boundary surface, with each vertex's largest rotation change in the
+/// settled window, for the pose chart.
+json pose_record(const StabilityMonitor& monitor, const TimedRun& run, const std::string& scene_id,
+                 const StabilityRun& spec, const json& status) {
+  const BoundarySurface surface = boundary_surface(run.mesh);
+  json rest = json::array(), points = json::array(), values = json::array(),
+       triangles = json::array();
+  for (int v : surface.vertices) {
+    const Vec3& x0 = run.mesh.rest[v];
+    const Vec3 x = x0 + run.result.displacement.segment<3>(3 * v);
+    rest.push_back({round4(x0.x()), round4(x0.y()), round4(x0.z())});
+    points.push_back({round4(x.x()), round4(x.y()), round4(x.z())});
+    values.push_back(round4(monitor.vertex_change()[v]));
+  }
+  for (const auto& t : surface.triangles) triangles.push_back(t);
+  return {{"scene", scene_id},
+          {"method", spec.method},
+          {"integrator", spec.integrator},
+          {"status", status},
+          {"rest_points", rest},
+          {"triangles", triangles},
+          {"points", points},
+          {"rotation_change_max_rad", values}};
+}
+
 }  // namespace
 
 json refined_scene(const json& scene, int k) {
@@ -88,7 +136,6 @@ json refined_scene(const json& scene, int k) {
 json run_stability_case(const json& scene, const std::string& scene_id, const StabilityRun& spec,
                         int ramp_steps, int hold_steps, json* pose,
                         const std::filesystem::path& vtu_dir) {
-  const FlutterThresholds thresholds;
   const std::string& method = spec.method;
   json s = refined_scene(scene, spec.refinement);
   s["analysis"]["rotation"] = method;
@@ -96,105 +143,15 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
   ramp_steps *= spec.refinement;
   hold_steps *= spec.refinement;
   const double dt = s["analysis"]["dt"].get<double>();
-  const double alpha =
-      s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("alpha", 0.0) : 0.0;
-  const double beta =
-      s["analysis"].contains("rayleigh") ? s["analysis"]["rayleigh"].value("beta", 0.0) : 0.0;
-  const int settle_from = ramp_steps + hold_steps / 2;  // the settled half of the hold
-  // Energy balance over the hold (loads constant, supports still): E + D - W stays at its value at
-  // the hold's start unless energy is created (a non-conservative force, an unstable integrator)
-  // or removed (backward Euler's numerical dissipation).
-  double hold_energy = 0, dissipated = 0, energy_excess = 0, energy_peak = 0;
-  Eigen::VectorXd hold_displacement;
-  double asymmetry_median = -1;
-  // Rotations of the state itself (the linearly implicit step's are the step start's), for the
-  // energy and the asymmetry.
-  std::unique_ptr<RotationExtractor> state_rotation;
-  std::vector<Mat3> state_rotations;
-  std::vector<double> rms_series, max_series, energy_series;
-  std::vector<int> inverted_series;
-  std::vector<Mat3> previous;
-  std::vector<double> vertex_change;  // largest change per vertex in the settled window
-  double flutter_rms_sum = 0, flutter_max = 0;
-  long long flutter_samples = 0;
-  int last_step = 0;
-  double diagonal = 0;
+  const json rayleigh = s["analysis"].value("rayleigh", json::object());
+  StabilityMonitor monitor(method, ramp_steps, hold_steps, dt, rayleigh.value("alpha", 0.0),
+                           rayleigh.value("beta", 0.0), vtu_dir);
   json record = {{"scene", scene_id}, {"method", method},         {"integrator", spec.integrator},
                  {"dt", dt},          {"ramp_steps", ramp_steps}, {"hold_steps", hold_steps}};
   TimedRun run;
   TimedRunOptions options;
   options.on_step = [&](const StepState& st, const FeProblem& problem) {
-    last_step = st.step;
-    if (diagonal == 0) {
-      Vec3 lo = problem.mesh.rest[0], hi = lo;
-      for (const Vec3& x : problem.mesh.rest) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-      diagonal = (hi - lo).norm();
-      vertex_change.assign(problem.mesh.rest.size(), 0.0);
-    }
-    const int tets = problem.mesh.num_tets();
-    double sum2 = 0, largest = 0;
-    if (!previous.empty()) {
-      for (int e = 0; e < tets; ++e) {
-        const double d = angle_between(st.rotations[e], previous[e]);
-        sum2 += d * d;
-        largest = std::max(largest, d);
-        if (st.step > settle_from)
-          for (int v : problem.mesh.tets[e]) vertex_change[v] = std::max(vertex_change[v], d);
-      }
-    }
-    previous = st.rotations;
-    const double rms = std::sqrt(sum2 / tets);
-    rms_series.push_back(rms);
-    max_series.push_back(largest);
-    if (st.step > settle_from) {
-      flutter_rms_sum += sum2;
-      flutter_samples += tets;
-      flutter_max = std::max(flutter_max, largest);
-    }
-    const double kinetic = 0.5 * st.velocity.cwiseProduct(st.velocity).dot(problem.mass);
-    energy_series.push_back(kinetic);
-    if (st.step >= ramp_steps) {
-      if (!state_rotation) {
-        state_rotation = make_rotation_extractor(method, problem.mesh);
-        state_rotations = st.rotations;
-      }
-      state_rotation->extract(problem.positions(st.displacement), state_rotations);
-      const double energy = kinetic + elastic_energy(problem.elements, problem.mesh,
-                                                     state_rotations, st.displacement);
-      if (st.step == ramp_steps) {
-        hold_energy = energy;
-        hold_displacement = st.displacement;
-      } else {
-        Eigen::VectorXd kv;
-        problem.stiffness.multiply(st.velocity, kv);
-        dissipated += dt * (alpha * st.velocity.dot(problem.mass.cwiseProduct(st.velocity)) +
-                            beta * st.velocity.dot(kv));
-      }
-      const double work = problem.external_force.dot(st.displacement - hold_displacement);
-      energy_excess = std::max(energy_excess, energy + dissipated - work - hold_energy);
-      energy_peak = std::max({energy_peak, energy, std::abs(work)});
-    }
-    if (st.step == ramp_steps + hold_steps) {
-      // Conservativeness of the method on this state: |J - J^T| / |J| per element, its median.
-      const RotationTangent tangent(problem, method);
-      const auto positions = problem.positions(st.displacement);
-      std::vector<double> asymmetries(problem.mesh.tets.size());
-      for (int e = 0; e < problem.mesh.num_tets(); ++e)
-        asymmetries[e] = asymmetry(tangent.element_jacobian(e, positions, state_rotations[e]));
-      std::nth_element(asymmetries.begin(), asymmetries.begin() + asymmetries.size() / 2,
-                       asymmetries.end());
-      asymmetry_median = asymmetries[asymmetries.size() / 2];
-    }
-    inverted_series.push_back(count_inverted(problem, problem.positions(st.displacement)));
-    if (st.displacement.lpNorm<Eigen::Infinity>() > thresholds.blowup_factor * diagonal)
-      throw BlowUp("displacement beyond " + std::to_string(thresholds.blowup_factor) +
-                   "x the body's diagonal at step " + std::to_string(st.step));
-    if (!vtu_dir.empty() && (st.step % 10 == 0)) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%05d.vtu", st.step);
-      std::filesystem::create_directories(vtu_dir);
-      write_vtu(vtu_dir / name, problem.mesh, st.displacement, st.rotations);
-    }
+    monitor.observe(st, problem);
   };
   json result = record_case(record, [&] {
     run = timed_run(s, scene_id, options);
@@ -211,57 +168,8 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
     record["status"] = "failed";
     return record;
   }
-  record["completed"] = true;
-  record["status"] =
-      diverged ? "diverged"
-      : (flutter_max > thresholds.max_rad ||
-         (flutter_samples > 0 && std::sqrt(flutter_rms_sum / flutter_samples) > thresholds.rms_rad))
-          ? "flutter"
-          : "stable";
-  record["diverged_step"] = diverged ? json(last_step + 1) : json(nullptr);
-  if (diverged) record["divergence"] = result["error"];
-  record["flutter_rms_rad"] = flutter_samples > 0 && !diverged
-                                  ? json(std::sqrt(flutter_rms_sum / flutter_samples))
-                                  : json(nullptr);
-  record["flutter_max_rad"] = flutter_samples > 0 && !diverged ? json(flutter_max) : json(nullptr);
-  record["inverted_max"] = inverted_series.empty()
-                               ? 0
-                               : *std::max_element(inverted_series.begin(), inverted_series.end());
-  record["inverted_final"] = inverted_series.empty() ? 0 : inverted_series.back();
-  record["kinetic_energy_final"] =
-      energy_series.empty() ? json(nullptr) : finite_or_null(energy_series.back());
-  record["residual_final"] = diverged ? json(nullptr) : finite_or_null(run.result.residual);
-  record["steps_run"] = last_step;
-  record["asymmetry"] = asymmetry_median >= 0 ? json(asymmetry_median) : json(nullptr);
-  record["energy_error"] =
-      !diverged && energy_peak > 0 ? finite_or_null(energy_excess / energy_peak) : json(nullptr);
-  record["cause"] = nullptr;
-  record["tets"] = run.tets;
-  record["series"] = {{"rotation_change_rms_rad", rms_series},
-                      {"rotation_change_max_rad", max_series},
-                      {"kinetic_energy", energy_series},
-                      {"inverted", inverted_series}};
-  if (pose && !diverged) {
-    const BoundarySurface surface = boundary_surface(run.mesh);
-    json rest = json::array(), points = json::array(), values = json::array(),
-         triangles = json::array();
-    for (int v : surface.vertices) {
-      const Vec3& x0 = run.mesh.rest[v];
-      const Vec3 x = x0 + run.result.displacement.segment<3>(3 * v);
-      rest.push_back({round4(x0.x()), round4(x0.y()), round4(x0.z())});
-      points.push_back({round4(x.x()), round4(x.y()), round4(x.z())});
-      values.push_back(round4(vertex_change[v]));
-    }
-    for (const auto& t : surface.triangles) triangles.push_back(t);
-    *pose = {{"scene", scene_id},
-             {"method", method},
-             {"integrator", spec.integrator},
-             {"status", record["status"]},
-             {"rest_points", rest},
-             {"triangles", triangles},
-             {"points", points},
-             {"rotation_change_max_rad", values}};
-  }
+  add_measurements(monitor, run, diverged, result, record);
+  if (pose && !diverged) *pose = pose_record(monitor, run, scene_id, spec, record["status"]);
   return record;
 }
 
