@@ -92,6 +92,141 @@ void mark_pareto_front(json& points, const std::string& sweep) {
   }
 }
 
+namespace {
+
+/// One scene's sweeps: each setting's time per step against its error, the points in `entry`.
+struct SceneSweeps {
+  const ReportConfig& config;
+  std::string model, id;
+  json scene;
+  int steps = 0, warmup = 0;
+  json entry;
+
+  void say(const std::string& what) const {
+    if (config.progress)
+      *config.progress << "report: speed-accuracy: " << id << ": " << what << std::endl;
+  }
+
+  /// Runs `scene_json` and adds its point, its error given by `error`.
+  void point(const std::string& sweep, const json& setting, const json& scene_json,
+             const std::function<double(const TimedRun&)>& error, bool is_reference = false) {
+    say(sweep + ": " + label_of(setting));
+    entry["points"].push_back(
+        record_case({{"sweep", sweep}, {"setting", setting}, {"label", label_of(setting)}}, [&] {
+          const TimedRun run = timed_run(scene_json, id, {});
+          return json{{"time_per_step_ms", run.median_ms("step", warmup)},
+                      {"rel_error", finite_or_null(error(run))},
+                      {"tets", run.tets},
+                      {"iterations_per_step", run.median_iterations(warmup)},
+                      {"is_reference", is_reference}};
+        }));
+  }
+
+  /// Resolution: the probe's displacement at each size, against the finest completed one.
+  void resolution_sweep() {
+    const json probe = probe_box(model);
+    json points = json::array();
+    for (SceneSize s : config.resolution_sizes()) {
+      const json setting = {{"resolution", size_name(s)}};
+      say("resolution: " + size_name(s));
+      points.push_back(record_case(
+          {{"sweep", "resolution"}, {"setting", setting}, {"label", size_name(s)}}, [&] {
+            const TimedRun run = timed_run(
+                table_scene(model, s, steps, config.default_tolerance(), config.models_dir),
+                model + "-" + size_name(s), {});
+            const Vec3 value = run.probe(probe);
+            return json{{"time_per_step_ms", run.median_ms("step", warmup)},
+                        {"tets", run.tets},
+                        {"probe_displacement", {value.x(), value.y(), value.z()}}};
+          }));
+    }
+    json* finest = nullptr;
+    for (json& p : points)
+      if (p["completed"]) finest = &p;
+    for (json& p : points) {
+      if (!p["completed"] || !finest) continue;
+      const auto& a = p["probe_displacement"];
+      const auto& b = (*finest)["probe_displacement"];
+      const Vec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]);
+      p["rel_error"] =
+          finite_or_null(pb.norm() > 0 ? (pa - pb).norm() / pb.norm() : (pa - pb).norm());
+      p["is_reference"] = &p == finest;
+      entry["points"].push_back(p);
+    }
+  }
+
+  /// Each sweep's Pareto front and the cheapest point meeting its target.
+  void mark_fronts(const AccuracyTargets& targets) {
+    for (const char* sweep : {"solver", "rotation", "resolution"})
+      mark_pareto_front(entry["points"], sweep);
+    auto subset_of = [&](const char* sweep) {
+      json subset = json::array();
+      for (const json& p : entry["points"])
+        if (p["sweep"] == sweep) subset.push_back(p);
+      return subset;
+    };
+    entry["cheapest_meeting_target"] = {
+        {"solver", cheapest_meeting(subset_of("solver"), targets.solver)},
+        {"rotation", cheapest_meeting(subset_of("rotation"), targets.rotation)},
+        {"resolution", cheapest_meeting(subset_of("resolution"), targets.resolution)}};
+  }
+};
+
+/// The solver, rotation and resolution sweeps of one model at its sweep size.
+json scene_sweeps(const ReportConfig& config, const std::string& model,
+                  const AccuracyTargets& targets) {
+  const int steps = config.sweep_steps();
+  const SceneSize size = config.sweep_size(model);
+  SceneSweeps s{config,
+                model,
+                model + "-" + size_name(size),
+                table_scene(model, size, steps, config.default_tolerance(), config.models_dir),
+                steps,
+                std::min(2, steps - 1),
+                json()};
+  s.entry = {{"scene", s.id}, {"model", model}, {"steps", steps}, {"points", json::array()}};
+  // References at this resolution.
+  Eigen::VectorXd u_ref, u_exact;
+  s.say("references (CHOLMOD)");
+  const json refs = record_case({}, [&] {
+    u_ref =
+        timed_run(with_analysis(s.scene, {{"solver", "cholmod"}}), s.id, {}).result.displacement;
+    u_exact =
+        timed_run(with_analysis(s.scene, {{"solver", "cholmod"}, {"rotation", "energy-exact"}}),
+                  s.id, {})
+            .result.displacement;
+    return json::object();
+  });
+  if (!refs["completed"]) {
+    s.entry["completed"] = false;
+    s.entry["error"] = refs["error"];
+    return s.entry;
+  }
+  const auto against = [](const Eigen::VectorXd& reference) {
+    return [ref = &reference](const TimedRun& run) {
+      return relative_error(run.result.displacement, *ref);
+    };
+  };
+  const int levels = s.scene["analysis"]["levels"];
+  for (const json& setting : solver_settings(config, levels))
+    s.point("solver", setting, with_analysis(s.scene, setting), against(u_ref));
+  s.point("solver", {{"solver", "cholmod"}}, with_analysis(s.scene, {{"solver", "cholmod"}}),
+          against(u_ref), true);
+  for (const std::string& method : rotation_method_names()) {
+    if (method == "none") continue;
+    if (config.mode == ReportConfig::Mode::Smoke && method != "energy-newton" && method != "polar")
+      continue;
+    s.point("rotation", {{"rotation", method}}, with_analysis(s.scene, {{"rotation", method}}),
+            against(u_exact));
+  }
+  s.resolution_sweep();
+  s.mark_fronts(targets);
+  s.entry["completed"] = true;
+  return s.entry;
+}
+
+}  // namespace
+
 json run_speed_accuracy(const ReportConfig& config) {
   const AccuracyTargets targets;
   json out = {
@@ -109,113 +244,8 @@ json run_speed_accuracy(const ReportConfig& config) {
          "|p - p_ref| / |p_ref| of the mean displacement of a probe region, p_ref: the finest "
          "resolution"}}},
       {"scenes", json::array()}};
-  const int steps = config.sweep_steps();
-  const int warmup = std::min(2, steps - 1);
-  for (const std::string& model : config.models()) {
-    const SceneSize size = config.sweep_size(model);
-    const std::string id = model + "-" + size_name(size);
-    const json scene =
-        table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
-    auto say = [&](const std::string& what) {
-      if (config.progress)
-        *config.progress << "report: speed-accuracy: " << id << ": " << what << std::endl;
-    };
-    json entry = {{"scene", id}, {"model", model}, {"steps", steps}, {"points", json::array()}};
-    auto point = [&](const std::string& sweep, const json& setting, const json& scene_json,
-                     const std::function<double(const TimedRun&)>& error,
-                     bool is_reference = false) {
-      say(sweep + ": " + label_of(setting));
-      json p =
-          record_case({{"sweep", sweep}, {"setting", setting}, {"label", label_of(setting)}}, [&] {
-            const TimedRun run = timed_run(scene_json, id, {});
-            return json{{"time_per_step_ms", run.median_ms("step", warmup)},
-                        {"rel_error", finite_or_null(error(run))},
-                        {"tets", run.tets},
-                        {"iterations_per_step", run.median_iterations(warmup)},
-                        {"is_reference", is_reference}};
-          });
-      entry["points"].push_back(p);
-    };
-    // References at this resolution.
-    Eigen::VectorXd u_ref, u_exact;
-    say("references (CHOLMOD)");
-    json refs = record_case({}, [&] {
-      u_ref = timed_run(with_analysis(scene, {{"solver", "cholmod"}}), id, {}).result.displacement;
-      u_exact =
-          timed_run(with_analysis(scene, {{"solver", "cholmod"}, {"rotation", "energy-exact"}}), id,
-                    {})
-              .result.displacement;
-      return json::object();
-    });
-    if (!refs["completed"]) {
-      entry["completed"] = false;
-      entry["error"] = refs["error"];
-      out["scenes"].push_back(entry);
-      continue;
-    }
-    const int levels = scene["analysis"]["levels"];
-    for (const json& setting : solver_settings(config, levels))
-      point("solver", setting, with_analysis(scene, setting),
-            [&](const TimedRun& r) { return relative_error(r.result.displacement, u_ref); });
-    point(
-        "solver", {{"solver", "cholmod"}}, with_analysis(scene, {{"solver", "cholmod"}}),
-        [&](const TimedRun& r) { return relative_error(r.result.displacement, u_ref); }, true);
-    for (const std::string& method : rotation_method_names()) {
-      if (method == "none") continue;
-      if (config.mode == ReportConfig::Mode::Smoke && method != "energy-newton" &&
-          method != "polar")
-        continue;
-      point("rotation", {{"rotation", method}}, with_analysis(scene, {{"rotation", method}}),
-            [&](const TimedRun& r) { return relative_error(r.result.displacement, u_exact); });
-    }
-    // Resolution: probe displacement against the finest.
-    const json probe = probe_box(model);
-    std::vector<std::pair<SceneSize, Vec3>> probes;
-    json resolution_points = json::array();
-    for (SceneSize s : config.resolution_sizes()) {
-      const json setting = {{"resolution", size_name(s)}};
-      say("resolution: " + size_name(s));
-      json p = record_case(
-          {{"sweep", "resolution"}, {"setting", setting}, {"label", size_name(s)}}, [&] {
-            const TimedRun run = timed_run(
-                table_scene(model, s, steps, config.default_tolerance(), config.models_dir),
-                model + "-" + size_name(s), {});
-            const Vec3 value = run.probe(probe);
-            return json{{"time_per_step_ms", run.median_ms("step", warmup)},
-                        {"tets", run.tets},
-                        {"probe_displacement", {value.x(), value.y(), value.z()}}};
-          });
-      resolution_points.push_back(p);
-    }
-    // The finest completed resolution is the reference.
-    json* finest = nullptr;
-    for (json& p : resolution_points)
-      if (p["completed"]) finest = &p;
-    for (json& p : resolution_points) {
-      if (!p["completed"] || !finest) continue;
-      const auto& a = p["probe_displacement"];
-      const auto& b = (*finest)["probe_displacement"];
-      const Vec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]);
-      p["rel_error"] =
-          finite_or_null(pb.norm() > 0 ? (pa - pb).norm() / pb.norm() : (pa - pb).norm());
-      p["is_reference"] = &p == finest;
-      entry["points"].push_back(p);
-    }
-    for (const char* sweep : {"solver", "rotation", "resolution"})
-      mark_pareto_front(entry["points"], sweep);
-    auto subset_of = [&](const char* sweep) {
-      json subset = json::array();
-      for (const json& p : entry["points"])
-        if (p["sweep"] == sweep) subset.push_back(p);
-      return subset;
-    };
-    entry["cheapest_meeting_target"] = {
-        {"solver", cheapest_meeting(subset_of("solver"), targets.solver)},
-        {"rotation", cheapest_meeting(subset_of("rotation"), targets.rotation)},
-        {"resolution", cheapest_meeting(subset_of("resolution"), targets.resolution)}};
-    entry["completed"] = true;
-    out["scenes"].push_back(entry);
-  }
+  for (const std::string& model : config.models())
+    out["scenes"].push_back(scene_sweeps(config, model, targets));
   return out;
 }
 

@@ -67,7 +67,7 @@ void StabilityMonitor::observe(const StepState& st, const FeProblem& problem) {
   inverted_series_.push_back(count_inverted(problem, problem.positions(st.displacement)));
   if (st.displacement.lpNorm<Eigen::Infinity>() > thresholds_.blowup_factor * diagonal_)
     throw BlowUp("displacement beyond " + std::to_string(thresholds_.blowup_factor) +
-                         "x the body's diagonal at step " + std::to_string(st.step));
+                 "x the body's diagonal at step " + std::to_string(st.step));
   if (!vtu_dir_.empty() && (st.step % 10 == 0)) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.vtu", st.step);
