@@ -38,27 +38,15 @@ std::string closing_line(const Scene& scene, SimulationResult& result) {
   return line + ", " + general_number(result.timings_ms["total"]) + " ms\n";
 }
 
-}  // namespace
-
-SceneRun run_scene(const Scene& scene, std::ostream* progress) {
-  if (progress) *progress << "corofem: building '" << scene.name << "'\n";
-  SceneSimulation simulation(scene);
-  FeProblem& problem = simulation.problem();
+/// The record's summary: provenance, the mesh, the analysis as run, convergence and timings.
+nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& result) {
+  const Scene& scene = simulation.scene();
+  const FeProblem& problem = simulation.problem();
   const MeshValidation& validation = simulation.validation();
-  if (progress)
-    *progress << "corofem: " << problem.mesh.num_tets() << " tets, " << problem.mesh.num_vertices()
-              << " vertices; " << scene.analysis.type << " " << scene.analysis.formulation
-              << " analysis\n";
   const AnalysisSpec& a = scene.analysis;
   const bool corotational = simulation.corotational();
-  RotationExtractor* extractor = &simulation.extractor();
-  LinearSolver* solver = &simulation.solver();
-  const int every = std::max(1, a.steps / 10);
-  SimulationResult result = simulation.run([&](const StepState& s) {
-    if (progress && (s.step % every == 0 || s.step == a.steps))
-      *progress << "corofem: step " << s.step << "/" << a.steps << "\n";
-  });
-
+  const RotationExtractor* extractor = &simulation.extractor();
+  const LinearSolver* solver = &simulation.solver();
   nlohmann::json r;
   r["producer"] = "corofem run";
   r["context"] = run_context();
@@ -99,6 +87,15 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                                   ? 0
                                   : *std::max_element(extractor->stats().iterations.begin(),
                                                       extractor->stats().iterations.end())}};
+  return r;
+}
+
+/// The fields of the final state: rest positions and displacements per vertex, and with
+/// output.rotations each element's rotation of the final displacement.
+void add_fields(SceneSimulation& simulation, const SimulationResult& result, nlohmann::json& r) {
+  const Scene& scene = simulation.scene();
+  const FeProblem& problem = simulation.problem();
+  RotationExtractor* extractor = &simulation.extractor();
   r["node_tags"] = problem.mesh.node_tags;
   nlohmann::json rest = nlohmann::json::array(), disp = nlohmann::json::array();
   for (int v = 0; v < problem.mesh.num_vertices(); ++v) {
@@ -123,6 +120,27 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
     r["rotations"] = std::move(quats);
     r["reflected_elements"] = std::move(reflected);
   }
+}
+
+}  // namespace
+
+SceneRun run_scene(const Scene& scene, std::ostream* progress) {
+  if (progress) *progress << "corofem: building '" << scene.name << "'\n";
+  SceneSimulation simulation(scene);
+  FeProblem& problem = simulation.problem();
+  if (progress)
+    *progress << "corofem: " << problem.mesh.num_tets() << " tets, " << problem.mesh.num_vertices()
+              << " vertices; " << scene.analysis.type << " " << scene.analysis.formulation
+              << " analysis\n";
+  const AnalysisSpec& a = scene.analysis;
+  const int every = std::max(1, a.steps / 10);
+  SimulationResult result = simulation.run([&](const StepState& s) {
+    if (progress && (s.step % every == 0 || s.step == a.steps))
+      *progress << "corofem: step " << s.step << "/" << a.steps << "\n";
+  });
+
+  nlohmann::json r = run_summary(simulation, result);
+  add_fields(simulation, result, r);
   if (scene.output.vtu) {
     write_vtu(*scene.output.vtu, problem.mesh, result.displacement, result.rotations);
     r["vtu"] = scene.output.vtu->string();
