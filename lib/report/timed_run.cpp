@@ -124,6 +124,55 @@ Vec3 TimedRun::probe(const nlohmann::json& box) const {
   return vertices.empty() ? Vec3::Zero() : Vec3(sum / static_cast<double>(vertices.size()));
 }
 
+namespace {
+
+/// PETSc's MatPtAP in numeric-reuse mode, the Galerkin product a PETSc user would call, on the
+/// same matrices as the hierarchy's last update: median ms of 5 after the symbolic one.
+double matptap_ms(const MultigridHierarchy& h) {
+  std::vector<Transfer> transfers;
+  for (int level = 0; level + 1 < h.num_levels(); ++level) transfers.push_back(h.transfer(level));
+  PetscPtapHierarchy ptap(h.matrix(0), transfers);
+  ptap.update(h.matrix(0));  // the symbolic phase, untimed
+  std::vector<double> ms;
+  for (int k = 0; k < 5; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    ptap.update(h.matrix(0));
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                     .count());
+  }
+  return median(ms);
+}
+
+/// The operators of the run's final state against the oracles: every coarse level against Eigen's
+/// R A R^T, and energy-newton's rotations against the exact minimizer.
+void check_operators(SceneSimulation& simulation, LinearSolver& under_test,
+                     const std::vector<Vec3>& final_positions, TimedRun& out) {
+  const FeProblem& problem = simulation.problem();
+  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
+    const MultigridHierarchy& h = mg->hierarchy();
+    out.galerkin_error_max = 0;
+    for (int level = 0; level + 1 < h.num_levels(); ++level) {
+      const Eigen::SparseMatrix<double> expected = reference::eigen_galerkin(
+          restriction_matrix(h.transfer(level)), to_eigen(h.matrix(level)));
+      const double error = (to_eigen(h.matrix(level + 1)) - expected).norm() / expected.norm();
+      out.galerkin_error_max = std::max(out.galerkin_error_max, error);
+    }
+  }
+  if (simulation.scene().analysis.rotation == "energy-newton" && simulation.corotational()) {
+    auto exact = make_rotation_extractor("energy-exact", problem.mesh);
+    std::vector<Mat3> newton = out.result.rotations, oracle = out.result.rotations;
+    simulation.extractor().extract(final_positions, newton);
+    exact->extract(final_positions, oracle);
+    out.rotation_error_max_rad = 0;
+    for (std::size_t e = 0; e < newton.size(); ++e)
+      out.rotation_error_max_rad =
+          std::max(out.rotation_error_max_rad, angle_between(newton[e], oracle[e]));
+    out.rotation_elements_compared = static_cast<int>(newton.size());
+  }
+}
+
+}  // namespace
+
 TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
                    const TimedRunOptions& options) {
   TimedRun out;
@@ -172,49 +221,12 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
       out.working_set_bytes += 76.0 * static_cast<double>(h.matrix(level).col_index.size());
   }
   if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test);
-      mg && options.time_matptap && have_petsc()) {
-    // The Galerkin product a PETSc user would call, on the same matrices as our last update.
-    const MultigridHierarchy& h = mg->hierarchy();
-    std::vector<Transfer> transfers;
-    for (int level = 0; level + 1 < h.num_levels(); ++level) transfers.push_back(h.transfer(level));
-    PetscPtapHierarchy ptap(h.matrix(0), transfers);
-    ptap.update(h.matrix(0));  // the symbolic phase, untimed
-    std::vector<double> ms;
-    for (int k = 0; k < 5; ++k) {
-      const auto start = std::chrono::steady_clock::now();
-      ptap.update(h.matrix(0));
-      ms.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count());
-    }
-    out.matptap_ms = median(ms);
-  }
+      mg && options.time_matptap && have_petsc())
+    out.matptap_ms = matptap_ms(mg->hierarchy());
   out.rest_volume = total_volume(problem.mesh, problem.mesh.rest);
   const auto final_positions = problem.positions(out.result.displacement);
   out.final_volume = total_volume(problem.mesh, final_positions);
-  if (options.check_operators) {
-    if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
-      const MultigridHierarchy& h = mg->hierarchy();
-      out.galerkin_error_max = 0;
-      for (int level = 0; level + 1 < h.num_levels(); ++level) {
-        const Eigen::SparseMatrix<double> expected = reference::eigen_galerkin(
-            restriction_matrix(h.transfer(level)), to_eigen(h.matrix(level)));
-        const double error = (to_eigen(h.matrix(level + 1)) - expected).norm() / expected.norm();
-        out.galerkin_error_max = std::max(out.galerkin_error_max, error);
-      }
-    }
-    if (simulation.scene().analysis.rotation == "energy-newton" && simulation.corotational()) {
-      auto exact = make_rotation_extractor("energy-exact", problem.mesh);
-      std::vector<Mat3> newton = out.result.rotations, oracle = out.result.rotations;
-      simulation.extractor().extract(final_positions, newton);
-      exact->extract(final_positions, oracle);
-      out.rotation_error_max_rad = 0;
-      for (std::size_t e = 0; e < newton.size(); ++e)
-        out.rotation_error_max_rad =
-            std::max(out.rotation_error_max_rad, angle_between(newton[e], oracle[e]));
-      out.rotation_elements_compared = static_cast<int>(newton.size());
-    }
-  }
+  if (options.check_operators) check_operators(simulation, under_test, final_positions, out);
   return out;
 }
 
