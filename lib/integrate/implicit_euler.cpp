@@ -103,6 +103,67 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
   return {report.iterations + 1, report.residual, 0.0};  // the predictor's solve counts
 }
 
+/// The linearly implicit step's system A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde (M lumped
+/// on the diagonal blocks), its right-hand side, and v_{n-1}, from which the solve's start is
+/// extrapolated.
+struct LinearStep {
+  BrcMatrix system;  ///< the step's matrix; its pattern is allocated once
+  Eigen::VectorXd b, previous_velocity;
+  double k_scale;
+  Eigen::VectorXd mass_diagonal;
+  bool assemble_into_system;  ///< the assembly writes all of A, unless Ktilde itself is wanted
+};
+
+/// The linearly implicit step's solve for the new velocity, after the assembly:
+/// A v' = M v + dt (f - f_int(u)).
+SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
+                                 const DynamicOptions& options, int step,
+                                 const DirichletConditions& bc, const Eigen::VectorXd& elastic,
+                                 LinearStep& s, Eigen::VectorXd& velocity, PhaseClock& clock) {
+  const double dt = options.dt;
+  // Every pass of the step is in a named phase: "forces" (the right-hand side; the elastic
+  // force came out of the assembly) and "system" (A and its supports) besides rotate,
+  // assemble, update and solve.
+  clock.time("forces", [&] {
+    s.b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic);
+  });
+  clock.time("checks",
+             [&] { check_finite(problem, s.b, "force", "step " + std::to_string(step)); });
+  clock.time("system", [&] {
+    if (!s.assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
+      const std::vector<double>& k = problem.stiffness.values;
+      const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
+#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
+      for (std::ptrdiff_t i = 0; i < values; ++i) s.system.values[i] = s.k_scale * k[i];
+      add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, s.system);
+    }
+    apply_dirichlet(bc, s.system, s.b);
+  });
+  // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
+  clock.time("update", [&] { solver.take_matrix(s.system); });  // A is rebuilt in every step
+  return clock.time("solve", [&] {
+    // The iterative solvers start from 2 v_n - v_{n-1}, the velocity extrapolated linearly
+    // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only
+    // their iteration count changes (it falls: a better start).
+    s.previous_velocity = 2 * velocity - s.previous_velocity;  // coefficient-wise: no aliasing
+    velocity.swap(s.previous_velocity);                        // the start, and v_n kept
+    return solver.solve(s.b, velocity);
+  });
+}
+
+/// Each phase's time in one step (the totals after it less those before), and the whole step's.
+std::map<std::string, double> step_phases(const std::map<std::string, double>& before,
+                                          const std::map<std::string, double>& after,
+                                          std::chrono::steady_clock::time_point step_start) {
+  std::map<std::string, double> phase_ms;
+  for (const auto& [phase, total] : after)
+    phase_ms[phase] = total - (before.count(phase) ? before.at(phase) : 0.0);
+  phase_ms["step"] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - step_start)
+          .count();
+  return phase_ms;
+}
+
 }  // namespace
 
 SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
@@ -116,12 +177,13 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   const double dt = options.dt;
   result.displacement = Eigen::VectorXd::Zero(n);
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
-  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), elastic, b;
-  Eigen::VectorXd previous_velocity = velocity;  // v_{n-1}: the solve's start extrapolates from it
-  BrcMatrix system = problem.stiffness;          // the step's matrix; its pattern is allocated once
-  const double k_scale = dt * options.rayleigh_beta + dt * dt;
-  const Eigen::VectorXd mass_diagonal = (1 + dt * options.rayleigh_alpha) * problem.mass;
-  const bool assemble_into_system = !options.newton && !options.keep_stiffness;
+  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), elastic;
+  LinearStep linear{problem.stiffness,
+                    {},
+                    velocity,
+                    dt * options.rayleigh_beta + dt * dt,
+                    (1 + dt * options.rayleigh_alpha) * problem.mass,
+                    !options.newton && !options.keep_stiffness};
   std::unique_ptr<NewtonStepper> newton;
   if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.name());
   for (int step = 1; step <= options.steps; ++step) {
@@ -138,9 +200,10 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
     // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks: the
     // assembly writes all of it into A's values unless Ktilde itself is wanted.
-    linearize(
-        problem, rotate, p, result.displacement, result.rotations, elastic, clock,
-        assemble_into_system ? AssemblyTarget{&system, k_scale, &mass_diagonal} : AssemblyTarget{});
+    linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock,
+              linear.assemble_into_system
+                  ? AssemblyTarget{&linear.system, linear.k_scale, &linear.mass_diagonal}
+                  : AssemblyTarget{});
     clock.time(
         "checks", [&] {  // counted by the rotations' pass where it can, else a pass of its own
           const int counted = rotate.stats().inverted;
@@ -152,34 +215,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       stats = newton_step(problem, rotate, *newton, options, step, bc, elastic, result, velocity,
                           clock);
     } else {
-      // Every pass of the step is in a named phase: "forces" (the right-hand side; the elastic
-      // force came out of the assembly) and "system" (A and its supports) besides rotate,
-      // assemble, update and solve.
-      clock.time("forces", [&] {
-        b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic);
-      });
-      clock.time("checks",
-                 [&] { check_finite(problem, b, "force", "step " + std::to_string(step)); });
-      clock.time("system", [&] {
-        if (!assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
-          const std::vector<double>& k = problem.stiffness.values;
-          const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
-#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
-          for (std::ptrdiff_t i = 0; i < values; ++i) system.values[i] = k_scale * k[i];
-          add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, system);
-        }
-        apply_dirichlet(bc, system, b);
-      });
-      // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
-      clock.time("update", [&] { solver.take_matrix(system); });  // A is rebuilt in every step
-      stats = clock.time("solve", [&] {
-        // The iterative solvers start from 2 v_n - v_{n-1}, the velocity extrapolated linearly
-        // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only
-        // their iteration count changes (it falls: a better start).
-        previous_velocity = 2 * velocity - previous_velocity;  // coefficient-wise: no aliasing
-        velocity.swap(previous_velocity);                      // the start, and v_n kept
-        return solver.solve(b, velocity);
-      });
+      stats = linear_implicit_solve(problem, solver, options, step, bc, elastic, linear, velocity,
+                                    clock);
     }
     result.linear_iterations += stats.iterations;
     result.last_solve_residual = stats.residual;
@@ -188,15 +225,9 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       check_finite(problem, result.displacement, "displacement", "step " + std::to_string(step));
     });
     result.steps = step;
-    if (on_step) {
-      std::map<std::string, double> phase_ms;
-      for (const auto& [phase, total] : result.timings_ms)
-        phase_ms[phase] = total - (before.count(phase) ? before.at(phase) : 0.0);
-      phase_ms["step"] =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - step_start)
-              .count();
-      on_step({step, result.displacement, velocity, result.rotations, phase_ms, stats});
-    }
+    if (on_step)
+      on_step({step, result.displacement, velocity, result.rotations,
+               step_phases(before, result.timings_ms, step_start), stats});
   }
   // Equilibrium residual of the final state (how far from static rest the run ended).
   clock.time("rotate",
