@@ -75,9 +75,9 @@ std::vector<long long> integers(const std::string& line, const std::filesystem::
 
 /// ASCII files: every node reference of every element names a node of $Nodes (gmsh 4.8 keeps
 /// a null vertex for a missing one and crashes later, in getElements).
-void check_ascii_references(const std::string& bytes, int major,
-                            const std::filesystem::path& file) {
-  // Each section is checked whenever it is present: gmsh parses whatever it finds.
+/// The node tags an ASCII file's $Nodes lists (checked on the way: counts, tags, coordinates).
+std::unordered_set<long long> ascii_node_tags(const std::string& bytes, int major,
+                                              const std::filesystem::path& file) {
   std::unordered_set<long long> tags;
   const std::size_t nodes_at = section_start(bytes, "Nodes");
   if (nodes_at != std::string::npos) {
@@ -125,6 +125,12 @@ void check_ascii_references(const std::string& bytes, int major,
                          std::to_string(listed));
     }
   }
+  return tags;
+}
+
+/// Each element of an ASCII file's $Elements refers to nodes in `tags`; counts and tags checked.
+void check_ascii_elements(const std::string& bytes, int major, const std::filesystem::path& file,
+                          const std::unordered_set<long long>& tags) {
   const std::size_t elements_at = section_start(bytes, "Elements");
   if (elements_at == std::string::npos) return;
   const auto element_lines = section_lines(bytes, elements_at, "Elements", file);
@@ -168,6 +174,12 @@ void check_ascii_references(const std::string& bytes, int major,
       reject(file, "$Elements declares " + std::to_string(head[1]) + " elements but lists " +
                        std::to_string(listed));
   }
+}
+
+void check_ascii_references(const std::string& bytes, int major,
+                            const std::filesystem::path& file) {
+  // Each section is checked whenever it is present: gmsh parses whatever it finds.
+  check_ascii_elements(bytes, major, file, ascii_node_tags(bytes, major, file));
 }
 
 /// ASCII files: $PhysicalNames lists as many names as it declares, each well formed.
