@@ -546,8 +546,9 @@ TEST_F(ThreadsTest, DynamicRunIsBitIdenticalAtEveryThreadCountAndRunToRun) {
 }
 
 TEST_F(ThreadsTest, NewtonSolvesAreBitIdenticalAtEveryThreadCount) {
-  // Newton on the static equilibrium (the consistent tangent, MG-PCG on it) and on fully implicit
-  // Euler: the tangent's assembly and every Newton update the same bits at every count.
+  // Newton on the static equilibrium and on fully implicit Euler (the consistent tangent and a
+  // sparse LU, which Newton uses whatever the scene's solver): the rotations, the tangent's
+  // assembly, the forces and every Newton update the same bits at every count.
   for (const std::string type : {"static", "dynamic"}) {
     for (const std::string rotation : {"energy-newton", "polar"}) {
       Eigen::VectorXd one;
