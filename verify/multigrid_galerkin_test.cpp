@@ -24,25 +24,11 @@
 namespace corofem {
 namespace {
 
-/// Random symmetric values on A's (symmetric) pattern: A_ji = A_ij^T, as every system matrix.
-void randomize(BrcMatrix& a, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (double& v : a.values) v = u(rng);
-  for (int i = 0; i < a.block_rows; ++i)
-    for (int b = a.row_start[i]; b < a.row_start[i + 1]; ++b)
-      if (a.col_index[b] < i) {
-        a.block(b) = a.block(a.find(a.col_index[b], i)).transpose();
-      } else if (a.col_index[b] == i) {
-        const Eigen::Matrix3d d = a.block(b);
-        a.block(b) = 0.5 * (d + d.transpose());
-      }
-}
-
 /// The mesh's stiffness pattern with random symmetric values.
 BrcMatrix random_symmetric(const TetMesh& mesh, std::mt19937& rng) {
   AssemblyMap map;
   BrcMatrix a = make_stiffness_pattern(mesh, map);
-  randomize(a, rng);
+  test::randomize_symmetric(a, rng);
   return a;
 }
 
@@ -95,7 +81,7 @@ TEST(Galerkin, AllMethodsEqualOraclesOnBoxHierarchy) {
   const CoarseLevel coarse = make_lattice_level(mesh.rest, {}, 0.35);
   ASSERT_GT(coarse.transfer.coarse, 8);
   check_all_methods(a, coarse.transfer);
-  randomize(a, rng);  // new values, same stream
+  test::randomize_symmetric(a, rng);  // new values, same stream
   check_all_methods(a, coarse.transfer);
 }
 
@@ -222,7 +208,7 @@ TEST(Galerkin, TakenFineValuesGiveTheCopiedUpdateBits) {
   const std::vector<Transfer> transfers = lattice_transfers(mesh, 0.3);
   MultigridHierarchy copied(a, transfers), taken(a, transfers);
   for (int round = 0; round < 2; ++round) {
-    randomize(a, rng);
+    test::randomize_symmetric(a, rng);
     copied.update(a);
     BrcMatrix handed = a;
     taken.take_update(handed);

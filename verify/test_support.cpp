@@ -12,6 +12,19 @@
 namespace corofem::test {
 namespace fs = std::filesystem;
 
+void randomize_symmetric(BrcMatrix& a, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (double& v : a.values) v = u(rng);
+  for (int i = 0; i < a.block_rows; ++i)
+    for (int b = a.row_start[i]; b < a.row_start[i + 1]; ++b)
+      if (a.col_index[b] < i) {
+        a.block(b) = a.block(a.find(a.col_index[b], i)).transpose();
+      } else if (a.col_index[b] == i) {
+        const Eigen::Matrix3d d = a.block(b);
+        a.block(b) = 0.5 * (d + d.transpose());
+      }
+}
+
 BrcMatrix random_spd_brc(int n, std::mt19937& rng) {
   std::uniform_int_distribution<int> column(0, n - 1), count(0, 12);
   std::vector<std::vector<int>> columns(n);

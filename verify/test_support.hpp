@@ -31,6 +31,9 @@ Eigen::MatrixXd dense_copy(const BrcMatrix& a);
 /// Symmetric pattern (block (j, i) wherever (i, j)) with the diagonal and up to 12 random blocks
 /// per row; values of an SPD matrix: a random symmetric one plus a dominant diagonal.
 BrcMatrix random_spd_brc(int n, std::mt19937& rng);
+/// Random symmetric values on A's (symmetric) pattern: A_ji = A_ij^T bit for bit, as every
+/// system matrix (the symmetric stream's mirror relies on it).
+void randomize_symmetric(BrcMatrix& a, std::mt19937& rng);
 
 struct CliResult {
   int exit_code;

@@ -66,20 +66,11 @@ SceneSimulation quadruped(double size, const std::string& smoother = "multicolou
   return SceneSimulation(parse_scene(scene, ".", "threads"));
 }
 
-/// A symmetric matrix (bit for bit: the symmetric stream's mirror must hold) of random blocks on
-/// `pattern`'s blocks.
-BrcMatrix random_symmetric(const BrcMatrix& pattern, unsigned seed) {
+/// `pattern` with random symmetric values (test::randomize_symmetric).
+BrcMatrix random_symmetric(BrcMatrix pattern, unsigned seed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> w(-1, 1);
-  BrcMatrix a = pattern;
-  for (double& v : a.values) v = w(rng);
-  for (int i = 0; i < a.block_rows; ++i)
-    for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
-      const int j = a.col_index[k];
-      if (j < i) a.block(k) = a.block(a.find(j, i)).transpose();
-      if (j == i) a.block(k) = Mat3(a.block(k) + a.block(k).transpose());
-    }
-  return a;
+  test::randomize_symmetric(pattern, rng);
+  return pattern;
 }
 
 std::vector<Vec3> deformed(const TetMesh& mesh, unsigned seed) {

@@ -123,8 +123,10 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
     if (converged) {
       ++done;
       ++result.steps;
-      converged_u = u;
-      converged_rotations = result.rotations;
+      if (tangent) {  // the state a cut increment restarts from (only Newton increments are cut)
+        converged_u = u;
+        converged_rotations = result.rotations;
+      }
       continue;
     }
     if (tangent && result.increment_cuts < kMaxIncrementCuts) {
