@@ -133,7 +133,7 @@ const PaperSystem& paper_system(const std::string& model) {
   static std::map<std::string, PaperSystem> cache;
   if (auto it = cache.find(model); it != cache.end()) return it->second;
   FeProblem& p = paper_problem(model);
-  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
   std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
   polar->extract(p.positions(bent_displacement(p)), rotations);
   Eigen::VectorXd force;
@@ -162,7 +162,7 @@ const SimulatedFrames& simulated_frames(const std::string& model) {
        vertices_in_box(p.mesh.rest, {box[0], Vec3(box[0].x() + reach, box[1].y(), box[1].z())}))
     p.dirichlet.fix_vertex(v);
   p.external_force = gravity_load(p.mesh, p.materials, Vec3(0, 0, -9.81));
-  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
   auto solver = make_cholmod_solver();
   SimulatedFrames frames;
   std::cerr << "corofem_bench: simulating 8 steps of " << model << " for rotation frames\n";

@@ -13,7 +13,7 @@ namespace {
 /// stream has run since the last assembly.
 void BM_CorotatedAssembly(benchmark::State& state, const std::string& model, bool cold) {
   FeProblem& p = paper_problem(model);
-  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
   std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
   const Eigen::VectorXd u = bent_displacement(p);
   polar->extract(p.positions(u), rotations);

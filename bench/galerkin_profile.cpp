@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
       for (int v = 0; v < problem.mesh.num_vertices(); ++v)
         if (system.fixed[v]) problem.dirichlet.fix_vertex(v);
       problem.external_force = gravity_load(problem.mesh, problem.materials, Vec3(0, 0, -9.81));
-      auto rotations = make_rotation_extractor("energy-newton", problem.mesh);
+      auto rotations = make_rotation_extractor(RotationMethod::EnergyNewton, problem.mesh);
       MultigridParams params;
       params.hierarchy.kind = HierarchyKind::Meshes;
       params.hierarchy.levels = bench::hierarchy_levels(model, HierarchyKind::Meshes);

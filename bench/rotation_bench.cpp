@@ -47,7 +47,7 @@ void add_iteration_counters(benchmark::State& state, const ExtractionStats& stat
 
 void BM_Rotation(benchmark::State& state, const std::string& method, bool warm) {
   const std::string model = "dragon";
-  auto extractor = make_rotation_extractor(method, paper_problem(model).mesh);
+  auto extractor = make_rotation_extractor(kRotationMethods.at(method), paper_problem(model).mesh);
   Prepared prep = prepare(model, *extractor);
   std::vector<Mat3> rotations;
   for (auto _ : state) {
@@ -77,9 +77,9 @@ void BM_Rotation(benchmark::State& state, const std::string& method, bool warm) 
 void BM_RotationRatio(benchmark::State& state) {
   const std::string model = "dragon";
   FeProblem& p = paper_problem(model);
-  auto polar = make_rotation_extractor("polar", p.mesh);
-  auto exact = make_rotation_extractor("energy-exact", p.mesh);
-  auto newton = make_rotation_extractor("energy-newton", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
+  auto exact = make_rotation_extractor(RotationMethod::EnergyExact, p.mesh);
+  auto newton = make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh);
   Prepared pp = prepare(model, *polar), pe = prepare(model, *exact), pn = prepare(model, *newton);
   using clock = std::chrono::steady_clock;
   double t_polar = 0, t_exact = 0, t_newton = 0;

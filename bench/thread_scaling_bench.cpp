@@ -22,7 +22,7 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   FeProblem& p = paper_problem(model);
   const Eigen::VectorXd u = bent_displacement(p);
   const std::vector<Vec3> x = p.positions(u);
-  auto rotate = make_rotation_extractor("energy-newton", p.mesh);
+  auto rotate = make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh);
   std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
   rotate->extract(x, rotations);  // warm: the step's rotations start from the previous ones
   const std::vector<Mat3> warm = rotations;

@@ -90,7 +90,7 @@ TEST(CliRun, WritesTheDocumentedRecord) {
   // lumped masses times g) on the free DOFs to the run's tolerance, 1e-9; 1e-8 leaves room for
   // the summation order of the forces recomputed here.
   std::vector<Mat3> polar(p.mesh.tets.size(), Mat3::Identity());
-  make_rotation_extractor("polar", p.mesh)->extract(x, polar);
+  make_rotation_extractor(RotationMethod::Polar, p.mesh)->extract(x, polar);
   Eigen::VectorXd gravity(p.num_dofs());
   for (int v = 0; v < p.mesh.num_vertices(); ++v)
     gravity.segment<3>(3 * v) = p.mass.segment<3>(3 * v).cwiseProduct(Vec3(0, 0, -9.81));
@@ -185,7 +185,7 @@ TEST(CliRun, StaticDefaultsConvergeForEveryRotationMethod) {
   // halved where its full steps do not converge) reaches the default tolerance, 1e-8, for every
   // method. (The lagged iteration ran out of iterations here for energy-newton; one increment
   // of full Newton steps diverges for qr.)
-  for (const std::string& method : rotation_method_names()) {
+  for (const std::string& method : kRotationMethods.names()) {
     if (method == "none") continue;
     SCOPED_TRACE(method);
     TempDir dir;

@@ -19,7 +19,7 @@ TEST_P(DampedSettling, ComesToRestAtStaticSolution) {
   const bool corotational = GetParam();
   const Cantilever bar;
   FeProblem p = bar.build(1, corotational ? 3.0 : 1.0);
-  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
   auto solver = make_cholmod_solver();
   const SimulationResult s = solve_static(p, *polar, *solver, {corotational, 5, 1e-10, 200});
   ASSERT_TRUE(s.converged);
@@ -48,7 +48,7 @@ TEST(ImplicitEuler, AssemblingIntoTheSystemMatrixIsTheScaledCopyAndKeepsKtildeOn
   const Cantilever bar;
   DynamicOptions o{true, 0.01, 12, 1.0, 0.002};
   FeProblem fused = bar.build(1, 3.0), kept = bar.build(1, 3.0);
-  auto polar = make_rotation_extractor("polar", fused.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, fused.mesh);
   auto solver = make_cholmod_solver();
   const SimulationResult a = solve_dynamic(fused, *polar, *solver, o);
   o.keep_stiffness = true;
@@ -75,7 +75,7 @@ TEST(ImplicitEuler, FreeFallUnderGravityIsExactForRigidTranslation) {
   const Cantilever bar;
   FeProblem p = bar.build(1);
   p.dirichlet = DirichletConditions::none(p.num_dofs());
-  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
   auto solver = make_cholmod_solver();
   const int n = 20;
   const double dt = 0.01;

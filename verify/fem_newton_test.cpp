@@ -28,7 +28,7 @@ test::Cantilever soft_cantilever() {
 SimulationResult static_solve(const std::string& method, bool newton, double tolerance,
                               int max_iterations) {
   FeProblem p = soft_cantilever().build(2);
-  auto rotation = make_rotation_extractor(method, p.mesh);
+  auto rotation = make_rotation_extractor(kRotationMethods.at(method), p.mesh);
   auto solver = make_cholmod_solver();
   return solve_static(p, *rotation, *solver, {true, 20, tolerance, max_iterations, newton});
 }
@@ -39,7 +39,7 @@ TEST_P(StaticNewton, ReachesTenToMinusTenInFewerThanTenIterationsPerIncrement) {
   // polar-smoothed's tangent leaves out the smoothing's coupling: Newton converges linearly there
   // (7.7 iterations per increment on average, 10 at the worst), so it gets 20.
   FeProblem p = soft_cantilever().build(2);
-  const bool exact = RotationTangent(p, GetParam()).exact();
+  const bool exact = RotationTangent(p, kRotationMethods.at(GetParam())).exact();
   const SimulationResult r = static_solve(GetParam(), true, 1e-10, exact ? 9 : 20);
   EXPECT_TRUE(r.converged) << r.message;
   EXPECT_LT(r.residual, 1e-10);
@@ -93,7 +93,7 @@ EnergyTrace free_vibration(const std::string& method, bool newton) {
   test::Cantilever c = soft_cantilever();
   FeProblem p = c.build(1);
   const Eigen::VectorXd gravity = p.external_force;
-  auto rotation = make_rotation_extractor(method, p.mesh);
+  auto rotation = make_rotation_extractor(kRotationMethods.at(method), p.mesh);
   auto solver = make_cholmod_solver();
   const int release = 20;
   DynamicOptions options;

@@ -19,7 +19,7 @@ using test::Cantilever;
 Vec3 solve_tip(const Cantilever& bar, int k, bool corotational, double gravity_scale,
                int load_steps = 1, SimulationResult* out = nullptr, double tolerance = 1e-9) {
   FeProblem p = bar.build(k, gravity_scale);
-  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
   auto solver = make_cholmod_solver();
   SimulationResult r = solve_static(p, *polar, *solver, {corotational, load_steps, tolerance, 200});
   EXPECT_TRUE(r.converged) << r.message;
@@ -77,7 +77,7 @@ TEST(Cantilever, LargeLoadCorotatedShortensAndDropsLess) {
 TEST(StaticSolver, NonConvergenceIsReportedNotThrown) {
   const Cantilever bar;
   FeProblem p = bar.build(1, 4.0);
-  auto polar = make_rotation_extractor("polar", p.mesh);
+  auto polar = make_rotation_extractor(RotationMethod::Polar, p.mesh);
   auto solver = make_cholmod_solver();
   const SimulationResult r = solve_static(p, *polar, *solver, {true, 1, 1e-12, 2});
   EXPECT_FALSE(r.converged);

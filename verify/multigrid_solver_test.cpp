@@ -88,7 +88,7 @@ AnalysisSpec analysis(const std::string& solver, double tolerance, const std::st
   AnalysisSpec a;
   a.setup_reuse = setup_reuse;
   a.coarsest_max_vertices = coarsest_max_vertices;
-  a.solver = solver;
+  a.solver = kSolverKinds.at(solver);
   a.hierarchy = *kHierarchyKinds.find(hierarchy);
   a.levels = 3;
   a.tolerance = tolerance;
@@ -145,7 +145,7 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       // Static linear: one solve of K u = f to relative residual 1e-10, which leaves a solution
       // error of ~cond(K) x 1e-10 / 1e4 << 1e-8 for these meshes.
       FeProblem p = problem_for(c);
-      auto none = make_rotation_extractor("none", p.mesh);
+      auto none = make_rotation_extractor(RotationMethod::None, p.mesh);
       auto direct = make_cholmod_solver();
       const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
       auto mg =
@@ -165,8 +165,8 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
           ASSERT_EQ(got.displacement[d], 0.0) << what;
         }
       // Three corotated dynamic steps: A = M + dt^2 Ktilde changes every step.
-      auto polar_a = make_rotation_extractor("polar", p.mesh);
-      auto polar_b = make_rotation_extractor("polar", p.mesh);
+      auto polar_a = make_rotation_extractor(RotationMethod::Polar, p.mesh);
+      auto polar_b = make_rotation_extractor(RotationMethod::Polar, p.mesh);
       DynamicOptions o;
       o.steps = 3;
       o.rayleigh_alpha = 0.5;

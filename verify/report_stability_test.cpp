@@ -23,8 +23,8 @@ TEST(Stability, EnergyMethodsStayStableOnEverySmallScene) {
     const json scene =
         stability_scene(id, SceneSize::Small, quick.stability_ramp(), quick.stability_hold());
     for (const char* method : {"energy-newton", "energy-exact"}) {
-      const json run =
-          run_stability_case(scene, id, {method}, quick.stability_ramp(), quick.stability_hold());
+      const json run = run_stability_case(scene, id, {kRotationMethods.at(method)},
+                                          quick.stability_ramp(), quick.stability_hold());
       SCOPED_TRACE(id + " " + method);
       ASSERT_TRUE(run["completed"].get<bool>()) << run.dump();
       ASSERT_NE(run["status"], "diverged") << run.dump();
@@ -47,7 +47,7 @@ TEST(Stability, BlowUpIsRecordedAsDivergedWithItsStep) {
   scene.erase("moves");
   scene["forces"] =
       json::array({{{"box", {{1 - 1e-6, 0, 0}, {1, 0.2, 0.2}}}, {"total", {1e12, 0, 0}}}});
-  const json run = run_stability_case(scene, "bar-pulled-apart", {"polar"}, 2, 4);
+  const json run = run_stability_case(scene, "bar-pulled-apart", {RotationMethod::Polar}, 2, 4);
   ASSERT_TRUE(run["completed"].get<bool>()) << run.dump();
   EXPECT_EQ(run["status"], "diverged");
   ASSERT_TRUE(run["diverged_step"].is_number_integer());
@@ -62,7 +62,8 @@ TEST(Stability, RunsRecordIntegratorStepEnergyAndAsymmetry) {
   // 450 degrees over 30 steps (15 per step; the smoke report's 75 per step makes every method
   // flutter).
   const json scene = stability_scene("bar-twist", SceneSize::Small, 30, 6);
-  const json polar = run_stability_case(scene, "bar-twist", {"polar", "newton", 2}, 30, 6);
+  const json polar =
+      run_stability_case(scene, "bar-twist", {RotationMethod::Polar, Integrator::Newton, 2}, 30, 6);
   ASSERT_TRUE(polar["completed"].get<bool>()) << polar.dump();
   EXPECT_EQ(polar["integrator"], "newton");
   EXPECT_DOUBLE_EQ(polar["dt"].get<double>(), 0.005);
@@ -70,7 +71,8 @@ TEST(Stability, RunsRecordIntegratorStepEnergyAndAsymmetry) {
   EXPECT_LT(polar["asymmetry"].get<double>(), 1e-12);
   EXPECT_LT(polar["energy_error"].get<double>(), 1e-6);
   EXPECT_TRUE(polar["cause"].is_null());
-  const json energy = run_stability_case(scene, "bar-twist", {"energy-exact", "newton", 1}, 30, 6);
+  const json energy = run_stability_case(
+      scene, "bar-twist", {RotationMethod::EnergyExact, Integrator::Newton, 1}, 30, 6);
   ASSERT_TRUE(energy["asymmetry"].is_number()) << energy["status"];
   EXPECT_GT(energy["asymmetry"].get<double>(), 1e-4);
 }
@@ -124,7 +126,7 @@ TEST(Stability, PoseIsTheClosedOutwardBoundarySurface) {
   // (positive only if every normal points out). Coordinates are stored to 1e-4 m, exact here.
   const json scene = stability_scene("bar-twist", SceneSize::Small, 2, 2);
   json pose;
-  const json run = run_stability_case(scene, "bar-twist", {"polar"}, 2, 2, &pose);
+  const json run = run_stability_case(scene, "bar-twist", {RotationMethod::Polar}, 2, 2, &pose);
   ASSERT_TRUE(run["completed"].get<bool>()) << run.dump();
   ASSERT_FALSE(pose.is_null());
   EXPECT_EQ(pose["status"], run["status"]);

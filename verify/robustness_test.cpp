@@ -135,7 +135,7 @@ TEST(Robustness, TenThousandStepsKeepConstantMemory) {
   for (int v = 0; v < p.mesh.num_vertices(); ++v)
     if (p.mesh.rest[v].x() == 0) p.dirichlet.fix_vertex(v);
   p.external_force.setConstant(-1.0);
-  auto rotation = make_rotation_extractor("energy-newton", p.mesh);
+  auto rotation = make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh);
   auto solver = make_cholmod_solver();
   long at_1000 = 0, at_10000 = 0;
   solve_dynamic(p, *rotation, *solver, {true, 0.01, 10000, 1.0, 0.0}, [&](const StepState& s) {

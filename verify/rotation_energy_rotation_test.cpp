@@ -274,13 +274,13 @@ TEST(RotationEnergy, ExtractorMatchesTheExactMinimizerInBothKernelForms) {
                           (1 - (f + 1) * 0.5) * x + Vec3(u(rng), u(rng), u(rng)));
   RotationParams params;
   params.newton_tolerance = 1e-13;
-  auto exact = make_rotation_extractor("energy-exact", mesh);
+  auto exact = make_rotation_extractor(RotationMethod::EnergyExact, mesh);
   const bool had_vector = set_vector_block_kernels(false);
   std::vector<std::vector<Mat3>> forms;
   std::vector<std::vector<std::uint8_t>> iterations;
   for (bool vector : {false, true}) {
     set_vector_block_kernels(vector);
-    auto newton = make_rotation_extractor("energy-newton", mesh, params);
+    auto newton = make_rotation_extractor(RotationMethod::EnergyNewton, mesh, params);
     std::vector<Mat3> rotations(mesh.tets.size(), Mat3::Identity());
     for (const auto& positions : frames) {
       newton->extract(positions, rotations);

@@ -22,9 +22,9 @@ nlohmann::json minimal() {
 TEST(Scene, MinimalSceneGetsDefaults) {
   const Scene s = parse_scene(minimal(), "/base", "s.json");
   EXPECT_EQ(s.mesh.kind, MeshSpec::Kind::Box);
-  EXPECT_EQ(s.analysis.type, "static");
-  EXPECT_EQ(s.analysis.formulation, "corotational");
-  EXPECT_EQ(s.analysis.rotation, "polar");
+  EXPECT_EQ(s.analysis.type, AnalysisType::Static);
+  EXPECT_EQ(s.analysis.formulation, Formulation::Corotational);
+  EXPECT_EQ(s.analysis.rotation, RotationMethod::Polar);
   EXPECT_EQ(s.fixed.size(), 1u);
 }
 

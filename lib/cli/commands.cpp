@@ -124,12 +124,12 @@ ParsedArgs parse_args(const std::vector<std::string>& args, const std::vector<st
 /// Under mpirun only the PETSc and hypre solvers are distributed: any other would run the same
 /// serial solve on every rank.
 void require_distributed_solver(const Scene& scene, int ranks) {
-  const std::string& solver = scene.analysis.solver;
+  const SolverKind solver = scene.analysis.solver;
   const bool distributed = is_petsc_solver(solver);
-  if (!distributed ||
-      (scene.analysis.integrator == "newton" && scene.analysis.formulation == "corotational"))
+  if (!distributed || (scene.analysis.integrator == Integrator::Newton &&
+                       scene.analysis.formulation == Formulation::Corotational))
     throw InputError(
-        scene.name + ": analysis.solver '" + solver + "'" +
+        scene.name + ": analysis.solver '" + kSolverKinds.name(solver) + "'" +
         (distributed ? " with integrator 'newton' (a serial sparse LU)" : "") +
         " under mpirun -np " + std::to_string(ranks) +
         ": only petsc-gamg, hypre-boomeramg and petsc-mg distribute their solves over ranks");

@@ -30,12 +30,12 @@ void export_matrices(const Scene& scene, const std::filesystem::path& dir) {
   check_writable(dir / "levels.json");
   FeProblem problem = build_problem(scene);
   AnalysisSpec a = scene.analysis;
-  const bool corotational = a.formulation == "corotational";
-  auto extractor =
-      make_rotation_extractor(corotational ? a.rotation : "none", problem.mesh, a.rotation_params);
+  const bool corotational = a.formulation == Formulation::Corotational;
+  auto extractor = make_rotation_extractor(corotational ? a.rotation : RotationMethod::None,
+                                           problem.mesh, a.rotation_params);
   auto multigrid = make_multigrid_solver(a, problem, coarse_meshes(scene), false);
   MultigridSolver& solver = *multigrid;
-  if (a.type == "static") {
+  if (a.type == AnalysisType::Static) {
     solve_static(problem, *extractor, solver, {corotational, a.load_steps, a.tolerance, 1});
   } else {
     solve_dynamic(problem, *extractor, solver,
@@ -66,8 +66,9 @@ void export_matrices(const Scene& scene, const std::filesystem::path& dir) {
       {"context", run_context()},
       {"scene_file", scene.name},
       {"dof_index", "3 * vertex + component"},
-      {"matrix", a.type == "static" ? "Ktilde with supports imposed, first iteration"
-                                    : "M + dt C + dt^2 Ktilde with supports imposed, first step"},
+      {"matrix", a.type == AnalysisType::Static
+                     ? "Ktilde with supports imposed, first iteration"
+                     : "M + dt C + dt^2 Ktilde with supports imposed, first step"},
       {"levels", levels}};
   write_file_atomically(dir / "levels.json", [&](std::ostream& o) { o << record.dump(1) << '\n'; });
 }

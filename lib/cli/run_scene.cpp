@@ -22,7 +22,7 @@ namespace {
 /// from rest it ended), a static run's convergence to equilibrium.
 std::string closing_line(const Scene& scene, SimulationResult& result) {
   std::string line = "corofem: ";
-  if (scene.analysis.type == "dynamic") {
+  if (scene.analysis.type == AnalysisType::Dynamic) {
     line +=
         std::to_string(result.steps) + " steps, " +
         general_number(static_cast<double>(result.linear_iterations) / std::max(result.steps, 1)) +
@@ -57,13 +57,13 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
                {"reoriented_tets", validation.reoriented},
                {"unused_vertices_removed", validation.unused_removed}};
   r["analysis"] = {
-      {"type", a.type},
-      {"formulation", a.formulation},
-      {"integrator", a.integrator},
-      {"rotation", corotational ? a.rotation : "none"},
+      {"type", kAnalysisTypes.name(a.type)},
+      {"formulation", kFormulations.name(a.formulation)},
+      {"integrator", kIntegrators.name(a.integrator)},
+      {"rotation", kRotationMethods.name(corotational ? a.rotation : RotationMethod::None)},
       {"rotation_params", to_json(a.rotation_params)},
-      {"solver",
-       a.integrator == "newton" && corotational ? "sparse LU (UMFPACK), Newton" : solver->name()}};
+      {"solver", a.integrator == Integrator::Newton && corotational ? "sparse LU (UMFPACK), Newton"
+                                                                    : solver->name()}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
     r["analysis"]["multigrid"] = to_json(multigrid_params(a));
     r["multigrid"] = simulation.describe_multigrid(*mg);
@@ -73,7 +73,7 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
   r["iterations"] = result.iterations;
   r["steps"] = result.steps;
   r["linear_iterations"] = result.linear_iterations;
-  if (scene.analysis.type == "dynamic")
+  if (scene.analysis.type == AnalysisType::Dynamic)
     r["last_solve_residual"] = result.last_solve_residual;
   else
     r["load_increment_cuts"] = result.increment_cuts;
@@ -130,8 +130,8 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   FeProblem& problem = simulation.problem();
   if (progress)
     *progress << "corofem: " << problem.mesh.num_tets() << " tets, " << problem.mesh.num_vertices()
-              << " vertices; " << scene.analysis.type << " " << scene.analysis.formulation
-              << " analysis\n";
+              << " vertices; " << kAnalysisTypes.name(scene.analysis.type) << " "
+              << kFormulations.name(scene.analysis.formulation) << " analysis\n";
   const AnalysisSpec& a = scene.analysis;
   const int every = std::max(1, a.steps / 10);
   SimulationResult result = simulation.run([&](const StepState& s) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -24,6 +25,12 @@ struct NameTable {
     for (const auto& [v, n] : entries)
       if (name == n) return v;
     return std::nullopt;
+  }
+  /// The value named `name`; std::out_of_range for another (tests and benchmarks: a scene's
+  /// strings go through scene/'s parser, which names the key).
+  Enum at(std::string_view name) const {
+    if (auto value = find(name)) return *value;
+    throw std::out_of_range("no value named '" + std::string(name) + "'");
   }
   std::vector<std::string> names() const {
     std::vector<std::string> out;

@@ -1,6 +1,7 @@
 #include "fem/rotation_tangent.hpp"
 
-#include "core/errors.hpp"
+#include <stdexcept>
+
 #include "rotation/energy_rotation.hpp"
 #include "rotation/gram_schmidt_frame.hpp"
 
@@ -52,14 +53,32 @@ double asymmetry(const Mat12& j) {
   return n > 0 ? (j - j.transpose()).norm() / n : 0.0;
 }
 
-RotationTangent::RotationTangent(const FeProblem& problem, const std::string& method)
-    : problem_(problem) {
+/// Which closed form differentiates a method's rotation.
+static RotationTangent::Family tangent_family(RotationMethod method) {
+  using M = RotationMethod;
+  switch (method) {
+    case M::Polar:
+    case M::PolarFixed:
+    case M::Mueller2016:
+    case M::PolarSmoothed:
+      return RotationTangent::Family::PolarOfF;
+    case M::EnergyNewton:
+    case M::EnergyExact:
+      return RotationTangent::Family::MomentFactor;
+    case M::Qr:
+      return RotationTangent::Family::GramSchmidt;
+    case M::None:
+      return RotationTangent::Family::Identity;
+  }
+  throw std::logic_error("tangent_family: unhandled method");
+}
+
+RotationTangent::RotationTangent(const FeProblem& problem, RotationMethod method)
+    : problem_(problem), family_(tangent_family(method)) {
   const TetMesh& mesh = problem.mesh;
-  if (method == "polar" || method == "polar-fixed" || method == "mueller2016" ||
-      method == "polar-smoothed") {
-    family_ = Family::PolarOfF;
+  if (family_ == Family::PolarOfF) {
     model_ = "rotation factor of F";
-    exact_ = method != "polar-smoothed";
+    exact_ = method != RotationMethod::PolarSmoothed;
     h_.resize(mesh.tets.size());
     for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
       // F = sum_b (x_b - x_0) B.row(b-1), B = Dm^{-1}.
@@ -67,23 +86,18 @@ RotationTangent::RotationTangent(const FeProblem& problem, const std::string& me
       h_[e][0] = -(b.row(0) + b.row(1) + b.row(2)).transpose();
       for (int v = 1; v < 4; ++v) h_[e][v] = b.row(v - 1).transpose();
     }
-  } else if (method == "energy-newton" || method == "energy-exact") {
-    family_ = Family::MomentFactor;
+  } else if (family_ == Family::MomentFactor) {
     model_ = "rotation factor of S = F C (eq. 3)";
     // S = sum_v p_v h_v^T: dS/dp_v = h_v, the moment arms (element_quadrature.hpp).
     const std::vector<MomentArms> rest = rest_moment_arms(mesh);
     h_.resize(mesh.tets.size());
     for (std::size_t e = 0; e < mesh.tets.size(); ++e) h_[e] = rest[e].h;
-  } else if (method == "qr") {
-    family_ = Family::GramSchmidt;
+  } else if (family_ == Family::GramSchmidt) {
     model_ = "Gram-Schmidt frame of edges 0-1, 0-2";
     for (const Tet& t : mesh.tets)
       rest_frame_.push_back(edge_frame(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]]));
-  } else if (method == "none") {
-    family_ = Family::Identity;
-    model_ = "identity";
   } else {
-    throw InputError("analysis.rotation: no tangent for method '" + method + "'");
+    model_ = "identity";
   }
 }
 

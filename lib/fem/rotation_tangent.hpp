@@ -13,6 +13,7 @@
 
 #include "fem/fe_problem.hpp"
 #include "rotation/element_quadrature.hpp"
+#include "rotation/rotation_method.hpp"
 
 namespace corofem {
 
@@ -29,8 +30,10 @@ double asymmetry(const Mat12& j);
 
 class RotationTangent {
  public:
-  /// For the rotation method named `method` (rotation_method_names()) on problem's mesh.
-  RotationTangent(const FeProblem& problem, const std::string& method);
+  enum class Family { PolarOfF, MomentFactor, GramSchmidt, Identity };
+
+  /// For the rotation `method` on problem's mesh.
+  RotationTangent(const FeProblem& problem, RotationMethod method);
 
   /// Whether dQ is the derivative of the method's own rotation. polar-smoothed averages over
   /// neighbours, a coupling left out here: its tangent is the one of polar (Newton converges
@@ -51,7 +54,6 @@ class RotationTangent {
                 BrcMatrix& out) const;
 
  private:
-  enum class Family { PolarOfF, MomentFactor, GramSchmidt, Identity };
   const FeProblem& problem_;
   Family family_;
   bool exact_ = true;

@@ -25,7 +25,7 @@ void add_lumped_mass(const FeProblem& problem, double factor, BrcMatrix& a) {
 
 /// What the Newton steps keep from step to step: the tangent's rest data, the LU, a matrix.
 struct NewtonStepper {
-  NewtonStepper(const FeProblem& problem, const std::string& method)
+  NewtonStepper(const FeProblem& problem, RotationMethod method)
       : tangent(problem, method), lu(problem.stiffness), jacobian(problem.stiffness) {}
   RotationTangent tangent;
   SparseLuSolve lu;
@@ -185,7 +185,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
                     (1 + dt * options.rayleigh_alpha) * problem.mass,
                     !options.newton && !options.keep_stiffness};
   std::unique_ptr<NewtonStepper> newton;
-  if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.name());
+  if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.method());
   for (int step = 1; step <= options.steps; ++step) {
     const auto step_start = std::chrono::steady_clock::now();
     const std::map<std::string, double> before = result.timings_ms;

@@ -98,7 +98,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   std::unique_ptr<SparseLuSolve> lu;
   BrcMatrix jacobian_matrix;
   if (options.newton && options.corotational) {
-    tangent = std::make_unique<RotationTangent>(problem, rotate.name());
+    tangent = std::make_unique<RotationTangent>(problem, rotate.method());
     lu = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;
   }

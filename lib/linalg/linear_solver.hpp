@@ -39,9 +39,6 @@ class LinearSolver {
   virtual SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
 };
 
-/// Scene names of the available solvers.
-std::vector<std::string> linear_solver_names();
-
 /// CHOLMOD: symbolic analysis at the first matrix, numeric refactorization at every later one.
 std::unique_ptr<LinearSolver> make_cholmod_solver();
 

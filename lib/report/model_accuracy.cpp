@@ -53,12 +53,12 @@ json run_case(const std::string& id, SceneSize size, const ReportConfig& config)
   out["linear"] = {{"against_calculix_linear", errors(linear.displacement, ccx_linear)},
                    {"against_calculix_nlgeom", errors(linear.displacement, ccx_nlgeom)}};
   out["methods"] = json::array();
-  for (const std::string& method : rotation_method_names()) {
-    if (method == "none") continue;
+  for (const auto& [method, name] : kRotationMethods.entries) {
+    if (method == RotationMethod::None) continue;
     if (config.progress)
-      *config.progress << "report: model accuracy: " << id << " " << size_name(size) << ": "
-                       << method << std::endl;
-    out["methods"].push_back(record_case({{"method", method}}, [&] {
+      *config.progress << "report: model accuracy: " << id << " " << size_name(size) << ": " << name
+                       << std::endl;
+    out["methods"].push_back(record_case({{"method", name}}, [&] {
       auto rotation = make_rotation_extractor(method, problem.mesh, a.rotation_params);
       const auto t0 = std::chrono::steady_clock::now();
       const SimulationResult r = solve_static(

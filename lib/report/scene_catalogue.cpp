@@ -163,8 +163,8 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
 
 json with_analysis(json scene, const json& changes) {
   for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
-  const std::string solver = scene["analysis"].value("solver", "cholmod");
-  if (!is_multigrid_solver(solver))
+  const auto solver = kSolverKinds.find(scene["analysis"].value("solver", "cholmod"));
+  if (!solver || !is_multigrid_solver(*solver))
     for (const char* key : kMultigridAnalysisKeys) scene["analysis"].erase(key);
   return scene;
 }

@@ -212,11 +212,12 @@ json scene_sweeps(const ReportConfig& config, const std::string& model,
     s.point("solver", setting, with_analysis(s.scene, setting), against(u_ref));
   s.point("solver", {{"solver", "cholmod"}}, with_analysis(s.scene, {{"solver", "cholmod"}}),
           against(u_ref), true);
-  for (const std::string& method : rotation_method_names()) {
-    if (method == "none") continue;
-    if (config.mode == ReportConfig::Mode::Smoke && method != "energy-newton" && method != "polar")
+  for (const auto& [method, name] : kRotationMethods.entries) {
+    if (method == RotationMethod::None) continue;
+    if (config.mode == ReportConfig::Mode::Smoke && method != RotationMethod::EnergyNewton &&
+        method != RotationMethod::Polar)
       continue;
-    s.point("rotation", {{"rotation", method}}, with_analysis(s.scene, {{"rotation", method}}),
+    s.point("rotation", {{"rotation", name}}, with_analysis(s.scene, {{"rotation", name}}),
             against(u_exact));
   }
   s.resolution_sweep();

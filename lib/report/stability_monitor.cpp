@@ -22,9 +22,9 @@ struct BlowUp : NumericalFault {
 
 }  // namespace
 
-StabilityMonitor::StabilityMonitor(std::string method, int ramp_steps, int hold_steps, double dt,
+StabilityMonitor::StabilityMonitor(RotationMethod method, int ramp_steps, int hold_steps, double dt,
                                    double alpha, double beta, std::filesystem::path vtu_dir)
-    : method_(std::move(method)),
+    : method_(method),
       ramp_steps_(ramp_steps),
       hold_steps_(hold_steps),
       settle_from_(ramp_steps + hold_steps / 2),

@@ -19,7 +19,7 @@ class StabilityMonitor {
  public:
   /// Ramp steps, then hold steps (loads constant); damping coefficients of the scene; frames
   /// every 10th step into `vtu_dir` unless it is empty.
-  StabilityMonitor(std::string method, int ramp_steps, int hold_steps, double dt, double alpha,
+  StabilityMonitor(RotationMethod method, int ramp_steps, int hold_steps, double dt, double alpha,
                    double beta, std::filesystem::path vtu_dir);
 
   /// After every step (TimedRunOptions::on_step); throws NumericalFault when |u| leaves the
@@ -50,7 +50,7 @@ class StabilityMonitor {
   void measure_asymmetry(const StepState& step, const FeProblem& problem);
 
   const FlutterThresholds thresholds_;
-  std::string method_;
+  RotationMethod method_;
   int ramp_steps_, hold_steps_, settle_from_;  ///< settle_from_: the settled half of the hold
   double dt_, alpha_, beta_;
   std::filesystem::path vtu_dir_;

@@ -110,8 +110,8 @@ json pose_record(const StabilityMonitor& monitor, const TimedRun& run, const std
   }
   for (const auto& t : surface.triangles) triangles.push_back(t);
   return {{"scene", scene_id},
-          {"method", spec.method},
-          {"integrator", spec.integrator},
+          {"method", kRotationMethods.name(spec.method)},
+          {"integrator", kIntegrators.name(spec.integrator)},
           {"status", status},
           {"rest_points", rest},
           {"triangles", triangles},
@@ -136,17 +136,18 @@ json refined_scene(const json& scene, int k) {
 json run_stability_case(const json& scene, const std::string& scene_id, const StabilityRun& spec,
                         int ramp_steps, int hold_steps, json* pose,
                         const std::filesystem::path& vtu_dir) {
-  const std::string& method = spec.method;
+  const std::string method = kRotationMethods.name(spec.method);
+  const std::string integrator = kIntegrators.name(spec.integrator);
   json s = refined_scene(scene, spec.refinement);
   s["analysis"]["rotation"] = method;
-  s["analysis"]["integrator"] = spec.integrator;
+  s["analysis"]["integrator"] = integrator;
   ramp_steps *= spec.refinement;
   hold_steps *= spec.refinement;
   const double dt = s["analysis"]["dt"].get<double>();
   const json rayleigh = s["analysis"].value("rayleigh", json::object());
-  StabilityMonitor monitor(method, ramp_steps, hold_steps, dt, rayleigh.value("alpha", 0.0),
+  StabilityMonitor monitor(spec.method, ramp_steps, hold_steps, dt, rayleigh.value("alpha", 0.0),
                            rayleigh.value("beta", 0.0), vtu_dir);
-  json record = {{"scene", scene_id}, {"method", method},         {"integrator", spec.integrator},
+  json record = {{"scene", scene_id}, {"method", method},         {"integrator", integrator},
                  {"dt", dt},          {"ramp_steps", ramp_steps}, {"hold_steps", hold_steps}};
   TimedRun run;
   TimedRunOptions options;
@@ -277,17 +278,20 @@ json run_stability_study(const ReportConfig& config) {
     const json scene = stability_scene(id, config.stability_size(), config.stability_ramp(),
                                        config.stability_hold(), config.models_dir);
     out["scenes"][id] = scene;
-    for (const std::string& method : rotation_method_names()) {
-      if (method == "none") continue;
+    for (const auto& [method_id, method_name] : kRotationMethods.entries) {
+      if (method_id == RotationMethod::None) continue;
+      const std::string method = method_name;
       std::vector<json> group;
       const auto run = [&](const StabilityRun& spec) {
         if (config.progress)
           *config.progress << "report: stability: " << id << ": " << method << ", "
-                           << spec.integrator << ", dt 0.01/" << spec.refinement << std::endl;
+                           << kIntegrators.name(spec.integrator) << ", dt 0.01/" << spec.refinement
+                           << std::endl;
         json pose;
-        const auto vtu_dir = config.vtu && spec.refinement == 1
-                                 ? config.out_dir / "vtu" / id / (method + "-" + spec.integrator)
-                                 : std::filesystem::path();
+        const auto vtu_dir =
+            config.vtu && spec.refinement == 1
+                ? config.out_dir / "vtu" / id / (method + "-" + kIntegrators.name(spec.integrator))
+                : std::filesystem::path();
         group.push_back(run_stability_case(scene, id, spec, config.stability_ramp(),
                                            config.stability_hold(),
                                            spec.refinement == 1 ? &pose : nullptr, vtu_dir));
@@ -301,7 +305,8 @@ json run_stability_study(const ReportConfig& config) {
           out["poses"].push_back(std::move(pose));
         }
       };
-      for (const char* integrator : {"linear-implicit", "newton"}) run({method, integrator, 1});
+      for (const Integrator integrator : {Integrator::LinearImplicit, Integrator::Newton})
+        run({method_id, integrator, 1});
       // The smaller step decides the cause of a run that is not stable; where both integrators
       // are stable at dt there is nothing to attribute, and only the full report runs it anyway.
       // The smoke report (seconds, for the report's own tests) never does.
@@ -309,7 +314,8 @@ json run_stability_study(const ReportConfig& config) {
                                           [](const json& r) { return r["status"] == "stable"; });
       if (config.mode == ReportConfig::Mode::Full ||
           (!all_stable && config.mode == ReportConfig::Mode::Quick))
-        for (const char* integrator : {"linear-implicit", "newton"}) run({method, integrator, 2});
+        for (const Integrator integrator : {Integrator::LinearImplicit, Integrator::Newton})
+          run({method_id, integrator, 2});
       std::vector<json*> members;
       for (json& r : group) members.push_back(&r);
       attribute_causes(members);

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "report/report_config.hpp"
+#include "rotation/rotation_method.hpp"
+#include "scene/analysis_settings.hpp"
 
 namespace corofem {
 
@@ -26,8 +28,8 @@ struct FlutterThresholds {
 
 /// One run: a method under an integrator at a step size.
 struct StabilityRun {
-  std::string method;
-  std::string integrator = "linear-implicit";  ///< linear-implicit | newton
+  RotationMethod method;
+  Integrator integrator = Integrator::LinearImplicit;
   int refinement = 1;  ///< dt = 0.01 / refinement, ramp and hold refinement x as many steps
 };
 

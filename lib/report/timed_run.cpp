@@ -158,8 +158,9 @@ void check_operators(SceneSimulation& simulation, LinearSolver& under_test,
       out.galerkin_error_max = std::max(out.galerkin_error_max, error);
     }
   }
-  if (simulation.scene().analysis.rotation == "energy-newton" && simulation.corotational()) {
-    auto exact = make_rotation_extractor("energy-exact", problem.mesh);
+  if (simulation.scene().analysis.rotation == RotationMethod::EnergyNewton &&
+      simulation.corotational()) {
+    auto exact = make_rotation_extractor(RotationMethod::EnergyExact, problem.mesh);
     std::vector<Mat3> newton = out.result.rotations, oracle = out.result.rotations;
     simulation.extractor().extract(final_positions, newton);
     exact->extract(final_positions, oracle);

@@ -122,7 +122,7 @@ Mat3 energy_exact_rotation(const Mat3& s);
 class EnergyNewtonExtractor : public RotationExtractor {
  public:
   EnergyNewtonExtractor(const TetMesh& mesh, const RotationParams& params);
-  std::string name() const override { return "energy-newton"; }
+  RotationMethod method() const override { return RotationMethod::EnergyNewton; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
@@ -134,7 +134,7 @@ class EnergyNewtonExtractor : public RotationExtractor {
 class EnergyExactExtractor : public RotationExtractor {
  public:
   explicit EnergyExactExtractor(const TetMesh& mesh);
-  std::string name() const override { return "energy-exact"; }
+  RotationMethod method() const override { return RotationMethod::EnergyExact; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:

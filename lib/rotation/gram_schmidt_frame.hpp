@@ -14,7 +14,7 @@ Mat3 edge_frame(const Vec3& x0, const Vec3& x1, const Vec3& x2);
 class GramSchmidtFrameExtractor : public RotationExtractor {
  public:
   explicit GramSchmidtFrameExtractor(const TetMesh& mesh);
-  std::string name() const override { return "qr"; }
+  RotationMethod method() const override { return RotationMethod::Qr; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:

@@ -14,7 +14,7 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, d
 class Mueller2016Extractor : public RotationExtractor {
  public:
   Mueller2016Extractor(const TetMesh& mesh, const RotationParams& params);
-  std::string name() const override { return "mueller2016"; }
+  RotationMethod method() const override { return RotationMethod::Mueller2016; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:

@@ -15,7 +15,7 @@ Mat3 polar_rotation(const Mat3& f, const Mat3& fallback, int* iterations = nullp
 class PolarExtractor : public RotationExtractor {
  public:
   explicit PolarExtractor(const TetMesh& mesh);
-  std::string name() const override { return "polar"; }
+  RotationMethod method() const override { return RotationMethod::Polar; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
@@ -26,7 +26,7 @@ class PolarExtractor : public RotationExtractor {
 /// Small strain: Q = I for every element.
 class IdentityExtractor : public RotationExtractor {
  public:
-  std::string name() const override { return "none"; }
+  RotationMethod method() const override { return RotationMethod::None; }
   void extract(const std::vector<Vec3>&, std::vector<Mat3>& rotations) override;
 };
 

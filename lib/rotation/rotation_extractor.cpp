@@ -1,6 +1,7 @@
 #include "rotation/rotation_extractor.hpp"
 
-#include "core/errors.hpp"
+#include <stdexcept>
+
 #include "rotation/energy_rotation.hpp"
 #include "rotation/gram_schmidt_frame.hpp"
 #include "rotation/mueller2016.hpp"
@@ -10,25 +11,28 @@
 
 namespace corofem {
 
-std::vector<std::string> rotation_method_names() {
-  return {"energy-newton",  "energy-exact", "polar",       "polar-fixed",
-          "polar-smoothed", "qr",           "mueller2016", "none"};
-}
-
-std::unique_ptr<RotationExtractor> make_rotation_extractor(const std::string& name,
+std::unique_ptr<RotationExtractor> make_rotation_extractor(RotationMethod method,
                                                            const TetMesh& mesh,
                                                            const RotationParams& params) {
-  if (name == "energy-newton") return std::make_unique<EnergyNewtonExtractor>(mesh, params);
-  if (name == "energy-exact") return std::make_unique<EnergyExactExtractor>(mesh);
-  if (name == "polar") return std::make_unique<PolarExtractor>(mesh);
-  if (name == "polar-fixed") return std::make_unique<InversionAwareSvdExtractor>(mesh);
-  if (name == "polar-smoothed") return std::make_unique<SmoothedPolarExtractor>(mesh, params);
-  if (name == "qr") return std::make_unique<GramSchmidtFrameExtractor>(mesh);
-  if (name == "mueller2016") return std::make_unique<Mueller2016Extractor>(mesh, params);
-  if (name == "none") return std::make_unique<IdentityExtractor>();
-  std::string known;
-  for (const auto& n : rotation_method_names()) known += (known.empty() ? "" : ", ") + n;
-  throw InputError("analysis.rotation: unknown method '" + name + "' (known: " + known + ")");
+  switch (method) {
+    case RotationMethod::EnergyNewton:
+      return std::make_unique<EnergyNewtonExtractor>(mesh, params);
+    case RotationMethod::EnergyExact:
+      return std::make_unique<EnergyExactExtractor>(mesh);
+    case RotationMethod::Polar:
+      return std::make_unique<PolarExtractor>(mesh);
+    case RotationMethod::PolarFixed:
+      return std::make_unique<InversionAwareSvdExtractor>(mesh);
+    case RotationMethod::PolarSmoothed:
+      return std::make_unique<SmoothedPolarExtractor>(mesh, params);
+    case RotationMethod::Qr:
+      return std::make_unique<GramSchmidtFrameExtractor>(mesh);
+    case RotationMethod::Mueller2016:
+      return std::make_unique<Mueller2016Extractor>(mesh, params);
+    case RotationMethod::None:
+      return std::make_unique<IdentityExtractor>();
+  }
+  throw std::logic_error("make_rotation_extractor: unhandled method");
 }
 
 }  // namespace corofem

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "element/element_rest.hpp"
+#include "rotation/rotation_method.hpp"
 
 namespace corofem {
 
@@ -33,7 +34,9 @@ struct ExtractionStats {
 class RotationExtractor {
  public:
   virtual ~RotationExtractor() = default;
-  virtual std::string name() const = 0;
+  virtual RotationMethod method() const = 0;
+  /// The method's scene name.
+  std::string name() const { return kRotationMethods.name(method()); }
   /// Rotations Qhat_e taking each rest element to its deformed shape at `positions`.
   /// On entry `rotations` holds the previous step's values (warm start; identity at first).
   virtual void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) = 0;
@@ -43,12 +46,9 @@ class RotationExtractor {
   ExtractionStats stats_;
 };
 
-/// Scene names of the available extractors.
-std::vector<std::string> rotation_method_names();
-
-/// Builds the named extractor for `mesh` (rest data precomputed once; the mesh must outlive it).
-/// Throws InputError naming `analysis.rotation` for an unknown name.
-std::unique_ptr<RotationExtractor> make_rotation_extractor(const std::string& name,
+/// Builds the extractor of `method` for `mesh` (rest data precomputed once; the mesh must outlive
+/// it).
+std::unique_ptr<RotationExtractor> make_rotation_extractor(RotationMethod method,
                                                            const TetMesh& mesh,
                                                            const RotationParams& params = {});
 

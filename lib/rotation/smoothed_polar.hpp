@@ -13,7 +13,7 @@ namespace corofem {
 class SmoothedPolarExtractor : public RotationExtractor {
  public:
   SmoothedPolarExtractor(const TetMesh& mesh, const RotationParams& params);
-  std::string name() const override { return "polar-smoothed"; }
+  RotationMethod method() const override { return RotationMethod::PolarSmoothed; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:

@@ -9,7 +9,7 @@ namespace corofem {
 class InversionAwareSvdExtractor : public RotationExtractor {
  public:
   explicit InversionAwareSvdExtractor(const TetMesh& mesh);
-  std::string name() const override { return "polar-fixed"; }
+  RotationMethod method() const override { return RotationMethod::PolarFixed; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:

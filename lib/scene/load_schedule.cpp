@@ -51,9 +51,13 @@ void LoadSchedule::apply(int step, FeProblem& problem) const {
 
 DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem) {
   const AnalysisSpec& a = scene.analysis;
-  DynamicOptions options{
-      a.formulation == "corotational", a.dt, a.steps, a.rayleigh_alpha, a.rayleigh_beta, {}};
-  options.newton = a.integrator == "newton";
+  DynamicOptions options{a.formulation == Formulation::Corotational,
+                         a.dt,
+                         a.steps,
+                         a.rayleigh_alpha,
+                         a.rayleigh_beta,
+                         {}};
+  options.newton = a.integrator == Integrator::Newton;
   options.newton_settings.tolerance = a.tolerance;
   options.newton_settings.max_iterations = a.max_iterations;
   auto schedule = std::make_shared<const LoadSchedule>(scene, problem);

@@ -186,12 +186,14 @@ int integer_in(JsonFields& f, const std::string& key, int fallback, int lo, int 
 }
 
 void read_analysis(JsonFields f, AnalysisSpec& a) {
-  a.type = one_of(f, "type", a.type, {"static", "dynamic"});
-  a.formulation = one_of(f, "formulation", a.formulation, {"linear", "corotational"});
-  a.integrator = one_of(f, "integrator", a.type == "static" ? "newton" : "linear-implicit",
-                        {"linear-implicit", "newton"});
-  a.rotation = one_of(f, "rotation", a.rotation, rotation_method_names());
-  a.solver = one_of(f, "solver", a.solver, linear_solver_names());
+  a.type = one_of(f, "type", a.type, kAnalysisTypes);
+  a.formulation = one_of(f, "formulation", a.formulation, kFormulations);
+  a.integrator =
+      one_of(f, "integrator",
+             a.type == AnalysisType::Static ? Integrator::Newton : Integrator::LinearImplicit,
+             kIntegrators);
+  a.rotation = one_of(f, "rotation", a.rotation, kRotationMethods);
+  a.solver = one_of(f, "solver", a.solver, kSolverKinds);
   a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
   a.hierarchy = one_of(f, "hierarchy", a.hierarchy, kHierarchyKinds);
   const bool multigrid = is_multigrid_solver(a.solver);
@@ -209,8 +211,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.setup_reuse = f.boolean("setup_reuse", a.setup_reuse);
   if (a.setup_reuse && !is_library_amg(a.solver))
     std::cerr << "corofem: warning: scene '" << f.file() << "': " << f.path_of("setup_reuse")
-              << " belongs to petsc-gamg and hypre-boomeramg; ignored with solver '" << a.solver
-              << "'\n";
+              << " belongs to petsc-gamg and hypre-boomeramg; ignored with solver '"
+              << kSolverKinds.name(a.solver) << "'\n";
   if (const nlohmann::json* damping = f.get("rayleigh")) {
     JsonFields d(*damping, f.path_of("rayleigh"), f.file());
     a.rayleigh_alpha = number_in(d, "alpha", 0.0, 0.0, kMaxDamping);
@@ -236,7 +238,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
       if (f.has(key)) ignored += (ignored.empty() ? "" : ", ") + f.path_of(key);
     if (!ignored.empty())
       std::cerr << "corofem: warning: scene '" << f.file() << "': " << ignored
-                << " belong to multigrid solvers; ignored with solver '" << a.solver << "'\n";
+                << " belong to multigrid solvers; ignored with solver '"
+                << kSolverKinds.name(a.solver) << "'\n";
     a.levels = 1;
   }
   f.reject_unknown_keys();
@@ -313,12 +316,12 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
     o.reject_unknown_keys();
   }
   top.reject_unknown_keys();
-  if (!s.moves.empty() && s.analysis.type != "dynamic")
+  if (!s.moves.empty() && s.analysis.type != AnalysisType::Dynamic)
     throw InputError("scene '" + name + "': moves need a dynamic analysis");
-  const bool needs_mass = s.analysis.type == "dynamic" || s.gravity.norm() > 0;
+  const bool needs_mass = s.analysis.type == AnalysisType::Dynamic || s.gravity.norm() > 0;
   if (needs_mass && !(s.material.density > 0))
     throw InputError("scene '" + name + "': material.density is required for " +
-                     (s.analysis.type == "dynamic" ? "a dynamic analysis" : "gravity"));
+                     (s.analysis.type == AnalysisType::Dynamic ? "a dynamic analysis" : "gravity"));
   return s;
 }
 

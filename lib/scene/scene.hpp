@@ -12,6 +12,7 @@
 #include "mesh/vertex_selection.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
+#include "scene/analysis_settings.hpp"
 
 namespace corofem {
 
@@ -57,33 +58,15 @@ struct MoveSpec {
 inline constexpr const char* kMultigridAnalysisKeys[] = {
     "levels", "vcycles", "smoothing", "galerkin", "hierarchy", "smoother", "coarsest_max_vertices"};
 
-/// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
-inline bool is_multigrid_solver(const std::string& solver) {
-  return solver == "multigrid" || solver == "mgpcg" || solver == "petsc-mg";
-}
-
-/// The algebraic multigrid of the libraries, whose setup can be reused across steps
-/// (analysis.setup_reuse).
-inline bool is_library_amg(const std::string& solver) {
-  return solver == "petsc-gamg" || solver == "hypre-boomeramg";
-}
-
-/// Solvers through PETSc (and hypre): the ones that distribute their solves under mpirun.
-inline bool is_petsc_solver(const std::string& solver) {
-  return is_library_amg(solver) || solver == "petsc-mg";
-}
-
 struct AnalysisSpec {
-  std::string type = "static";               ///< static | dynamic
-  std::string formulation = "corotational";  ///< linear | corotational
-  /// linear-implicit (dynamic: one linear solve per step, the paper's scheme and the dynamic
-  /// default; static: the lagged-rotation iterations) | newton (fully implicit Euler / static
-  /// Newton with the consistent tangent, sparse LU; the static default, as the lagged iterations
-  /// stall short of tight tolerances for the energy methods)
-  std::string integrator = "newton";
-  std::string rotation = "polar";  ///< an extractor name (rotation_method_names())
+  AnalysisType type = AnalysisType::Static;
+  Formulation formulation = Formulation::Corotational;
+  /// Dynamic default: linear-implicit (the paper's scheme); static default: newton (sparse LU),
+  /// as the lagged iterations stall short of tight tolerances for the energy methods.
+  Integrator integrator = Integrator::Newton;
+  RotationMethod rotation = RotationMethod::Polar;
   RotationParams rotation_params;
-  std::string solver = "cholmod";  ///< cholmod | multigrid | mgpcg
+  SolverKind solver = SolverKind::Cholmod;
   /// The multigrid's settings, parsed from their names (kGalerkinMethods, kHierarchyKinds,
   /// kSmootherOrderings), each with the one default of its component's params.
   /// naive | stream | stream-full | reuse | gather (multigrid coarse operators)

@@ -61,7 +61,7 @@ FeProblem build_problem(const Scene& scene, MeshValidation* validation) {
       fixed_points.push_back(rest[v]);
     }
   }
-  if (scene.analysis.type == "static" && affine_rank(fixed_points) < 2)
+  if (scene.analysis.type == AnalysisType::Static && affine_rank(fixed_points) < 2)
     throw InputError("scene '" + scene.name + "': fixed leaves rigid motions free (" +
                      std::to_string(fixed_points.size()) +
                      " fixed vertices; a static analysis needs at least 3 non-collinear ones)");

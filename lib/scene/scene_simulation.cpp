@@ -23,9 +23,9 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
   const auto start = std::chrono::steady_clock::now();
   problem_ = build_problem(scene_, &validation_);
   const AnalysisSpec& a = scene_.analysis;
-  extractor_ = make_rotation_extractor(corotational() ? a.rotation : "none", problem_.mesh,
-                                       a.rotation_params);
-  if (a.type == "dynamic") dynamic_ = dynamic_options(scene_, problem_);
+  extractor_ = make_rotation_extractor(corotational() ? a.rotation : RotationMethod::None,
+                                       problem_.mesh, a.rotation_params);
+  if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_);
   const auto meshing = std::chrono::steady_clock::now();
   const std::vector<TetMesh> coarse = coarse_meshes(scene_);
   coarse_meshing_ms_ = ms_since(meshing);
@@ -44,11 +44,11 @@ nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) c
 SimulationResult SceneSimulation::run(const std::function<void(const StepState&)>& on_step) {
   const auto start = std::chrono::steady_clock::now();
   const AnalysisSpec& a = scene_.analysis;
-  SimulationResult result = dynamic_
-                                ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
-                                : solve_static(problem_, *extractor_, *solver_,
-                                               {corotational(), a.load_steps, a.tolerance,
-                                                a.max_iterations, a.integrator == "newton"});
+  SimulationResult result =
+      dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
+               : solve_static(problem_, *extractor_, *solver_,
+                              {corotational(), a.load_steps, a.tolerance, a.max_iterations,
+                               a.integrator == Integrator::Newton});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

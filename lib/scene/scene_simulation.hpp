@@ -26,7 +26,7 @@ class SceneSimulation {
   std::unique_ptr<LinearSolver> release_solver() { return std::move(solver_); }
   /// Time spent meshing the multigrid hierarchy's coarse levels (inside the setup time).
   double coarse_meshing_ms() const { return coarse_meshing_ms_; }
-  bool corotational() const { return scene_.analysis.formulation == "corotational"; }
+  bool corotational() const { return scene_.analysis.formulation == Formulation::Corotational; }
   /// The record's `multigrid` entry for `solver` (this scene's solver, or the one it wraps):
   /// MultigridSolver::describe() with setup_ms.coarse_meshes; null for other solvers.
   nlohmann::json describe_multigrid(const LinearSolver& solver) const;

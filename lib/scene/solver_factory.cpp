@@ -5,11 +5,6 @@
 
 namespace corofem {
 
-std::vector<std::string> linear_solver_names() {
-  return {"cholmod",    "multigrid",       "mgpcg",   "jacobi-pcg",
-          "petsc-gamg", "hypre-boomeramg", "petsc-mg"};
-}
-
 MultigridParams multigrid_params(const AnalysisSpec& a) {
   MultigridParams p;
   p.hierarchy.kind = a.hierarchy;
@@ -44,21 +39,22 @@ std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a,
 
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem,
                                                  const std::vector<TetMesh>& coarse_meshes) {
-  if (a.solver == "cholmod") return make_cholmod_solver();
-  if (a.solver == "jacobi-pcg") return make_jacobi_pcg_solver(a.tolerance, 100000);
+  if (a.solver == SolverKind::Cholmod) return make_cholmod_solver();
+  if (a.solver == SolverKind::JacobiPcg) return make_jacobi_pcg_solver(a.tolerance, 100000);
+  const PetscSolverKind petsc = petsc_solver_kind(a.solver);
   if (is_library_amg(a.solver))
-    return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000, {}, 1, a.setup_reuse);
-  if (a.solver == "petsc-mg") {  // PETSc's own multigrid on our hierarchy's transfers
+    return make_petsc_solver(petsc, problem.mesh.rest, a.tolerance, 10000, {}, 1, a.setup_reuse);
+  if (a.solver == SolverKind::PetscMg) {  // PETSc's own multigrid on our hierarchy's transfers
     if (!have_petsc())
-      return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000);  // says why
+      return make_petsc_solver(petsc, problem.mesh.rest, a.tolerance, 10000);  // says why
     const MultigridParams params = multigrid_params(a);
-    return make_petsc_solver(a.solver, problem.mesh.rest, a.tolerance, 10000,
+    return make_petsc_solver(petsc, problem.mesh.rest, a.tolerance, 10000,
                              build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet),
                                              params.hierarchy, coarse_meshes)
                                  .transfers,
                              a.smoothing);
   }
-  return make_multigrid_solver(a, problem, coarse_meshes, a.solver == "mgpcg");
+  return make_multigrid_solver(a, problem, coarse_meshes, a.solver == SolverKind::Mgpcg);
 }
 
 }  // namespace corofem

@@ -18,10 +18,10 @@ bool have_petsc() {
   return false;
 }
 
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind, const std::vector<Vec3>&,
+std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind, const std::vector<Vec3>&,
                                                 double, int, std::vector<Transfer>, int, bool) {
   throw InputError(
-      "analysis.solver '" + kind +
+      std::string("analysis.solver '") + kPetscSolverKinds.name(kind) +
       "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
       "libhypre-dev, as ci/setup does, and rebuild)");
 }
@@ -38,9 +38,10 @@ using petsc::check;
 
 class PetscSolver : public LinearSolver {
  public:
-  PetscSolver(std::string kind, const std::vector<Vec3>& rest, double tolerance, int max_iterations,
-              std::vector<Transfer> transfers, int smoothing, bool setup_reuse)
-      : kind_(std::move(kind)),
+  PetscSolver(PetscSolverKind kind, const std::vector<Vec3>& rest, double tolerance,
+              int max_iterations, std::vector<Transfer> transfers, int smoothing, bool setup_reuse)
+      : kind_(kind),
+        name_(kPetscSolverKinds.name(kind)),
         rest_(rest),
         tolerance_(tolerance),
         max_iterations_(max_iterations),
@@ -54,7 +55,7 @@ class PetscSolver : public LinearSolver {
   ~PetscSolver() override {
     if (ksp_) KSPDestroy(&ksp_);
   }
-  std::string name() const override { return kind_; }
+  std::string name() const override { return name_; }
 
   void set_matrix(const BrcMatrix& a) override {
     if (!a_) create(a);
@@ -63,7 +64,7 @@ class PetscSolver : public LinearSolver {
     check(KSPSetUp(ksp_), "KSPSetUp");
     check(PCSetUp(pc_), "PCSetUp");  // the AMG hierarchy: timed with the update, not the solve
     // BoomerAMG's reuse: the hierarchy of this first matrix preconditions every later solve.
-    if (setup_reuse_ && kind_ == "hypre-boomeramg")
+    if (setup_reuse_ && kind_ == PetscSolverKind::BoomerAmg)
       check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
   }
 
@@ -94,11 +95,11 @@ class PetscSolver : public LinearSolver {
     stats.iterations = static_cast<int>(iterations);
     stats.residual = residual / b_norm;
     if (!std::isfinite(stats.residual))
-      throw NumericalFault(kind_ + ": residual became non-finite");
+      throw NumericalFault(name_ + ": residual became non-finite");
     if (reason < 0 && reason != KSP_DIVERGED_ITS)
-      throw NumericalFault(kind_ + ": PETSc's CG stopped (KSPConvergedReason " +
+      throw NumericalFault(name_ + ": PETSc's CG stopped (KSPConvergedReason " +
                            std::to_string(reason) + ")");
-    require_converged(stats, tolerance_, kind_, "CG iterations");
+    require_converged(stats, tolerance_, name_, "CG iterations");
     return stats;
   }
 
@@ -115,7 +116,7 @@ class PetscSolver : public LinearSolver {
     }
     if (MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, x.data(), counts.data(), starts.data(),
                        MPI_DOUBLE, comm_) != MPI_SUCCESS)
-      throw NumericalFault(kind_ + ": MPI_Allgatherv of the solution failed");
+      throw NumericalFault(name_ + ": MPI_Allgatherv of the solution failed");
   }
 
   /// The AIJ matrix of the BRC pattern; the near null space; CG and the AMG.
@@ -144,7 +145,7 @@ class PetscSolver : public LinearSolver {
     check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
     check(KSPSetTolerances(ksp_, tolerance_, 0.0, 1e10, max_iterations_), "KSPSetTolerances");
     check(KSPGetPC(ksp_, &pc_), "KSPGetPC");
-    const bool gamg = kind_ == "petsc-gamg", mg = kind_ == "petsc-mg";
+    const bool gamg = kind_ == PetscSolverKind::Gamg, mg = kind_ == PetscSolverKind::Mg;
     const std::string prefix = gamg ? "corofem_gamg_" : mg ? "corofem_mg_" : "corofem_boomeramg_";
     check(KSPSetOptionsPrefix(ksp_, prefix.c_str()), "KSPSetOptionsPrefix");
     const auto option = [&](const std::string& key, const char* value) {
@@ -203,7 +204,8 @@ class PetscSolver : public LinearSolver {
     check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   }
 
-  std::string kind_;
+  PetscSolverKind kind_;
+  std::string name_;
   MPI_Comm comm_ = MPI_COMM_NULL;  ///< PETSC_COMM_WORLD: one rank, or the ranks of mpirun
                                    ///< (solver/mpi_launch.hpp)
   int ranks_ = 1;
@@ -220,7 +222,7 @@ class PetscSolver : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind,
+std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind,
                                                 const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
                                                 std::vector<Transfer> transfers, int smoothing,

@@ -20,18 +20,27 @@
 #include <string>
 #include <vector>
 
+#include "core/name_table.hpp"
 #include "linalg/linear_solver.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "multigrid/transfer.hpp"
 
 namespace corofem {
 
+enum class PetscSolverKind { Gamg, BoomerAmg, Mg };
+/// The solvers' names, as the scene's analysis.solver spells them.
+inline constexpr NameTable<PetscSolverKind, 3> kPetscSolverKinds{{{
+    {PetscSolverKind::Gamg, "petsc-gamg"},
+    {PetscSolverKind::BoomerAmg, "hypre-boomeramg"},
+    {PetscSolverKind::Mg, "petsc-mg"},
+}}};
+
 /// Whether this build has PETSc (and with it hypre).
 bool have_petsc();
 
-/// `kind`: "petsc-gamg", "hypre-boomeramg" or "petsc-mg" (with the hierarchy's `transfers`, finest
-/// first). Throws InputError naming analysis.solver when this build has no PETSc.
-std::unique_ptr<LinearSolver> make_petsc_solver(const std::string& kind,
+/// PetscSolverKind::Mg takes the hierarchy's `transfers`, finest first. Throws InputError naming
+/// analysis.solver when this build has no PETSc.
+std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind,
                                                 const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
                                                 std::vector<Transfer> transfers = {},

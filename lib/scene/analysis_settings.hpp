@@ -1,0 +1,65 @@
+#pragma once
+// The scene's `analysis` choices that are not a numerical component's own (those keep their
+// tables beside the component: kRotationMethods, kGalerkinMethods, kHierarchyKinds,
+// kSmootherOrderings): one enum and one name table each, used to parse and to write.
+#include "core/name_table.hpp"
+#include "solver/petsc_solver.hpp"
+
+namespace corofem {
+
+enum class AnalysisType { Static, Dynamic };
+inline constexpr NameTable<AnalysisType, 2> kAnalysisTypes{{{
+    {AnalysisType::Static, "static"},
+    {AnalysisType::Dynamic, "dynamic"},
+}}};
+
+enum class Formulation { Linear, Corotational };
+inline constexpr NameTable<Formulation, 2> kFormulations{{{
+    {Formulation::Linear, "linear"},
+    {Formulation::Corotational, "corotational"},
+}}};
+
+/// linear-implicit: one linear solve per step (the paper's scheme; static: the lagged-rotation
+/// iterations); newton: fully implicit Euler / static Newton with the consistent tangent.
+enum class Integrator { LinearImplicit, Newton };
+inline constexpr NameTable<Integrator, 2> kIntegrators{{{
+    {Integrator::LinearImplicit, "linear-implicit"},
+    {Integrator::Newton, "newton"},
+}}};
+
+enum class SolverKind { Cholmod, Multigrid, Mgpcg, JacobiPcg, PetscGamg, HypreBoomeramg, PetscMg };
+inline constexpr NameTable<SolverKind, 7> kSolverKinds{{{
+    {SolverKind::Cholmod, "cholmod"},
+    {SolverKind::Multigrid, "multigrid"},
+    {SolverKind::Mgpcg, "mgpcg"},
+    {SolverKind::JacobiPcg, "jacobi-pcg"},
+    {SolverKind::PetscGamg, "petsc-gamg"},
+    {SolverKind::HypreBoomeramg, "hypre-boomeramg"},
+    {SolverKind::PetscMg, "petsc-mg"},
+}}};
+
+/// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
+inline bool is_multigrid_solver(SolverKind solver) {
+  return solver == SolverKind::Multigrid || solver == SolverKind::Mgpcg ||
+         solver == SolverKind::PetscMg;
+}
+
+/// The algebraic multigrid of the libraries, whose setup can be reused across steps
+/// (analysis.setup_reuse).
+inline bool is_library_amg(SolverKind solver) {
+  return solver == SolverKind::PetscGamg || solver == SolverKind::HypreBoomeramg;
+}
+
+/// Solvers through PETSc (and hypre): the ones that distribute their solves under mpirun.
+inline bool is_petsc_solver(SolverKind solver) {
+  return is_library_amg(solver) || solver == SolverKind::PetscMg;
+}
+
+/// The PETSc solver of a solver kind for which is_petsc_solver holds.
+inline PetscSolverKind petsc_solver_kind(SolverKind solver) {
+  return solver == SolverKind::PetscGamg        ? PetscSolverKind::Gamg
+         : solver == SolverKind::HypreBoomeramg ? PetscSolverKind::BoomerAmg
+                                                : PetscSolverKind::Mg;
+}
+
+}  // namespace corofem
