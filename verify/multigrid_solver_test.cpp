@@ -37,6 +37,8 @@ struct MeshCase {
   /// Stationary V-cycles on the lattice crawl on curved, thin bodies (static, 500 cycles: the
   /// quadruped to 2.5e-3, the bunny to 3.4e-10, rate 0.957); MG-PCG on the same lattice converges.
   bool lattice_vcycles_stall = false;
+  /// The same on the meshes hierarchy (the bare bunny's derived levels: static, rate 0.96).
+  bool mesh_vcycles_stall = false;
   /// Levels 1 and 2 of the meshes hierarchy.
   std::vector<TetMesh> coarse() const { return coarse_meshes(spec, 3, name); }
 };
@@ -150,8 +152,8 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
       auto mg =
           make_linear_solver(analysis(name, 1e-10, hierarchy, false, coarsest_max), p, coarse);
-      if (c.lattice_vcycles_stall && std::string(name) == "multigrid" &&
-          std::string(hierarchy) == "lattice") {
+      if (std::string(name) == "multigrid" &&
+          (std::string(hierarchy) == "lattice" ? c.lattice_vcycles_stall : c.mesh_vcycles_stall)) {
         // Says so instead of returning a solution that misses its tolerance.
         EXPECT_THROW(solve_static(p, *none, *mg, {false, 1, 1e-8, 1}), NotConverged) << what;
         continue;
@@ -208,6 +210,59 @@ TEST(MultigridSolver, BunnySolutionsEqualCholmod) {
   coarse.size = 0.18579;
   spec.levels = {coarse};
   expect_solutions_equal_cholmod({"bunny", spec, load_scene_mesh(spec), {}, 2, true});
+}
+
+TEST(MultigridSolver, BareSurfaceLevelsCoarsenAndSolutionsEqualCholmod) {
+  const auto models = test::models_dir();
+  if (models.empty() || !std::filesystem::exists(models / "bunny_L0.stl"))
+    GTEST_SKIP() << "models folder not found (set COROFEM_MODELS)";
+  // The fine bunny as a user's STL gives it, no levels: the coarse surfaces are derived from it.
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::Surface;
+  spec.path = models / "bunny_L0.stl";
+  spec.size = 0.045098;
+  const MeshCase c{"bunny, bare surface", spec, load_scene_mesh(spec), {}, 2, true, true};
+  FeProblem p = problem_for(c);
+  const std::vector<TetMesh> coarse = coarse_meshes(spec, 3, c.name, p.mesh.num_vertices());
+  ASSERT_EQ(coarse.size(), 2u);
+  auto mg = make_multigrid_solver(analysis("mgpcg", 1e-8, "meshes"), p, coarse, true);
+  for (const CoarseLevelOrigin& origin : mg->level_origins())
+    EXPECT_EQ(origin.kind, CoarseLevelOrigin::Kind::Mesh) << origin.fallback;
+  Eigen::VectorXd b;
+  mg->set_matrix(small_strain_system(p, b));
+  const MultigridHierarchy& h = mg->hierarchy();
+  ASSERT_EQ(h.num_levels(), 3);
+  for (int l = 1; l < 3; ++l) {
+    // Issue 36: at least 4x fewer vertices per level and fewer nonzeros than the level above.
+    EXPECT_LE(4 * h.matrix(l).block_rows, h.matrix(l - 1).block_rows) << "level " << l;
+    EXPECT_LT(h.matrix(l).num_blocks(), h.matrix(l - 1).num_blocks()) << "level " << l;
+  }
+  expect_solutions_equal_cholmod(c);
+}
+
+TEST(MultigridSolver, MeshThatDoesNotCoarsenIsReplacedByLatticeLevelsThatSayWhy) {
+  // The level-1 "coarse" mesh is the fine mesh itself (what gmsh gives for a surface re-meshed
+  // with its triangles kept, in the limit): the hierarchy uses lattice levels and says why.
+  const TetMesh fine = make_box_mesh({2, 0.5, 0.5}, {16, 4, 4});
+  TetMesh same = fine;
+  same.source = "the fine box again";
+  HierarchyParams params;
+  params.kind = HierarchyKind::Meshes;
+  params.levels = 3;
+  const BuiltHierarchy built =
+      build_hierarchy(fine, std::vector<char>(fine.num_vertices(), 0), params, {same, same});
+  ASSERT_EQ(built.levels.size(), 2u);
+  int above = fine.num_vertices();
+  for (std::size_t h = 0; h < 2; ++h) {
+    EXPECT_EQ(built.levels[h].kind, CoarseLevelOrigin::Kind::LatticeForMesh);
+    EXPECT_LT(built.transfers[h].coarse, above);
+    above = built.transfers[h].coarse;
+  }
+  EXPECT_EQ(built.levels[0].fallback,
+            "mesh 'the fine box again' has " + std::to_string(fine.num_vertices()) +
+                " vertices against " + std::to_string(fine.num_vertices()) +
+                " on the level above (fewer than 4x fewer)");
+  EXPECT_EQ(built.levels[1].fallback, built.levels[0].fallback);  // from there on
 }
 
 TEST(MultigridSolver, CoarsestMaxVerticesAddsLatticeLevelsBelowTheMeshes) {

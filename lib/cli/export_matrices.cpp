@@ -33,7 +33,8 @@ void export_matrices(const Scene& scene, const std::filesystem::path& dir) {
   const bool corotational = a.formulation == Formulation::Corotational;
   auto extractor = make_rotation_extractor(corotational ? a.rotation : RotationMethod::None,
                                            problem.mesh, a.rotation_params);
-  auto multigrid = make_multigrid_solver(a, problem, coarse_meshes(scene), false);
+  auto multigrid =
+      make_multigrid_solver(a, problem, coarse_meshes(scene, problem.mesh.num_vertices()), false);
   MultigridSolver& solver = *multigrid;
   if (a.type == AnalysisType::Static) {
     solve_static(problem, *extractor, solver, {corotational, a.load_steps, a.tolerance, 1});

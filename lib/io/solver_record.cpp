@@ -16,7 +16,8 @@ nlohmann::json to_json(const RotationParams& p) {
 
 nlohmann::json to_json(const HierarchyParams& p) {
   nlohmann::json j = {{"kind", kHierarchyKinds.name(p.kind)}, {"levels", p.levels}};
-  if (p.kind == HierarchyKind::Lattice) j["first_cell_factor"] = p.first_cell_factor;
+  j["first_cell_factor"] = p.first_cell_factor;  // meshes: of a lattice level that replaces one
+  if (p.kind == HierarchyKind::Meshes) j["min_coarsening"] = p.min_coarsening;
   if (p.coarsest_max_vertices > 0) j["coarsest_max_vertices"] = p.coarsest_max_vertices;
   return j;
 }
@@ -67,6 +68,8 @@ nlohmann::json to_json(const CoarseLevelOrigin& o) {
       return {{"source", "lattice"}, {"cell", o.cell}};
     case CoarseLevelOrigin::Kind::LatticeBelowCoarsest:
       return {{"source", "lattice below the coarsest"}, {"cell", o.cell}};
+    case CoarseLevelOrigin::Kind::LatticeForMesh:
+      return {{"source", "lattice"}, {"cell", o.cell}, {"instead_of_mesh", o.fallback}};
   }
   return nullptr;
 }

@@ -2,7 +2,9 @@
 // Meshes through gmsh: volume meshes gmsh reads (.msh v2/v4) and closed surfaces (.stl) filled with
 // tets (Delaunay, the recipe of the models' README).
 #include <filesystem>
+#include <string>
 
+#include "mesh/surface_mesh.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace corofem {
@@ -15,5 +17,12 @@ TetMesh read_volume_mesh(const std::filesystem::path& file);
 /// Tetrahedralizes the volume enclosed by a closed triangle surface, keeping the surface triangles
 /// as the boundary, with gmsh's Mesh.MeshSizeMax = `size`. Throws InputError naming the file.
 TetMesh tetrahedralize_surface(const std::filesystem::path& file, double size);
+
+/// The same for a surface given as triangles (`name` for messages).
+TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const std::string& name);
+
+/// A surface file's triangles, its duplicate vertices merged as gmsh reads them. Throws InputError
+/// naming the file.
+SurfaceMesh read_surface(const std::filesystem::path& file);
 
 }  // namespace corofem

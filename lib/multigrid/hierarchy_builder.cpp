@@ -3,10 +3,28 @@
 #include <chrono>
 
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "multigrid/lattice_level.hpp"
 #include "multigrid/mesh_level.hpp"
 
 namespace corofem {
+
+namespace {
+
+/// Why coarse mesh h (coarse_meshes[h - 1]) cannot be level h below a level of `above` vertices,
+/// or "" when it can.
+std::string mesh_level_rejection(const std::vector<TetMesh>& coarse_meshes, int h, int above,
+                                 double min_coarsening) {
+  if (static_cast<int>(coarse_meshes.size()) < h)
+    return "no coarse mesh for level " + std::to_string(h);
+  const TetMesh& mesh = coarse_meshes[h - 1];
+  if (mesh.num_vertices() * min_coarsening <= above) return "";
+  return "mesh '" + mesh.source + "' has " + std::to_string(mesh.num_vertices()) +
+         " vertices against " + std::to_string(above) + " on the level above (fewer than " +
+         general_number(min_coarsening) + "x fewer)";
+}
+
+}  // namespace
 
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
@@ -17,21 +35,31 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
   std::vector<char> level_fixed = fixed;
   double cell = params.first_cell_factor * mean_edge_length(fine);
   double spacing = mean_edge_length(fine);  // of the last level built
+  std::string fallback;                     // why the meshes ended, once they have
   for (int h = 1; h < params.levels; ++h) {
     CoarseLevel coarse;
     CoarseLevelOrigin origin;
-    if (params.kind == HierarchyKind::Lattice) {
+    if (params.kind == HierarchyKind::Meshes && fallback.empty()) {
+      fallback = mesh_level_rejection(coarse_meshes, h, static_cast<int>(points.size()),
+                                      params.min_coarsening);
+      if (!fallback.empty()) cell = params.first_cell_factor * spacing;
+    }
+    if (params.kind == HierarchyKind::Lattice || !fallback.empty()) {
       coarse = make_lattice_level(points, level_fixed, cell);
       if (coarse.transfer.coarse == 0) break;  // nothing left to coarsen
       origin.cell = cell;
+      if (!fallback.empty()) {
+        origin.kind = CoarseLevelOrigin::Kind::LatticeForMesh;
+        origin.fallback = fallback;
+      }
       spacing = cell;
       cell *= 2;
     } else {
-      if (static_cast<int>(coarse_meshes.size()) < h)
-        throw InputError("multigrid hierarchy 'meshes' needs " + std::to_string(params.levels - 1) +
-                         " coarse meshes, got " + std::to_string(coarse_meshes.size()));
       const TetMesh& mesh = coarse_meshes[h - 1];
-      origin = {CoarseLevelOrigin::Kind::Mesh, mesh.source, mesh.num_vertices(), mesh.num_tets()};
+      origin.kind = CoarseLevelOrigin::Kind::Mesh;
+      origin.mesh = mesh.source;
+      origin.mesh_vertices = mesh.num_vertices();
+      origin.mesh_tets = mesh.num_tets();
       coarse = make_mesh_level(points, level_fixed, mesh, mesh.source, &origin.fit);
       spacing = mean_edge_length(mesh);
     }

@@ -26,17 +26,24 @@ struct HierarchyParams {
   /// until the coarsest has at most this many vertices: its factorization, every step, then
   /// costs little (0 = none added). Stops when a lattice level would not halve the vertices.
   int coarsest_max_vertices = 0;
+  /// meshes: a coarse mesh must have at most 1/this of the level above's vertices (issue 36: a
+  /// re-meshed surface that keeps its fine triangles is as fine as the level above and denser in
+  /// nonzeros). A mesh that does not is replaced, with the levels below it, by lattice levels,
+  /// and the level's origin says why.
+  double min_coarsening = 4;
 };
 
 /// Where a coarse level came from: a coarse mesh of the body (its size, and how the level above
 /// fits in it) or a lattice (its cell).
 struct CoarseLevelOrigin {
-  enum class Kind { Mesh, Lattice, LatticeBelowCoarsest };
+  enum class Kind { Mesh, Lattice, LatticeBelowCoarsest, LatticeForMesh };
   Kind kind = Kind::Lattice;
   std::string mesh;  ///< Mesh: its name (the source it was read or meshed from)
   int mesh_vertices = 0, mesh_tets = 0;
   MeshLevelFit fit;  ///< Mesh: the level above located in it
   double cell = 0;   ///< Lattice kinds: the cell size
+  /// LatticeForMesh: why the mesh of this level was not used (names it and both sizes).
+  std::string fallback;
 };
 
 struct BuiltHierarchy {
@@ -47,9 +54,11 @@ struct BuiltHierarchy {
 
 /// Transfers for `params.levels` levels below the fine mesh. `fixed` per fine vertex (its DOFs
 /// take no part in the transfer). Meshes: `coarse_meshes[h - 1]` is level h (at least
-/// levels - 1 of them; `names` for messages). Lattice: stops early when nothing is left to
-/// coarsen. Then lattice levels down to `params.coarsest_max_vertices`. Throws InputError for a
-/// coarse mesh that does not cover the level above.
+/// levels - 1 of them; `names` for messages), down to the first that does not coarsen by
+/// params.min_coarsening: lattice levels from there on (fewer meshes than levels - 1 also end the
+/// meshes there). Lattice: stops early when nothing is left to coarsen. Then lattice levels down
+/// to `params.coarsest_max_vertices`. Throws InputError for a coarse mesh that does not cover the
+/// level above.
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes = {});

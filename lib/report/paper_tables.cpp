@@ -245,17 +245,36 @@ json small_strain_row(const ModelTables& m) {
   });
 }
 
-/// Multigrid quality: the paper's re-meshed hierarchy or the covering lattice.
-json multigrid_row(const ModelTables& m, const char* hierarchy) {
-  m.say(std::string("multigrid quality: ") + hierarchy);
+/// Whether the scene's mesh comes with its coarse levels (the models' L1, L2).
+bool has_given_levels(const json& scene) {
+  return scene["mesh"].contains("levels");
+}
+
+/// The scene as a user's bare surface gives it: the fine surface only, the coarse levels derived
+/// from it (scene/coarse_meshes.hpp).
+json bare_surface(json scene) {
+  scene["mesh"].erase("levels");
+  return scene;
+}
+
+/// Multigrid quality: the paper's re-meshed hierarchy (its levels as given, or `bare`: derived
+/// from the fine surface alone) or the covering lattice.
+json multigrid_row(const ModelTables& m, const char* hierarchy, bool bare = false) {
+  m.say(std::string("multigrid quality: ") + hierarchy + (bare ? ", bare surface" : ""));
   return record_case({{"model", m.id}}, [&] {
-    const json on = with_analysis(m.scene, {{"hierarchy", hierarchy}});
+    const json on =
+        with_analysis(bare ? bare_surface(m.scene) : m.scene, {{"hierarchy", hierarchy}});
     const std::string kind =
         m.main.multigrid.is_null() ? "" : m.main.multigrid.value("hierarchy", "");
-    const TimedRun pcg = kind == hierarchy ? m.main : timed_run(on, m.id, {});
+    const TimedRun pcg = kind == hierarchy && !bare ? m.main : timed_run(on, m.id, {});
     const TimedRun vcycle =
         timed_run(with_analysis(on, {{"solver", "multigrid"}, {"vcycles", 0}}), m.id, {});
-    return multigrid_quality_row(pcg, vcycle, m.warmup);
+    json row = multigrid_quality_row(pcg, vcycle, m.warmup);
+    if (std::string(hierarchy) == "meshes")
+      row["coarse_meshes"] = bare                        ? "derived from the bare surface"
+                             : has_given_levels(m.scene) ? "given"
+                                                         : "derived";
+    return row;
   });
 }
 
@@ -269,12 +288,18 @@ json jacobi_row(const ModelTables& m, double young_scale) {
     const TimedRun jacobi = timed_run(with_analysis(stiffer, {{"solver", "jacobi-pcg"}}), m.id, {});
     const TimedRun mgpcg = young_scale == 1.0 ? m.main : timed_run(stiffer, m.id, {});
     const bool ran = !mgpcg.step_ms.empty();
-    return json{
+    json row = {
         {"step_ms", jacobi.median_ms("step", m.warmup)},
         {"solve_ms", jacobi.median_ms("solve", m.warmup)},
         {"iterations", jacobi.median_iterations(m.warmup)},
         {"mgpcg_step_ms", ran ? json(mgpcg.median_ms("step", m.warmup)) : json(nullptr)},
         {"mgpcg_iterations", ran ? json(mgpcg.median_iterations(m.warmup)) : json(nullptr)}};
+    if (has_given_levels(m.scene)) {  // and as a user's bare surface would run it
+      const TimedRun bare = timed_run(bare_surface(stiffer), m.id, {});
+      row["bare_surface_mgpcg_step_ms"] = bare.median_ms("step", m.warmup);
+      row["bare_surface_mgpcg_iterations"] = bare.median_iterations(m.warmup);
+    }
+    return row;
   });
 }
 
@@ -360,6 +385,8 @@ json run_paper_tables(const ReportConfig& config) {
       tables["small_strain"].push_back(small_strain_row(m));
       for (const char* hierarchy : {"meshes", "lattice"})
         tables["multigrid"].push_back(multigrid_row(m, hierarchy));
+      if (has_given_levels(m.scene))
+        tables["multigrid"].push_back(multigrid_row(m, "meshes", true));
       for (const double young_scale : {1.0, 100.0})
         tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
       for (const auto& [rival, reuse] :

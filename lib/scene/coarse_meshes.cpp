@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include "core/errors.hpp"
 #include "mesh/locality_order.hpp"
@@ -23,6 +24,9 @@ MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_
           " needs a coarse mesh: a mesh file cannot be re-meshed, so mesh.levels must "
           "give one per level below the fine one (or use analysis.hierarchy 'lattice')");
     case MeshSpec::Kind::Surface:
+      spec.simplify_surface = true;
+      spec.size *= factor;
+      break;
     case MeshSpec::Kind::Quadruped:
       spec.size *= factor;
       break;
@@ -34,23 +38,39 @@ MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_
   return spec;
 }
 
-std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name) {
+std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name,
+                                   int fine_vertices) {
   std::vector<TetMesh> meshes;
+  int above = fine_vertices;
   for (int h = 1; h < levels; ++h) {
     const MeshSpec spec = coarse_mesh_spec(fine, h, name);
-    TetMesh mesh = load_scene_mesh(spec);
+    TetMesh mesh;
+    try {
+      mesh = load_scene_mesh(spec);
+    } catch (const InputError& e) {
+      if (!spec.simplify_surface) throw;  // a level the scene gives must load
+      std::cerr << "corofem: warning: scene '" << name << "': multigrid level " << h
+                << " could not be meshed from the coarsened surface (" << e.what()
+                << "); lattice levels from there on\n";
+      break;
+    }
     if (spec.reorder) sort_for_locality(mesh);
     mesh.source = "level " + std::to_string(h) + " (" + mesh.source + ")";
     validate_mesh(mesh);
+    const int vertices = mesh.num_vertices();
     meshes.push_back(std::move(mesh));
+    // The hierarchy replaces a mesh that does not coarsen, and every level below it, by lattice
+    // levels (and says why): meshing those would be wasted.
+    if (above > 0 && vertices * HierarchyParams{}.min_coarsening > above) break;
+    above = vertices;
   }
   return meshes;
 }
 
-std::vector<TetMesh> coarse_meshes(const Scene& scene) {
+std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices) {
   const AnalysisSpec& a = scene.analysis;
   if (!is_multigrid_solver(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
-  return coarse_meshes(scene.mesh, a.levels, scene.name);
+  return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices);
 }
 
 }  // namespace corofem

@@ -1,9 +1,10 @@
 #pragma once
 // The coarse meshes of a scene's multigrid hierarchy (`analysis.hierarchy: "meshes"`): those the
 // scene gives in `mesh.levels`, then the same geometry re-meshed at 2x, 4x, ... the size of the
-// last one given (or of the fine mesh): the surface and the quadruped with a doubled gmsh mesh
-// size, the box with half the cells per axis, but never fewer than 2 across (a body one element
-// thick locks in bending, and its coarse correction with it).
+// last one given (or of the fine mesh): the quadruped with a doubled gmsh mesh size, the surface
+// too after its triangles are coarsened to that size (gmsh would keep them), the box with half
+// the cells per axis, but never fewer than 2 across (a body one element thick locks in bending,
+// and its coarse correction with it).
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
@@ -16,10 +17,14 @@ namespace corofem {
 MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_name);
 
 /// Coarse levels 1 .. levels - 1 of `fine` as validated meshes (reordered where the spec says),
-/// named "level h (source)"; `name` (the scene) for messages.
-std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name);
+/// named "level h (source)"; `name` (the scene) for messages. With `fine_vertices` (the fine
+/// mesh's count) they stop at the first that does not coarsen by HierarchyParams::min_coarsening
+/// (the hierarchy uses lattice levels from there on); a derived surface level that gmsh cannot fill
+/// ends them too, with a warning on stderr.
+std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name,
+                                   int fine_vertices = 0);
 
 /// The scene's coarse meshes when it runs multigrid on the meshes hierarchy; otherwise none.
-std::vector<TetMesh> coarse_meshes(const Scene& scene);
+std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices);
 
 }  // namespace corofem

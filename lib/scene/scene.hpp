@@ -23,6 +23,9 @@ struct MeshSpec {
   Vec3 box = Vec3::Ones();     ///< Box: extents
   std::array<int, 3> cells{1, 1, 1};
   bool reorder = false;  ///< sort vertices and tets for locality (mesh/locality_order.hpp)
+  /// Surface: coarsen the surface's triangles to `size` before filling it (the derived coarse
+  /// levels; gmsh keeps a surface's triangles, scene/coarse_meshes.hpp).
+  bool simplify_surface = false;
   /// Coarser meshes of the same body for the multigrid hierarchy, finest first (`mesh.levels`);
   /// levels beyond them are re-meshed (scene/coarse_meshes.hpp).
   std::vector<MeshSpec> levels;

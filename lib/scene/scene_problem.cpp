@@ -5,6 +5,7 @@
 #include "core/errors.hpp"
 #include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/coarse_surface_mesh.hpp"
 #include "mesh/locality_order.hpp"
 #include "mesh/quadruped_mesh.hpp"
 
@@ -15,7 +16,8 @@ TetMesh load_scene_mesh(const MeshSpec& spec) {
     case MeshSpec::Kind::File:
       return read_volume_mesh(spec.path);
     case MeshSpec::Kind::Surface:
-      return tetrahedralize_surface(spec.path, spec.size);
+      return spec.simplify_surface ? tetrahedralize_coarsened_surface(spec.path, spec.size)
+                                   : tetrahedralize_surface(spec.path, spec.size);
     case MeshSpec::Kind::Quadruped:
       return make_quadruped_mesh(spec.size);
     case MeshSpec::Kind::Box:

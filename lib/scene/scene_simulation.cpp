@@ -27,7 +27,7 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
                                        problem_.mesh, a.rotation_params);
   if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_);
   const auto meshing = std::chrono::steady_clock::now();
-  const std::vector<TetMesh> coarse = coarse_meshes(scene_);
+  const std::vector<TetMesh> coarse = coarse_meshes(scene_, problem_.mesh.num_vertices());
   coarse_meshing_ms_ = ms_since(meshing);
   solver_ = make_linear_solver(a, problem_, coarse);
   setup_ms_ = ms_since(start);

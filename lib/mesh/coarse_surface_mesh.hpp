@@ -1,0 +1,16 @@
+#pragma once
+// A coarse tet mesh of a body given by its surface: the surface coarsened to the mesh size first
+// (surface_simplification.hpp), then filled by gmsh (gmsh_mesh.hpp).
+#include <filesystem>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace corofem {
+
+/// The surface file's body at gmsh size `size`, its triangles first coarsened to about the
+/// spacing `size` (area / (sqrt(3)/2 size^2) vertices, as a triangulation of equilateral
+/// triangles of edge `size` has). The mesh's source names the file and both surface sizes.
+/// Throws InputError naming the file where gmsh cannot fill the coarsened surface.
+TetMesh tetrahedralize_coarsened_surface(const std::filesystem::path& file, double size);
+
+}  // namespace corofem

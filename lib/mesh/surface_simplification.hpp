@@ -1,0 +1,24 @@
+#pragma once
+// Coarser surfaces of a body for the multigrid's coarse meshes (issue 36): gmsh fills a closed
+// surface with tets but keeps its triangles, so a bare STL re-meshed at twice the size is as fine
+// at the boundary as before. Edge collapses with Garland and Heckbert's quadric error metric (1997)
+// give the surface the coarser spacing first.
+#include "mesh/surface_mesh.hpp"
+
+namespace corofem {
+
+/// What simplify_surface did.
+struct SimplificationStats {
+  int collapses = 0;
+  int rejected = 0;  ///< collapses refused by the checks below
+};
+
+/// Collapses edges of least quadric error until `target_vertices` remain or no edge can collapse.
+/// The surface stays a closed 2-manifold with the same orientation: an edge collapses only where
+/// its end points share exactly its two opposite vertices (the link condition) and no opposite
+/// vertex would drop below three neighbours; no triangle around it turns by more than 60 degrees
+/// or becomes a sliver (a vertex moved across its neighbours would fold the surface over itself).
+SurfaceMesh simplify_surface(const SurfaceMesh& surface, int target_vertices,
+                             SimplificationStats* stats = nullptr);
+
+}  // namespace corofem
