@@ -78,10 +78,10 @@ TEST(SurfaceSimplification, SphereStaysAClosedOrientedSurfaceOfNearlyItsVolume) 
   EXPECT_NEAR(enclosed_volume(coarse) / volume, 1.0, 0.05);
   // No folds: every triangle faces outward (its normal along its centroid's direction).
   for (const auto& t : coarse.triangles) {
-    const Vec3 n =
-        (coarse.points[t[1]] - coarse.points[t[0]]).cross(coarse.points[t[2]] - coarse.points[t[0]]);
-    EXPECT_GT(n.normalized().dot((coarse.points[t[0]] + coarse.points[t[1]] + coarse.points[t[2]])
-                                     .normalized()),
+    const Vec3 n = (coarse.points[t[1]] - coarse.points[t[0]])
+                       .cross(coarse.points[t[2]] - coarse.points[t[0]]);
+    EXPECT_GT(n.normalized().dot(
+                  (coarse.points[t[0]] + coarse.points[t[1]] + coarse.points[t[2]]).normalized()),
               0.5);
   }
 }

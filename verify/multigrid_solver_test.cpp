@@ -37,8 +37,6 @@ struct MeshCase {
   /// Stationary V-cycles on the lattice crawl on curved, thin bodies (static, 500 cycles: the
   /// quadruped to 2.5e-3, the bunny to 3.4e-10, rate 0.957); MG-PCG on the same lattice converges.
   bool lattice_vcycles_stall = false;
-  /// The same on the meshes hierarchy (the bare bunny's derived levels: static, rate 0.96).
-  bool mesh_vcycles_stall = false;
   /// Levels 1 and 2 of the meshes hierarchy.
   std::vector<TetMesh> coarse() const { return coarse_meshes(spec, 3, name); }
 };
@@ -152,8 +150,8 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
       auto mg =
           make_linear_solver(analysis(name, 1e-10, hierarchy, false, coarsest_max), p, coarse);
-      if (std::string(name) == "multigrid" &&
-          (std::string(hierarchy) == "lattice" ? c.lattice_vcycles_stall : c.mesh_vcycles_stall)) {
+      if (c.lattice_vcycles_stall && std::string(name) == "multigrid" &&
+          std::string(hierarchy) == "lattice") {
         // Says so instead of returning a solution that misses its tolerance.
         EXPECT_THROW(solve_static(p, *none, *mg, {false, 1, 1e-8, 1}), NotConverged) << what;
         continue;
@@ -221,7 +219,9 @@ TEST(MultigridSolver, BareSurfaceLevelsCoarsenAndSolutionsEqualCholmod) {
   spec.kind = MeshSpec::Kind::Surface;
   spec.path = models / "bunny_L0.stl";
   spec.size = 0.045098;
-  const MeshCase c{"bunny, bare surface", spec, load_scene_mesh(spec), {}, 2, true, true};
+  // Its derived surfaces grown to cover the body: stationary V-cycles converge on it (not grown,
+  // they stalled at a rate of 0.96 on this static problem).
+  const MeshCase c{"bunny, bare surface", spec, load_scene_mesh(spec), {}, 2, true};
   FeProblem p = problem_for(c);
   const std::vector<TetMesh> coarse = coarse_meshes(spec, 3, c.name, p.mesh.num_vertices());
   ASSERT_EQ(coarse.size(), 2u);

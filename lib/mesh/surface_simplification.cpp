@@ -4,7 +4,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
+#include <unordered_map>
 
 namespace corofem {
 
@@ -147,7 +149,7 @@ class Simplifier {
           if (t[c] == end) x[c] = p;
         const double q_after = triangle_quality(x[0], x[1], x[2], &after);
         if (after.dot(before) < 0.5 * after.norm() * before.norm()) return false;  // > 60 degrees
-        if (q_after < 0.1 && q_after < q_before) return false;                    // sliver
+        if (q_after < 0.1 && q_after < q_before) return false;                     // sliver
       }
     return true;
   }
@@ -187,6 +189,89 @@ class Simplifier {
 };
 
 }  // namespace
+
+namespace {
+
+/// Area-weighted vertex normals (unit; zero for a vertex of no triangle).
+std::vector<Vec3> vertex_normals(const SurfaceMesh& s) {
+  std::vector<Vec3> normals(s.points.size(), Vec3::Zero());
+  for (const auto& t : s.triangles) {
+    const Vec3 n = (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]);
+    for (int v : t) normals[v] += n;
+  }
+  for (Vec3& n : normals)
+    if (n.norm() > 0) n.normalize();
+  return normals;
+}
+
+/// Nearest point of a set by a uniform grid of buckets (rings searched outward until the ring
+/// distance exceeds the best found).
+class NearestPoint {
+ public:
+  NearestPoint(const std::vector<Vec3>& points, double cell) : points_(points), cell_(cell) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+      buckets_[key(cell_of(points[i]))].push_back(i);
+      lo = lo.cwiseMin(points[i]);
+      hi = hi.cwiseMax(points[i]);
+    }
+    max_ring_ = points.empty() ? 0 : 2 + static_cast<int>((hi - lo).maxCoeff() / cell);
+  }
+  int operator()(const Vec3& x) const {
+    const Eigen::Vector3i c = cell_of(x);
+    int best = -1;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    // Points in ring r are at least (r - 1) cells away.
+    for (int ring = 0; ring <= max_ring_; ++ring) {
+      if (best >= 0 && (ring - 1) * cell_ > std::sqrt(best_d2)) break;
+      for (int i = -ring; i <= ring; ++i)
+        for (int j = -ring; j <= ring; ++j)
+          for (int k = -ring; k <= ring; ++k) {
+            if (std::max({std::abs(i), std::abs(j), std::abs(k)}) != ring) continue;
+            const auto it = buckets_.find(key(c + Eigen::Vector3i(i, j, k)));
+            if (it == buckets_.end()) continue;
+            for (int p : it->second) {
+              const double d2 = (points_[p] - x).squaredNorm();
+              if (d2 < best_d2) best_d2 = d2, best = p;
+            }
+          }
+    }
+    return best;
+  }
+
+ private:
+  Eigen::Vector3i cell_of(const Vec3& x) const { return (x / cell_).array().floor().cast<int>(); }
+  static long long key(const Eigen::Vector3i& c) {
+    return (static_cast<long long>(c.x() & 0xFFFFF) << 40) |
+           (static_cast<long long>(c.y() & 0xFFFFF) << 20) | (c.z() & 0xFFFFF);
+  }
+  const std::vector<Vec3>& points_;
+  double cell_;
+  int max_ring_ = 0;  ///< beyond it no ring holds a point (for queries near the points' box)
+  std::unordered_map<long long, std::vector<int>> buckets_;
+};
+
+double mean_edge(const SurfaceMesh& s) {
+  double sum = 0;
+  for (const auto& t : s.triangles)
+    for (int c = 0; c < 3; ++c) sum += (s.points[t[c]] - s.points[t[(c + 1) % 3]]).norm();
+  return s.triangles.empty() ? 0 : sum / (3.0 * s.triangles.size());
+}
+
+}  // namespace
+
+std::vector<Vec3> covering_moves(const SurfaceMesh& coarse, const SurfaceMesh& fine) {
+  const std::vector<Vec3> normals = vertex_normals(coarse);
+  const NearestPoint nearest(coarse.points, std::max(mean_edge(coarse), 1e-12));
+  std::vector<double> distance(coarse.points.size(), 0.0);
+  for (const Vec3& x : fine.points) {
+    const int c = nearest(x);
+    if (c >= 0) distance[c] = std::max(distance[c], (x - coarse.points[c]).dot(normals[c]));
+  }
+  std::vector<Vec3> moves(coarse.points.size());
+  for (std::size_t v = 0; v < moves.size(); ++v) moves[v] = distance[v] * normals[v];
+  return moves;
+}
 
 SurfaceMesh simplify_surface(const SurfaceMesh& surface, int target_vertices,
                              SimplificationStats* stats) {

@@ -21,4 +21,10 @@ struct SimplificationStats {
 SurfaceMesh simplify_surface(const SurfaceMesh& surface, int target_vertices,
                              SimplificationStats* stats = nullptr);
 
+/// Per vertex of `coarse`, the move outward along its normal (area-weighted) that puts the
+/// vertices of `fine` nearest to it on or below its tangent plane: moved so, the coarse surface
+/// covers the body, and a coarse mesh of it locates the fine points instead of extrapolating to
+/// them (issue 36; a surface's fine vertices are the body's outermost points).
+std::vector<Vec3> covering_moves(const SurfaceMesh& coarse, const SurfaceMesh& fine);
+
 }  // namespace corofem
