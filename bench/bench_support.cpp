@@ -118,14 +118,17 @@ int hierarchy_levels(const std::string& model, HierarchyKind kind) {
   return kind == HierarchyKind::Meshes && !g_models.empty() ? 3 : paper_levels(model);
 }
 
-BuiltHierarchy paper_transfers(const std::string& model, HierarchyKind kind) {
+BuiltHierarchy paper_transfers(const std::string& model, HierarchyKind kind, bool bare_surface) {
   const FeProblem& p = paper_problem(model);
   HierarchyParams params;
   params.kind = kind;
   params.levels = hierarchy_levels(model, kind);
+  MeshSpec spec = paper_mesh_spec(model);
+  if (bare_surface) spec.levels.clear();
   const std::vector<TetMesh> coarse =
-      kind == HierarchyKind::Meshes ? coarse_meshes(paper_mesh_spec(model), params.levels, model)
-                                    : std::vector<TetMesh>{};
+      kind == HierarchyKind::Meshes
+          ? coarse_meshes(spec, params.levels, model, p.mesh.num_vertices())
+          : std::vector<TetMesh>{};
   return build_hierarchy(p.mesh, paper_system(model).fixed, params, coarse);
 }
 

@@ -47,7 +47,10 @@ MeshSpec paper_mesh_spec(const std::string& model);
 int hierarchy_levels(const std::string& model, HierarchyKind kind);
 
 /// The transfers of the model's hierarchy of the given kind (x-min face fixed, as paper_system).
-BuiltHierarchy paper_transfers(const std::string& model, HierarchyKind kind);
+/// With `bare_surface`: the meshes derived from the fine surface alone (no L1, L2), as a user's
+/// bare STL gets them.
+BuiltHierarchy paper_transfers(const std::string& model, HierarchyKind kind,
+                               bool bare_surface = false);
 
 /// The corotated system of the bent state with the x-min face fixed, as a solver sees it
 /// (supports imposed), and a right-hand side (gravity). Cached per model.
