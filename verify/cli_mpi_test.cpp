@@ -20,15 +20,6 @@ using test::run_cli;
 using test::TempDir;
 using test::write_text;
 
-/// mpirun with two ranks. Open MPI refuses root without these two variables (CI runs as root)
-/// and one-core machines without oversubscription; both are set for the launched processes only.
-std::string mpirun_two_ranks() {
-  setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-  setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-  setenv("OMPI_MCA_rmaps_base_oversubscribe", "1", 1);
-  return "mpirun -np 2";
-}
-
 bool have_mpirun() {
   return std::system("command -v mpirun > /dev/null 2>&1") == 0;
 }
@@ -73,7 +64,7 @@ TEST(CliMpi, TwoRanksEqualOneRankOnADynamicScene) {
     const auto one = run_cli("run " + scene + " --out '" + (dir / "one.json").string() + "'");
     ASSERT_EQ(one.exit_code, 0) << one.err;
     const auto two = run_cli("run " + scene + " --out '" + (dir / "two.json").string() + "'",
-                             mpirun_two_ranks());
+                             test::mpirun_two_ranks());
     ASSERT_EQ(two.exit_code, 0) << two.err;
     const auto a = nlohmann::json::parse(test::read_text(dir / "one.json"));
     const auto b = nlohmann::json::parse(test::read_text(dir / "two.json"));
@@ -106,7 +97,7 @@ TEST(CliMpi, SerialSolverUnderMpirunIsBadInput) {
   write_text(dir / "bar.json", dynamic_bar("mgpcg").dump());
   const auto r =
       run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "r.json").string() + "'",
-              mpirun_two_ranks());
+              test::mpirun_two_ranks());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("analysis.solver 'mgpcg' under mpirun -np 2"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));
@@ -169,7 +160,7 @@ TEST(CliMpi, TwoRanksNeedPetsc) {
   write_text(dir / "bar.json", dynamic_bar("petsc-gamg").dump());
   const auto r =
       run_cli("run '" + (dir / "bar.json").string() + "' --out '" + (dir / "r.json").string() + "'",
-              mpirun_two_ranks());
+              test::mpirun_two_ranks());
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("has no PETSc and so no MPI"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));

@@ -44,6 +44,10 @@ struct CliResult {
 /// ("mpirun -np 2").
 CliResult run_cli(const std::string& args, const std::string& launcher = "");
 
+/// "mpirun -np 2". Open MPI refuses root without two variables (CI runs as root) and one-core
+/// machines without oversubscription; all three are set for the launched processes only.
+std::string mpirun_two_ranks();
+
 void write_text(const std::filesystem::path& file, const std::string& text);
 std::string read_text(const std::filesystem::path& file);
 

@@ -10,9 +10,9 @@ namespace corofem {
 /// The surface file's body at gmsh size `size`, its triangles first coarsened to about the
 /// spacing `size` (area / (sqrt(3)/2 size^2) vertices, as a triangulation of equilateral
 /// triangles of edge `size` has), then grown outward to cover the body (covering_moves; half or a
-/// quarter as far, or not at all, where gmsh finds the grown surface intersecting itself). The mesh's
-/// source names the file, both surface sizes and the growth. Throws InputError naming the file
-/// where gmsh cannot fill even the ungrown surface.
+/// quarter as far, or not at all, where gmsh finds the grown surface intersecting itself). The
+/// mesh's source names the file, both surface sizes and the growth. Throws InputError naming the
+/// file where gmsh cannot fill even the ungrown surface.
 TetMesh tetrahedralize_coarsened_surface(const std::filesystem::path& file, double size);
 
 }  // namespace corofem
