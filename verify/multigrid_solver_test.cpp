@@ -240,17 +240,39 @@ TEST(MultigridSolver, BareSurfaceLevelsCoarsenAndSolutionsEqualCholmod) {
   expect_solutions_equal_cholmod(c);
 }
 
+TEST(MultigridSolver, ChebyshevSmoothedSolutionsEqualCholmod) {
+  // MG-PCG and stationary V-cycles with Chebyshev smoothing (degrees 1-3) on the meshes and the
+  // lattice hierarchies: the static solve equals CHOLMOD's to 1e-8, as the Gauss-Seidel ones.
+  const std::vector<MeshCase> cases = meshes();
+  const MeshCase& c = cases[0];
+  FeProblem p = problem_for(c);
+  auto none = make_rotation_extractor(RotationMethod::None, p.mesh);
+  auto direct = make_cholmod_solver();
+  const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
+  for (const char* name : {"multigrid", "mgpcg"})
+    for (const char* hierarchy : {"meshes", "lattice"})
+      for (const int degree : {1, 2, 3}) {
+        AnalysisSpec a = analysis(name, 1e-10, hierarchy);
+        a.smoother_kind = SmootherKind::Chebyshev;
+        a.chebyshev_degree = degree;
+        auto mg = make_linear_solver(a, p, c.coarse());
+        const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
+        EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm())
+            << name << " on " << hierarchy << ", degree " << degree;
+      }
+}
+
 TEST(MultigridSolver, MeshThatDoesNotCoarsenIsReplacedByLatticeLevelsThatSayWhy) {
   // The level-1 "coarse" mesh is the fine mesh itself (what gmsh gives for a surface re-meshed
   // with its triangles kept, in the limit): the hierarchy uses lattice levels and says why.
-  const TetMesh fine = make_box_mesh({2, 0.5, 0.5}, {16, 4, 4});
+  const TetMesh fine = make_box_mesh({2, 0.5, 0.5}, {32, 8, 8});  // 2673 vertices
   TetMesh same = fine;
   same.source = "the fine box again";
   HierarchyParams params;
   params.kind = HierarchyKind::Meshes;
   params.levels = 3;
-  const BuiltHierarchy built =
-      build_hierarchy(fine, std::vector<char>(fine.num_vertices(), 0), params, {same, same});
+  const std::vector<char> fixed(fine.num_vertices(), 0);
+  const BuiltHierarchy built = build_hierarchy(fine, fixed, params, {same, same});
   ASSERT_EQ(built.levels.size(), 2u);
   int above = fine.num_vertices();
   for (std::size_t h = 0; h < 2; ++h) {
@@ -258,11 +280,17 @@ TEST(MultigridSolver, MeshThatDoesNotCoarsenIsReplacedByLatticeLevelsThatSayWhy)
     EXPECT_LT(built.transfers[h].coarse, above);
     above = built.transfers[h].coarse;
   }
-  EXPECT_EQ(built.levels[0].fallback,
-            "mesh 'the fine box again' has " + std::to_string(fine.num_vertices()) +
-                " vertices against " + std::to_string(fine.num_vertices()) +
-                " on the level above (fewer than 4x fewer)");
-  EXPECT_EQ(built.levels[1].fallback, built.levels[0].fallback);  // from there on
+  const std::string why = "mesh 'the fine box again' has " + std::to_string(fine.num_vertices()) +
+                          " vertices against " + std::to_string(fine.num_vertices()) +
+                          " on the level above (fewer than 1.5x fewer)";
+  EXPECT_EQ(built.levels[0].fallback, why);
+  EXPECT_EQ(built.levels[1].fallback, why);  // from there on
+  EXPECT_TRUE(built.ended_early.empty());
+  // Below a small level (at most end_below_vertices) the hierarchy ends instead, and says why.
+  params.end_below_vertices = fine.num_vertices();
+  const BuiltHierarchy ended = build_hierarchy(fine, fixed, params, {same, same});
+  EXPECT_TRUE(ended.transfers.empty());
+  EXPECT_EQ(ended.ended_early, why + ": level 0 is the coarsest");
 }
 
 TEST(MultigridSolver, CoarsestMaxVerticesAddsLatticeLevelsBelowTheMeshes) {
@@ -275,6 +303,7 @@ TEST(MultigridSolver, CoarsestMaxVerticesAddsLatticeLevelsBelowTheMeshes) {
   HierarchyParams params;
   params.kind = HierarchyKind::Meshes;
   params.levels = 3;
+  params.min_coarsening = 1;  // gmsh's quadruped at 0.4 keeps 415 of 480 vertices: taken here
   const BuiltHierarchy meshes_only = build_hierarchy(fine, fixed, params, coarse);
   ASSERT_EQ(meshes_only.transfers.size(), 2u);
   const int mesh_coarsest = meshes_only.transfers.back().coarse;
@@ -346,8 +375,14 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius
     // of 0.51 (nu = 0) to 0.57 (nu = 0.3) even on nested meshes (TwoGridEqualsDenseOperator);
-    // measured here 0.54 (cube), 0.52 (gmsh cube), 0.87 (bar 10:1, bending-dominated).
-    EXPECT_LE(rho[0], c.name == "bar" ? 0.9 : 0.6) << c.name;
+    // measured here 0.54 (cube), 0.87 (bar 10:1, bending-dominated) and 0.63 for the gmsh cube
+    // with a 10x stiffer half, whose coarse levels are its surface coarsened to their size (3.5x
+    // fewer vertices a level; 0.52 when gmsh kept the fine surface triangles and the levels
+    // barely coarsened; 0.61 on the lattice).
+    EXPECT_LE(rho[0], c.name == "bar"                       ? 0.9
+                      : c.name == "gmsh-cube-heterogeneous" ? 0.65
+                                                            : 0.6)
+        << c.name;
     EXPECT_LT(rho[1], 1.0) << c.name;
     // Multicolour ordering: a different smoother, measured 0.59 (cube), 0.53 (gmsh cube), 0.96
     // (bar) against 0.54, 0.52, 0.87: at most 15% above the sequential rho.

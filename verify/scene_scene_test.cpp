@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "scene/solver_factory.hpp"
 
 namespace corofem {
 namespace {
@@ -26,6 +27,21 @@ TEST(Scene, MinimalSceneGetsDefaults) {
   EXPECT_EQ(s.analysis.formulation, Formulation::Corotational);
   EXPECT_EQ(s.analysis.rotation, RotationMethod::Polar);
   EXPECT_EQ(s.fixed.size(), 1u);
+}
+
+TEST(Scene, SmootherNamesAnOrderingOrChebyshev) {
+  auto j = minimal();
+  j["analysis"] = {{"solver", "mgpcg"}, {"smoother", "domains"}};
+  Scene s = parse_scene(j, "/base", "s.json");
+  EXPECT_EQ(s.analysis.smoother_kind, SmootherKind::GaussSeidel);
+  EXPECT_EQ(s.analysis.smoother, SmootherOrdering::Domains);
+  j["analysis"] = {{"solver", "mgpcg"}, {"smoother", "chebyshev"}, {"chebyshev_degree", 3}};
+  s = parse_scene(j, "/base", "s.json");
+  EXPECT_EQ(s.analysis.smoother_kind, SmootherKind::Chebyshev);
+  EXPECT_EQ(s.analysis.chebyshev_degree, 3);
+  EXPECT_EQ(multigrid_params(s.analysis).chebyshev_degree, 3);
+  j["analysis"]["chebyshev_degree"] = 0;
+  EXPECT_THROW(parse_scene(j, "/base", "s.json"), InputError);
 }
 
 TEST(Scene, RelativePathsResolveAgainstSceneFolder) {

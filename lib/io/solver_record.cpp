@@ -17,7 +17,10 @@ nlohmann::json to_json(const RotationParams& p) {
 nlohmann::json to_json(const HierarchyParams& p) {
   nlohmann::json j = {{"kind", kHierarchyKinds.name(p.kind)}, {"levels", p.levels}};
   j["first_cell_factor"] = p.first_cell_factor;  // meshes: of a lattice level that replaces one
-  if (p.kind == HierarchyKind::Meshes) j["min_coarsening"] = p.min_coarsening;
+  if (p.kind == HierarchyKind::Meshes) {
+    j["min_coarsening"] = p.min_coarsening;
+    j["end_below_vertices"] = p.end_below_vertices;
+  }
   if (p.coarsest_max_vertices > 0) j["coarsest_max_vertices"] = p.coarsest_max_vertices;
   return j;
 }
@@ -25,6 +28,13 @@ nlohmann::json to_json(const HierarchyParams& p) {
 namespace {
 
 nlohmann::json smoother_json(const MultigridParams& p) {
+  if (p.smoother_kind == SmootherKind::Chebyshev)
+    return {{"kind", "chebyshev"},
+            {"diagonal", "l1 block Jacobi"},
+            {"degree", p.chebyshev_degree},
+            {"interval", {p.chebyshev_lower, 1.0}},
+            {"pre_smoothing", p.pre_smoothing},
+            {"post_smoothing", p.post_smoothing}};
   nlohmann::json j = {{"kind", "block-gauss-seidel"},
                       {"ordering", kSmootherOrderings.name(p.smoother)},
                       {"pre_smoothing", p.pre_smoothing},
@@ -98,7 +108,7 @@ nlohmann::json describe(const MultigridSolver& solver) {
     return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v));
   };
   const MultigridParams& params = solver.params();
-  return {
+  nlohmann::json out = {
       {"params", to_json(params)},
       {"hierarchy", kHierarchyKinds.name(params.hierarchy.kind)},
       {"levels", levels},
@@ -111,6 +121,8 @@ nlohmann::json describe(const MultigridSolver& solver) {
       {"iterations", median_or_null(iterations)},
       {"coarsest_shifts", solver.coarsest_shifts()},
       {"deferred_updates", solver.deferred_updates()}};
+  if (!solver.ended_early().empty()) out["ended_early"] = solver.ended_early();
+  return out;
 }
 
 }  // namespace corofem

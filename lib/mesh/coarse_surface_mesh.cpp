@@ -11,10 +11,23 @@
 
 namespace corofem {
 
+namespace {
+
+int target_vertices(const SurfaceMesh& fine, double size) {
+  const double per_vertex = std::sqrt(3.0) / 2 * size * size;  // two triangles of edge `size`
+  return std::max(8, static_cast<int>(std::lround(surface_area(fine) / per_vertex)));
+}
+
+}  // namespace
+
+int coarsened_surface_vertices(const std::filesystem::path& file, double size) {
+  const SurfaceMesh fine = read_surface(file);
+  return std::min(fine.num_vertices(), target_vertices(fine, size));
+}
+
 TetMesh tetrahedralize_coarsened_surface(const std::filesystem::path& file, double size) {
   const SurfaceMesh fine = read_surface(file);
-  const double per_vertex = std::sqrt(3.0) / 2 * size * size;  // two triangles of edge `size`
-  const int target = std::max(8, static_cast<int>(std::lround(surface_area(fine) / per_vertex)));
+  const int target = target_vertices(fine, size);
   const SurfaceMesh coarse = target < fine.num_vertices() ? simplify_surface(fine, target) : fine;
   const std::vector<Vec3> moves = covering_moves(coarse, fine);
   const std::string name = file.string() + " (surface coarsened from " +

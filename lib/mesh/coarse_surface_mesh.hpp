@@ -15,4 +15,11 @@ namespace corofem {
 /// file where gmsh cannot fill even the ungrown surface.
 TetMesh tetrahedralize_coarsened_surface(const std::filesystem::path& file, double size);
 
+/// The fewest vertices a coarsened surface keeps: a coarser one no longer follows the body (a
+/// bunny of 20 vertices), and a level made of it slows the cycle more than it saves.
+inline constexpr int kMinCoarsenedSurfaceVertices = 50;
+
+/// The vertices the surface file keeps, coarsened to `size` (as above).
+int coarsened_surface_vertices(const std::filesystem::path& file, double size);
+
 }  // namespace corofem

@@ -13,6 +13,10 @@ namespace corofem {
 namespace {
 
 using Quadric = Eigen::Matrix4d;
+
+/// Weight of an edge's length^4 beside its quadric error (both area x distance^2): small enough
+/// that a collapse across a sharp edge or corner (quadric error ~ length^4 / 2) still costs more.
+constexpr double kLengthWeight = 0.01;
 using Triangle = std::array<int, 3>;
 
 /// 4 sqrt(3) area / sum of squared edges: 1 for an equilateral triangle, 0 for a degenerate one.
@@ -125,7 +129,12 @@ class Simplifier {
       const Vec3 p = lu.solve(-q.topRightCorner<3, 1>());
       if ((p - best).norm() < (a - b).norm() && error(p) < cost) cost = error(p), best = p;
     }
-    heap_.push({std::max(cost, 0.0), u, v, stamp_[u], stamp_[v], best});
+    // Edge length as a tie-breaker: on flat or gently curved parts the quadric error is near zero
+    // for every collapse; the shortest edges then go first, keeping the triangles' spacing even
+    // (a level's coarse tets follow its surface triangles' shape).
+    const double length2 = (a - b).squaredNorm();
+    heap_.push({std::max(cost, 0.0) + kLengthWeight * length2 * length2, u, v, stamp_[u], stamp_[v],
+                best});
   }
 
   bool allowed(int u, int v, const Vec3& p) const {

@@ -16,7 +16,8 @@ namespace {
 std::string mesh_level_rejection(const std::vector<TetMesh>& coarse_meshes, int h, int above,
                                  double min_coarsening) {
   if (static_cast<int>(coarse_meshes.size()) < h)
-    return "no coarse mesh for level " + std::to_string(h);
+    return "no coarse mesh for level " + std::to_string(h) +
+           " (a coarsened surface would keep too few vertices, or gmsh could not fill it)";
   const TetMesh& mesh = coarse_meshes[h - 1];
   if (mesh.num_vertices() * min_coarsening <= above) return "";
   return "mesh '" + mesh.source + "' has " + std::to_string(mesh.num_vertices()) +
@@ -42,6 +43,10 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
     if (params.kind == HierarchyKind::Meshes && fallback.empty()) {
       fallback = mesh_level_rejection(coarse_meshes, h, static_cast<int>(points.size()),
                                       params.min_coarsening);
+      if (!fallback.empty() && static_cast<int>(points.size()) <= params.end_below_vertices) {
+        built.ended_early = fallback + ": level " + std::to_string(h - 1) + " is the coarsest";
+        break;
+      }
       if (!fallback.empty()) cell = params.first_cell_factor * spacing;
     }
     if (params.kind == HierarchyKind::Lattice || !fallback.empty()) {

@@ -26,11 +26,17 @@ struct HierarchyParams {
   /// until the coarsest has at most this many vertices: its factorization, every step, then
   /// costs little (0 = none added). Stops when a lattice level would not halve the vertices.
   int coarsest_max_vertices = 0;
-  /// meshes: a coarse mesh must have at most 1/this of the level above's vertices (issue 36: a
-  /// re-meshed surface that keeps its fine triangles is as fine as the level above and denser in
-  /// nonzeros). A mesh that does not is replaced, with the levels below it, by lattice levels,
-  /// and the level's origin says why.
-  double min_coarsening = 4;
+  /// meshes: a coarse mesh must have at most 1/this of the level above's vertices, or it is
+  /// replaced, with the levels below it, by lattice levels, and the level's origin says why
+  /// (issue 36: gmsh re-meshing a surface keeps its triangles, which gave levels 1.06-1.36x
+  /// smaller than the one above and denser in nonzeros). A safety net, not a target: derived
+  /// surface levels coarsen 4.7-7x (coarse_surface_mesh.hpp), a thin box's clamped at 2 cells
+  /// across about 2x.
+  double min_coarsening = 1.5;
+  /// A rejected mesh below a level of at most this many vertices ends the hierarchy there
+  /// instead (that level's direct factorization costs little; a lattice below a small curved
+  /// level, as the quadruped's, slows the V-cycle: stationary cycles stalled at 0.99).
+  int end_below_vertices = 2000;
 };
 
 /// Where a coarse level came from: a coarse mesh of the body (its size, and how the level above
@@ -50,6 +56,9 @@ struct BuiltHierarchy {
   std::vector<Transfer> transfers;         ///< level h to h + 1
   std::vector<CoarseLevelOrigin> levels;   ///< per coarse level
   std::map<std::string, double> setup_ms;  ///< what building it cost, by part
+  /// Why it has fewer levels than asked for (empty when it has them all, or a lattice ran out of
+  /// vertices to coarsen).
+  std::string ended_early;
 };
 
 /// Transfers for `params.levels` levels below the fine mesh. `fixed` per fine vertex (its DOFs

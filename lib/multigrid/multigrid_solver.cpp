@@ -48,12 +48,16 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
     : params_(params),
       preconditioner_(as_preconditioner),
       hierarchy_(pattern, std::move(built.transfers)),
-      smoothers_(hierarchy_.num_levels(), BlockGaussSeidel(params.smoother)),
+      smoothers_(params.smoother_kind == SmootherKind::GaussSeidel ? hierarchy_.num_levels() : 0,
+                 BlockGaussSeidel(params.smoother)),
+      chebyshev_(params.smoother_kind == SmootherKind::Chebyshev ? hierarchy_.num_levels() : 0,
+                 ChebyshevSmoother(params.chebyshev_degree, params.chebyshev_lower)),
       coarsest_(std::make_unique<Coarsest>()),
       residual_(hierarchy_.num_levels()),
       coarse_b_(hierarchy_.num_levels()),
       coarse_x_(hierarchy_.num_levels()),
       level_origins_(std::move(built.levels)),
+      ended_early_(std::move(built.ended_early)),
       setup_ms_(std::move(built.setup_ms)) {
   // The method's streams now, in the set-up, not in the first step's update.
   timed(setup_ms_, "galerkin_streams", [&] { hierarchy_.prepare(params_.galerkin); });
@@ -111,8 +115,12 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
   run_side_by_side([&] { coarsest_ms = wall_ms([&] { update_coarsest(); }); },
                    [&] {
                      smoothers_ms = wall_ms([&] {
-                       for (int h = 0; h < last; ++h)
-                         smoothers_[h].set_matrix(hierarchy_.matrix(h));
+                       for (int h = 0; h < last; ++h) {
+                         if (chebyshev_.empty())
+                           smoothers_[h].set_matrix(hierarchy_.matrix(h));
+                         else
+                           chebyshev_[h].set_matrix(hierarchy_.matrix(h));
+                       }
                      });
                      if (beside) beside();
                    });
@@ -172,8 +180,14 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
   const bool fine = h == 0;
   // A single sweep from zero forms its residual as it goes (the blocks it reads, transposed, are
   // the rest of the rows above): that residual counts in the smoothing.
-  const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1;
+  const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1 && chebyshev_.empty();
   timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
+    if (!chebyshev_.empty()) {
+      for (int s = 0; s < params_.pre_smoothing; ++s)
+        chebyshev_[h].smooth(a, b, x, zero_guess && s == 0);
+      if (params_.pre_smoothing == 0 && zero_guess) x.setZero(b.size());
+      return;
+    }
     if (from_zero_sweep)
       return smoothers_[h].forward_from_zero_with_residual(a, b, x, residual_[h]);
     int s = 0;
@@ -197,8 +211,12 @@ void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
   timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
         [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
   timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
-    for (int s = 0; s < params_.post_smoothing; ++s)
-      smoothers_[h].backward(hierarchy_.matrix(h), b, x);
+    for (int s = 0; s < params_.post_smoothing; ++s) {
+      if (chebyshev_.empty())
+        smoothers_[h].backward(hierarchy_.matrix(h), b, x);
+      else
+        chebyshev_[h].smooth(hierarchy_.matrix(h), b, x, false);
+    }
   });
 }
 

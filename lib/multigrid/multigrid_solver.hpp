@@ -5,12 +5,17 @@
 #include <functional>
 #include <map>
 
+#include "linalg/chebyshev_smoother.hpp"
 #include "linalg/gauss_seidel.hpp"
 #include "linalg/linear_solver.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 
 namespace corofem {
+
+/// The smoother of every level but the coarsest: nodal block Gauss-Seidel (in `smoother`'s
+/// ordering) or Chebyshev on the l1 block-Jacobi diagonal (linalg/chebyshev_smoother.hpp).
+enum class SmootherKind { GaussSeidel, Chebyshev };
 
 /// The parameters of every component, written into every record of a multigrid solve
 /// (io/multigrid_record.hpp).
@@ -24,6 +29,9 @@ struct MultigridParams {
   GalerkinMethod galerkin = GalerkinMethod::Gather;
   /// The Gauss-Seidel sweeps' order: hybrid, the one that threads with the sequential locality.
   SmootherOrdering smoother = SmootherOrdering::Hybrid;
+  SmootherKind smoother_kind = SmootherKind::GaussSeidel;
+  int chebyshev_degree = 2;      ///< Chebyshev: steps per smoothing (pre_ and post_smoothing)
+  double chebyshev_lower = 0.1;  ///< Chebyshev: the interval's lower end (its upper is 1)
   /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial
   /// residual and first descent (see MultigridSolver::defers_update), not in the update.
   bool overlap_factorization = true;
@@ -74,6 +82,8 @@ class MultigridSolver : public LinearSolver {
   int deferred_updates() const { return deferred_updates_; }
   /// Where each coarse level came from (level h + 1 at h).
   const std::vector<CoarseLevelOrigin>& level_origins() const { return level_origins_; }
+  /// Why the hierarchy has fewer levels than its params ask for (BuiltHierarchy::ended_early).
+  const std::string& ended_early() const { return ended_early_; }
   /// What the set-up cost, by part: the builder's and the Galerkin streams'.
   const std::map<std::string, double>& setup_ms() const { return setup_ms_; }
   /// Every solve's statistics, in order.
@@ -101,6 +111,7 @@ class MultigridSolver : public LinearSolver {
   bool preconditioner_;
   MultigridHierarchy hierarchy_;
   std::vector<BlockGaussSeidel> smoothers_;
+  std::vector<ChebyshevSmoother> chebyshev_;  ///< with SmootherKind::Chebyshev
   struct Coarsest;
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
@@ -108,6 +119,7 @@ class MultigridSolver : public LinearSolver {
   int deferred_updates_ = 0;  ///< updates whose factorization ran in a solve (run_overlapped_pcg)
   int coarsest_shifts_ = 0;
   std::vector<CoarseLevelOrigin> level_origins_;
+  std::string ended_early_;
   std::map<std::string, double> setup_ms_;
   std::map<std::string, double> update_ms_;  ///< totals over the updates
   int updates_ = 0;

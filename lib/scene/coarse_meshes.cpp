@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "core/errors.hpp"
+#include "mesh/coarse_surface_mesh.hpp"
 #include "mesh/locality_order.hpp"
 #include "scene/scene_problem.hpp"
 
@@ -44,6 +45,10 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
   int above = fine_vertices;
   for (int h = 1; h < levels; ++h) {
     const MeshSpec spec = coarse_mesh_spec(fine, h, name);
+    // A surface too coarse to follow the body ends the meshes (the hierarchy says so).
+    if (spec.simplify_surface &&
+        coarsened_surface_vertices(spec.path, spec.size) < kMinCoarsenedSurfaceVertices)
+      break;
     TetMesh mesh;
     try {
       mesh = load_scene_mesh(spec);

@@ -58,8 +58,14 @@ struct MoveSpec {
 };
 
 /// The `analysis` keys that belong to the multigrid solvers (ignored, with a warning, by others).
-inline constexpr const char* kMultigridAnalysisKeys[] = {
-    "levels", "vcycles", "smoothing", "galerkin", "hierarchy", "smoother", "coarsest_max_vertices"};
+inline constexpr const char* kMultigridAnalysisKeys[] = {"levels",
+                                                         "vcycles",
+                                                         "smoothing",
+                                                         "galerkin",
+                                                         "hierarchy",
+                                                         "smoother",
+                                                         "coarsest_max_vertices",
+                                                         "chebyshev_degree"};
 
 struct AnalysisSpec {
   AnalysisType type = AnalysisType::Static;
@@ -87,6 +93,9 @@ struct AnalysisSpec {
   /// every thread) | domains (exact Gauss-Seidel, boundaries by colours) | sequential (one
   /// thread) | multicolour (every thread, a worse rho); see README "Multigrid"
   SmootherOrdering smoother = MultigridParams{}.smoother;
+  /// `smoother: "chebyshev"` picks Chebyshev smoothing (its ordering then unused).
+  SmootherKind smoother_kind = MultigridParams{}.smoother_kind;
+  int chebyshev_degree = MultigridParams{}.chebyshev_degree;
   double dt = 0.01;
   int steps = 1;
   int load_steps = 1;

@@ -15,6 +15,8 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   p.tolerance = a.tolerance;
   p.galerkin = a.galerkin;
   p.smoother = a.smoother;
+  p.smoother_kind = a.smoother_kind;
+  p.chebyshev_degree = a.chebyshev_degree;
   return p;
 }
 
