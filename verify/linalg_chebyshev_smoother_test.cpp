@@ -85,8 +85,7 @@ TEST(ChebyshevSmoother, SameBitsAtEveryThreadCount) {
     smoother.smooth(a, b, x, true);
     smoother.smooth(a, b, x, false);
     if (first.size() == 0) first = x;
-    EXPECT_EQ(std::memcmp(x.data(), first.data(), sizeof(double) * x.size()), 0)
-        << n << " threads";
+    EXPECT_EQ(std::memcmp(x.data(), first.data(), sizeof(double) * x.size()), 0) << n << " threads";
   }
   set_items_per_thread(2048);
 }

@@ -54,8 +54,9 @@ void ChebyshevSmoother::smooth(const BrcMatrix& a, const Eigen::VectorXd& b, Eig
 #pragma omp parallel for schedule(static) num_threads(threads_for(n))
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d z = inverse_[i] * r_.segment<3>(3 * i);
-      const Eigen::Vector3d d = keep == 0 ? Eigen::Vector3d(scale * z)  // d_ not yet set
-                                          : Eigen::Vector3d(keep * d_.segment<3>(3 * i) + scale * z);
+      const Eigen::Vector3d d = keep == 0
+                                    ? Eigen::Vector3d(scale * z)  // d_ not yet set
+                                    : Eigen::Vector3d(keep * d_.segment<3>(3 * i) + scale * z);
       d_.segment<3>(3 * i) = d;
       x.segment<3>(3 * i) += d;
     }

@@ -19,8 +19,7 @@ class ChebyshevSmoother {
  public:
   /// `lower`: the interval's lower end; eigenvalues of M^-1 A below it (the smooth modes, left
   /// to the coarse correction) are damped little.
-  explicit ChebyshevSmoother(int degree = 2, double lower = 0.1)
-      : degree_(degree), lower_(lower) {}
+  explicit ChebyshevSmoother(int degree = 2, double lower = 0.1) : degree_(degree), lower_(lower) {}
   /// Inverts the l1-augmented diagonal blocks of A (recompute whenever A's values change).
   void set_matrix(const BrcMatrix& a);
   /// `degree` Chebyshev steps for A x = b from x (from x = 0 with `zero_guess`, whatever x holds).

@@ -8,6 +8,7 @@
 #include "core/machine_roofs.hpp"
 #include "core/number_text.hpp"
 #include "core/threads.hpp"
+#include "multigrid/multigrid_solver.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 
@@ -333,6 +334,7 @@ json table_settings(const ReportConfig& config, int warmup, int measured,
           {"statistic", "median over the measured steps"},
           {"rotation", "energy-newton"},
           {"solver", "mgpcg"},
+          {"galerkin", kGalerkinMethods.name(MultigridParams{}.galerkin)},
           {"accuracy", "MG-PCG to relative residual " + general_number(config.default_tolerance()) +
                            " per step, warm-started from the previous velocity"},
           {"tolerance", config.default_tolerance()},
