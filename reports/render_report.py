@@ -594,7 +594,7 @@ def render_mpi_scaling(scaling, md):
 
 
 # ----------------------------------------------------------------------------------------------
-STATUS_COLOURS = {"stable": "#8fd18f", "flutter": "#f2c14e", "diverged": "#e76f6f"}
+STATUS_COLOURS = {"stable": "#8fd18f", "flutter": "#f2c14e", "stuck": "#b48ede", "diverged": "#e76f6f"}
 
 
 def status_cause(r):
@@ -604,6 +604,8 @@ def status_cause(r):
         return f"RMS {num(r.get('flutter_rms_rad'), 2)} rad/step{cause}"
     if r["status"] == "diverged":
         return f"step {r.get('diverged_step')}: {(r.get('divergence') or {}).get('kind', 'diverged')}{cause}"
+    if r["status"] == "stuck":
+        return f"{r.get('inverted_final')} inverted at the end{cause}"
     return f"{r['inverted_final']} inverted" if r.get("inverted_final") else ""
 
 

@@ -56,6 +56,24 @@ TEST(Stability, BlowUpIsRecordedAsDivergedWithItsStep) {
   EXPECT_EQ(run["divergence"]["kind"], "numerical");
 }
 
+TEST(Stability, ABodyLeftInsideOutIsStuckNotStable) {
+  // block-squash at the quick report's ramp and hold (40, 100 steps): the cube's top pushed through
+  // its base and released. Polar cannot tell an inverted element from a turned one and leaves the
+  // body crumpled (the paper's Figures 4-5): a third of the elements still inverted at the end,
+  // with no flutter, counted as stable before issue 40. The energy method recovers: none left.
+  const json scene = stability_scene("block-squash", SceneSize::Small, 40, 100);
+  const json polar = run_stability_case(scene, "block-squash", {RotationMethod::Polar}, 40, 100);
+  ASSERT_TRUE(polar["completed"].get<bool>()) << polar.dump();
+  EXPECT_EQ(polar["status"], "stuck") << polar["inverted_final"];
+  EXPECT_GT(polar["inverted_final"].get<int>(),
+            FlutterThresholds{}.stuck_inverted_share * polar["tets"].get<int>());
+  const json energy =
+      run_stability_case(scene, "block-squash", {RotationMethod::EnergyNewton}, 40, 100);
+  ASSERT_TRUE(energy["completed"].get<bool>()) << energy.dump();
+  EXPECT_EQ(energy["inverted_final"], 0);
+  EXPECT_NE(energy["status"], "stuck");
+}
+
 TEST(Stability, RunsRecordIntegratorStepEnergyAndAsymmetry) {
   // bar-twist, small: polar is conservative (asymmetry at rounding level) and, under Newton,
   // creates no energy; energy-exact's element Jacobians are measurably asymmetric.

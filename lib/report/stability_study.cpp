@@ -67,16 +67,21 @@ double round4(double x) {
 void add_measurements(const StabilityMonitor& monitor, const TimedRun& run, bool diverged,
                       const json& result, json& record) {
   record["completed"] = true;
-  record["status"] = diverged ? "diverged" : monitor.flutters() ? "flutter" : "stable";
+  const std::vector<int>& inverted = monitor.inverted_series();
+  const int inverted_final = inverted.empty() ? 0 : inverted.back();
+  const bool stuck = inverted_final > FlutterThresholds{}.stuck_inverted_share * run.tets;
+  record["status"] = diverged             ? "diverged"
+                     : monitor.flutters() ? "flutter"
+                     : stuck              ? "stuck"
+                                          : "stable";
   record["diverged_step"] = diverged ? json(monitor.last_step() + 1) : json(nullptr);
   if (diverged) record["divergence"] = result["error"];
   const bool flutter_measured = monitor.flutter_rms_rad() >= 0 && !diverged;
   record["flutter_rms_rad"] = flutter_measured ? json(monitor.flutter_rms_rad()) : json(nullptr);
   record["flutter_max_rad"] = flutter_measured ? json(monitor.flutter_max_rad()) : json(nullptr);
-  const std::vector<int>& inverted = monitor.inverted_series();
   record["inverted_max"] =
       inverted.empty() ? 0 : *std::max_element(inverted.begin(), inverted.end());
-  record["inverted_final"] = inverted.empty() ? 0 : inverted.back();
+  record["inverted_final"] = inverted_final;
   const std::vector<double>& kinetic = monitor.kinetic_series();
   record["kinetic_energy_final"] = kinetic.empty() ? json(nullptr) : finite_or_null(kinetic.back());
   record["residual_final"] = diverged ? json(nullptr) : finite_or_null(run.result.residual);
@@ -183,6 +188,8 @@ void attribute_causes(std::vector<json*>& group) {
       text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad)";
     if (run["diverged_step"].is_number())
       text << " (at step " << run["diverged_step"].get<int>() << ")";
+    if (run["status"] == "stuck")
+      text << " (" << run["inverted_final"].get<int>() << " elements inverted at the end)";
     return text.str();
   };
   for (json* r : group) {
@@ -263,10 +270,13 @@ json run_stability_study(const ReportConfig& config) {
        {{"flutter_max_rad", thresholds.max_rad},
         {"flutter_rms_rad", thresholds.rms_rad},
         {"blowup_factor", thresholds.blowup_factor},
+        {"stuck_inverted_share", thresholds.stuck_inverted_share},
         {"window", "second half of the hold (loads constant)"},
         {"statuses",
          "diverged: NaN/inf, a lost factorization or |u| > blowup_factor x diagonal; "
-         "flutter: max or RMS rotation change per step above its threshold; stable otherwise"}}},
+         "flutter: max or RMS rotation change per step above its threshold; stuck: more than "
+         "stuck_inverted_share of the elements inverted at the end of the hold (a body that did "
+         "not recover); stable otherwise"}}},
       {"ramp_steps", config.stability_ramp()},
       {"hold_steps", config.stability_hold()},
       {"size", size_name(config.stability_size())},

@@ -24,6 +24,10 @@ struct FlutterThresholds {
   double max_rad = 0.1;
   double rms_rad = 0.01;
   double blowup_factor = 100;  ///< diverged when some |u| exceeds this times the body's diagonal
+  /// stuck when more than this share of the elements is still inverted at the end of the hold
+  /// (issue 40: polar crumpled, 436 of 1296 inverted on block-squash, counted stable before; a
+  /// stretched horse's 2 inverted slivers of 33k are not a body that failed to recover).
+  double stuck_inverted_share = 0.01;
 };
 
 /// One run: a method under an integrator at a step size.
