@@ -13,7 +13,8 @@ struct SimplificationStats {
   int rejected = 0;  ///< collapses refused by the checks below
 };
 
-/// Collapses edges of least quadric error until `target_vertices` remain or no edge can collapse.
+/// Collapses the edges of least cost (quadric error plus length^4: even spacing) until
+/// `target_vertices` remain or no edge can collapse.
 /// The surface stays a closed 2-manifold with the same orientation: an edge collapses only where
 /// its end points share exactly its two opposite vertices (the link condition) and no opposite
 /// vertex would drop below three neighbours; no triangle around it turns by more than 60 degrees
