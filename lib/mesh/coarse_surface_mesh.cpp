@@ -20,13 +20,16 @@ int target_vertices(const SurfaceMesh& fine, double size) {
 
 }  // namespace
 
-int coarsened_surface_vertices(const std::filesystem::path& file, double size) {
-  const SurfaceMesh fine = read_surface(file);
+int coarsened_surface_vertices(const SurfaceMesh& fine, double size) {
   return std::min(fine.num_vertices(), target_vertices(fine, size));
 }
 
 TetMesh tetrahedralize_coarsened_surface(const std::filesystem::path& file, double size) {
-  const SurfaceMesh fine = read_surface(file);
+  return tetrahedralize_coarsened_surface(read_surface(file), file, size);
+}
+
+TetMesh tetrahedralize_coarsened_surface(const SurfaceMesh& fine, const std::filesystem::path& file,
+                                         double size) {
   const int target = target_vertices(fine, size);
   const SurfaceMesh coarse = target < fine.num_vertices() ? simplify_surface(fine, target) : fine;
   const std::vector<Vec3> moves = covering_moves(coarse, fine);

@@ -3,6 +3,7 @@
 // (surface_simplification.hpp), then filled by gmsh (gmsh_mesh.hpp).
 #include <filesystem>
 
+#include "mesh/surface_mesh.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace corofem {
@@ -15,11 +16,15 @@ namespace corofem {
 /// file where gmsh cannot fill even the ungrown surface.
 TetMesh tetrahedralize_coarsened_surface(const std::filesystem::path& file, double size);
 
+/// As above, of the surface already read from `file` (a hierarchy reads it once for all levels).
+TetMesh tetrahedralize_coarsened_surface(const SurfaceMesh& fine, const std::filesystem::path& file,
+                                         double size);
+
 /// The fewest vertices a coarsened surface keeps: a coarser one no longer follows the body (a
 /// bunny of 20 vertices), and a level made of it slows the cycle more than it saves.
 inline constexpr int kMinCoarsenedSurfaceVertices = 50;
 
-/// The vertices the surface file keeps, coarsened to `size` (as above).
-int coarsened_surface_vertices(const std::filesystem::path& file, double size);
+/// The vertices the surface keeps, coarsened to `size` (as above).
+int coarsened_surface_vertices(const SurfaceMesh& fine, double size);
 
 }  // namespace corofem

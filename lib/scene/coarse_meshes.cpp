@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "mesh/coarse_surface_mesh.hpp"
+#include "mesh/gmsh_mesh.hpp"
 #include "mesh/locality_order.hpp"
 #include "scene/scene_problem.hpp"
 
@@ -43,15 +45,19 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
                                    int fine_vertices) {
   std::vector<TetMesh> meshes;
   int above = fine_vertices;
+  std::optional<SurfaceMesh> surface;  // read once for every coarsened level
   for (int h = 1; h < levels; ++h) {
     const MeshSpec spec = coarse_mesh_spec(fine, h, name);
+    if (spec.simplify_surface && !surface) surface = read_surface(spec.path);
     // A surface too coarse to follow the body ends the meshes (the hierarchy says so).
     if (spec.simplify_surface &&
-        coarsened_surface_vertices(spec.path, spec.size) < kMinCoarsenedSurfaceVertices)
+        coarsened_surface_vertices(*surface, spec.size) < kMinCoarsenedSurfaceVertices)
       break;
     TetMesh mesh;
     try {
-      mesh = load_scene_mesh(spec);
+      mesh = spec.simplify_surface
+                 ? tetrahedralize_coarsened_surface(*surface, spec.path, spec.size)
+                 : load_scene_mesh(spec);
     } catch (const InputError& e) {
       if (!spec.simplify_surface) throw;  // a level the scene gives must load
       std::cerr << "corofem: warning: scene '" << name << "': multigrid level " << h
