@@ -17,6 +17,21 @@ namespace corofem {
 /// ordering) or Chebyshev on the l1 block-Jacobi diagonal (linalg/chebyshev_smoother.hpp).
 enum class SmootherKind { GaussSeidel, Chebyshev };
 
+/// A scene's `smoother`: a Gauss-Seidel ordering, or Chebyshev (whose ordering is unused and left
+/// at the default).
+struct SmootherChoice {
+  SmootherKind kind;
+  SmootherOrdering ordering;
+  bool operator==(const SmootherChoice&) const = default;
+};
+inline constexpr NameTable<SmootherChoice, 5> kSmootherChoices{{{
+    {{SmootherKind::GaussSeidel, SmootherOrdering::Sequential}, "sequential"},
+    {{SmootherKind::GaussSeidel, SmootherOrdering::Multicolour}, "multicolour"},
+    {{SmootherKind::GaussSeidel, SmootherOrdering::Domains}, "domains"},
+    {{SmootherKind::GaussSeidel, SmootherOrdering::Hybrid}, "hybrid"},
+    {{SmootherKind::Chebyshev, SmootherOrdering::Hybrid}, "chebyshev"},
+}}};
+
 /// The parameters of every component, written into every record of a multigrid solve
 /// (io/multigrid_record.hpp).
 struct MultigridParams {

@@ -202,14 +202,10 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
       integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  std::vector<std::string> smoothers = kSmootherOrderings.names();
-  smoothers.push_back("chebyshev");
-  const std::string smoother =
-      one_of(f, "smoother", kSmootherOrderings.name(a.smoother), smoothers);
-  if (smoother == "chebyshev")
-    a.smoother_kind = SmootherKind::Chebyshev;
-  else
-    a.smoother = *kSmootherOrderings.find(smoother);
+  const SmootherChoice smoother =
+      one_of(f, "smoother", SmootherChoice{a.smoother_kind, a.smoother}, kSmootherChoices);
+  a.smoother_kind = smoother.kind;
+  a.smoother = smoother.ordering;
   a.chebyshev_degree = integer_in(f, "chebyshev_degree", a.chebyshev_degree, 1, 16);
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
