@@ -116,6 +116,11 @@ bool StabilityMonitor::flutters() const {
          (samples_ > 0 && std::sqrt(flutter_rms_sum_ / samples_) > thresholds_.rms_rad);
 }
 
+bool StabilityMonitor::stuck(int tets) const {
+  return !inverted_series_.empty() &&
+         inverted_series_.back() > thresholds_.stuck_inverted_share * tets;
+}
+
 double StabilityMonitor::flutter_rms_rad() const {
   return samples_ > 0 ? std::sqrt(flutter_rms_sum_ / samples_) : -1;
 }

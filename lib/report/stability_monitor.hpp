@@ -29,6 +29,9 @@ class StabilityMonitor {
   int last_step() const { return last_step_; }
   /// Whether the settled half of the hold saw rotations move above the thresholds.
   bool flutters() const;
+  /// Whether more than FlutterThresholds::stuck_inverted_share of the `tets` elements are still
+  /// inverted at the last step observed (a body that did not recover).
+  bool stuck(int tets) const;
   /// RMS and largest per-step rotation change over the settled half of the hold (negative:
   /// no sample).
   double flutter_rms_rad() const;

@@ -69,11 +69,10 @@ void add_measurements(const StabilityMonitor& monitor, const TimedRun& run, bool
   record["completed"] = true;
   const std::vector<int>& inverted = monitor.inverted_series();
   const int inverted_final = inverted.empty() ? 0 : inverted.back();
-  const bool stuck = inverted_final > FlutterThresholds{}.stuck_inverted_share * run.tets;
-  record["status"] = diverged             ? "diverged"
-                     : monitor.flutters() ? "flutter"
-                     : stuck              ? "stuck"
-                                          : "stable";
+  record["status"] = diverged                  ? "diverged"
+                     : monitor.flutters()      ? "flutter"
+                     : monitor.stuck(run.tets) ? "stuck"
+                                               : "stable";
   record["diverged_step"] = diverged ? json(monitor.last_step() + 1) : json(nullptr);
   if (diverged) record["divergence"] = result["error"];
   const bool flutter_measured = monitor.flutter_rms_rad() >= 0 && !diverged;
