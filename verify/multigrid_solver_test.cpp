@@ -183,6 +183,17 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
   }
 }
 
+/// The surface `file` of the models folder at gmsh size `size`; its path empty where the folder or
+/// the file is missing (the test then skips).
+MeshSpec model_surface(const std::string& file, double size) {
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::Surface;
+  spec.size = size;
+  const auto models = test::models_dir();
+  if (!models.empty() && std::filesystem::exists(models / file)) spec.path = models / file;
+  return spec;
+}
+
 TEST(MultigridSolver, StaticAndDynamicSolutionsEqualCholmod) {
   for (const MeshCase& c : meshes()) expect_solutions_equal_cholmod(c);
 }
@@ -195,30 +206,19 @@ TEST(MultigridSolver, QuadrupedSolutionsEqualCholmod) {
 }
 
 TEST(MultigridSolver, BunnySolutionsEqualCholmod) {
-  const auto models = test::models_dir();
-  if (models.empty() || !std::filesystem::exists(models / "bunny_L2.stl"))
-    GTEST_SKIP() << "models folder not found (set COROFEM_MODELS)";
   // The small bunny (L1) over the coarsest surface (L2), as the report builds its hierarchy.
-  MeshSpec spec;
-  spec.kind = MeshSpec::Kind::Surface;
-  spec.path = models / "bunny_L1.stl";
-  spec.size = 0.09365;
-  MeshSpec coarse = spec;
-  coarse.path = models / "bunny_L2.stl";
-  coarse.size = 0.18579;
+  MeshSpec spec = model_surface("bunny_L1.stl", 0.09365);
+  const MeshSpec coarse = model_surface("bunny_L2.stl", 0.18579);
+  if (spec.path.empty() || coarse.path.empty())
+    GTEST_SKIP() << "models folder not found (set COROFEM_MODELS)";
   spec.levels = {coarse};
   expect_solutions_equal_cholmod({"bunny", spec, load_scene_mesh(spec), {}, 2, true});
 }
 
 TEST(MultigridSolver, BareSurfaceLevelsCoarsenAndSolutionsEqualCholmod) {
-  const auto models = test::models_dir();
-  if (models.empty() || !std::filesystem::exists(models / "bunny_L0.stl"))
-    GTEST_SKIP() << "models folder not found (set COROFEM_MODELS)";
   // The fine bunny as a user's STL gives it, no levels: the coarse surfaces are derived from it.
-  MeshSpec spec;
-  spec.kind = MeshSpec::Kind::Surface;
-  spec.path = models / "bunny_L0.stl";
-  spec.size = 0.045098;
+  const MeshSpec spec = model_surface("bunny_L0.stl", 0.045098);
+  if (spec.path.empty()) GTEST_SKIP() << "models folder not found (set COROFEM_MODELS)";
   // Its derived surfaces grown to cover the body: stationary V-cycles converge on it (not grown,
   // they stalled at a rate of 0.96 on this static problem).
   const MeshCase c{"bunny, bare surface", spec, load_scene_mesh(spec), {}, 2, true};
@@ -362,8 +362,7 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
       AnalysisSpec a = analysis("multigrid", 1e-10, k == 1 ? "lattice" : "meshes");
       a.vcycles = 12;
       if (k == 2)
-        a.smoother =
-            SmootherOrdering::Multicolour;  // the threaded ordering, against the sequential one
+        a.smoother = SmootherOrdering::Multicolour;  // the other threaded ordering, against hybrid
       auto solver = make_linear_solver(a, p, coarse);
       solver->set_matrix(system);
       Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
@@ -375,17 +374,17 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius
     // of 0.51 (nu = 0) to 0.57 (nu = 0.3) even on nested meshes (TwoGridEqualsDenseOperator);
-    // measured here 0.54 (cube), 0.87 (bar 10:1, bending-dominated) and 0.63 for the gmsh cube
-    // with a 10x stiffer half, whose coarse levels are its surface coarsened to their size (3.5x
-    // fewer vertices a level; 0.52 when gmsh kept the fine surface triangles and the levels
-    // barely coarsened; 0.61 on the lattice).
-    EXPECT_LE(rho[0], c.name == "bar"                       ? 0.9
-                      : c.name == "gmsh-cube-heterogeneous" ? 0.65
-                                                            : 0.6)
-        << c.name;
+    // measured here 0.54 (cube) and 0.87 (bar 10:1, bending-dominated).
+    if (c.name == "gmsh-cube-heterogeneous")
+      // A 10x stiffer half, coarse levels its surface coarsened to their size (3.5x fewer
+      // vertices a level): measured 0.63 against 0.61 on the lattice levels of the same run
+      // (0.52 when gmsh kept the fine surface triangles and the levels barely coarsened).
+      EXPECT_LE(rho[0], 1.1 * rho[1]) << c.name << ": against the lattice levels";
+    else
+      EXPECT_LE(rho[0], c.name == "bar" ? 0.9 : 0.6) << c.name;
     EXPECT_LT(rho[1], 1.0) << c.name;
-    // Multicolour ordering: a different smoother, measured 0.59 (cube), 0.53 (gmsh cube), 0.96
-    // (bar) against 0.54, 0.52, 0.87: at most 15% above the sequential rho.
+    // Multicolour ordering: a different smoother, measured 0.59 (cube), 0.62 (gmsh cube), 0.96
+    // (bar) against hybrid's 0.54, 0.63, 0.87: at most 15% above it.
     EXPECT_LE(rho[2], 1.15 * rho[0]) << c.name;
   }
 }

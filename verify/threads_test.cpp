@@ -475,7 +475,9 @@ TEST_F(ThreadsTest, SweepFromZeroWithResidualIsTheSweepAndItsResidual) {
         ScopedThreadCount threads(n);
         BlockGaussSeidel gs(ordering, ordering == SmootherOrdering::Domains ? 200 : domain_blocks);
         gs.set_matrix(a);
-        if (ordering == SmootherOrdering::Hybrid) EXPECT_GT(gs.num_domains(), 2);
+        if (ordering == SmootherOrdering::Hybrid) {
+          EXPECT_GT(gs.num_domains(), 2);
+        }
         Eigen::VectorXd x, expected_x, r, full;
         gs.forward_from_zero(a, b, expected_x);
         x = Eigen::VectorXd::Constant(b.size(), std::nan(""));
