@@ -25,6 +25,15 @@ using RotationJacobian = std::array<Mat3, 12>;
 /// derivative does not exist; it returns zero there.
 Mat3 rotation_factor_derivative(const Mat3& q, const Mat3& l, const Mat3& dl);
 
+/// Whether the corotated force with this method's rotations is the gradient of elastic_energy:
+/// with Q the rotation factor of F itself (polar; polar-fixed, its reflection moved into the
+/// stretch) the rotation's variation does no work (an asymmetry of 1e-16 measured); the identity
+/// trivially. Mueller2016 and polar-smoothed only approach it.
+constexpr bool force_has_potential(RotationMethod method) {
+  return method == RotationMethod::Polar || method == RotationMethod::PolarFixed ||
+         method == RotationMethod::None;
+}
+
 /// |J - J^T|_F / |J|_F of an element force Jacobian: 0 for a conservative force.
 double asymmetry(const Mat12& j);
 

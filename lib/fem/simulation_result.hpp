@@ -14,12 +14,15 @@ struct SimulationResult {
   Eigen::VectorXd displacement;  ///< per DOF
   std::vector<Mat3> rotations;   ///< per element, of the final state
   bool converged = false;
-  int iterations = 0;              ///< static: rotation/solve iterations over all increments
-  int steps = 0;                   ///< dynamic: time steps taken; static: load increments converged
-  int increment_cuts = 0;          ///< static Newton: load increments halved after not converging
-  double residual = 0;             ///< |f_ext - f_int| / |f_ext| over free DOFs, final state
-  int inverted_max = 0;            ///< most elements with det F <= 0 seen at any iteration or step
-  int linear_iterations = 0;       ///< V-cycles / CG iterations summed (1 per direct solve)
+  int iterations = 0;           ///< static: rotation/solve iterations over all increments
+  int steps = 0;                ///< dynamic: time steps taken; static: load increments converged
+  int increment_cuts = 0;       ///< static Newton: load increments halved after not converging
+  int step_cuts = 0;            ///< dynamic Newton: time steps halved after not converging
+  int newton_halvings = 0;      ///< Newton: step lengths halved by its line search, in all
+  int potential_fallbacks = 0;  ///< Newton: steps whose search on the potential found no decrease
+  double residual = 0;          ///< |f_ext - f_int| / |f_ext| over free DOFs, final state
+  int inverted_max = 0;         ///< most elements with det F <= 0 seen at any iteration or step
+  int linear_iterations = 0;    ///< V-cycles / CG iterations summed (1 per direct solve)
   double last_solve_residual = 0;  ///< dynamic: the last step's linear solve, |b - A x| / |b|
   std::map<std::string, double> timings_ms;  ///< phase -> total milliseconds
   std::string message;                       ///< why it did not converge, if it did not

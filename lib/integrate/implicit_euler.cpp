@@ -33,7 +33,11 @@ struct NewtonStepper {
 };
 
 /// One fully implicit Euler step: v' from g(v') = 0 (see the header), starting from the
-/// linearly implicit step's v'. `internal_start` is the elastic force at the step's start.
+/// linearly implicit step's v'. `internal_start` is the elastic force at the step's start. Where
+/// the force has a potential, g is the gradient of the incremental potential
+///   Phi(v') = 1/2 v'^T ((1 + dt alpha) M + dt beta Ktilde_n) v' - v'^T (M v + dt f) + E(u + dt
+///   v'),
+/// which Newton's line search then lowers (newton_iteration.hpp).
 SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStepper& newton,
                        const DynamicOptions& options, int step, const DirichletConditions& bc,
                        const Eigen::VectorXd& internal_start, SimulationResult& result,
@@ -43,8 +47,10 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
   const Eigen::VectorXd momentum = problem.mass.cwiseProduct(velocity);
   std::vector<Mat3> rotations = result.rotations;
   std::vector<Vec3> positions;
+  Eigen::VectorXd u1, v_last;  // of the last residual call, for the potential
   const auto residual = [&](const Eigen::VectorXd& v1) {
-    const Eigen::VectorXd u1 = result.displacement + dt * v1;
+    u1 = result.displacement + dt * v1;
+    v_last = v1;
     positions = problem.positions(u1);
     clock.time("rotate", [&] { rotate.extract(positions, rotations); });
     Eigen::VectorXd g;
@@ -59,6 +65,21 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
     });
     return g;
   };
+  std::function<double()> potential;
+  if (force_has_potential(rotate.method()))
+    potential = [&] {
+      return clock.time("forces", [&] {
+        double phi = 0.5 * mass_factor * v_last.dot(problem.mass.cwiseProduct(v_last)) -
+                     v_last.dot(momentum + dt * problem.external_force) +
+                     elastic_energy(problem.elements, problem.mesh, rotations, u1);
+        if (damping != 0) {
+          Eigen::VectorXd kv;
+          problem.stiffness.multiply(v_last, kv);
+          phi += 0.5 * damping * v_last.dot(kv);
+        }
+        return phi;
+      });
+    };
   const auto jacobian = [&](BrcMatrix& j) {
     clock.time("assemble", [&] { newton.tangent.assemble(positions, rotations, j); });
     clock.time("system", [&] {
@@ -92,15 +113,75 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
       1e-300);
   const NewtonReport report =
       newton_iterate(v1, residual, jacobian, bc, scale, options.newton_settings, newton.lu,
-                     newton.jacobian, clock);
+                     newton.jacobian, clock, potential);
+  result.newton_halvings += report.halvings;
+  result.potential_fallbacks += report.potential_fallbacks;
   if (!report.converged)
-    throw NotConverged("step " + std::to_string(step) + ": Newton did not reach " +
+    throw NotConverged("step " + std::to_string(step) + " (dt " + general_number(dt) +
+                       "): Newton did not reach " +
                        general_number(options.newton_settings.tolerance) + " in " +
                        std::to_string(report.iterations) + " iterations (residual " +
                        general_number(report.residual) + ")");
   velocity = v1;
   result.rotations = rotations;
   return {report.iterations + 1, report.residual, 0.0};  // the predictor's solve counts
+}
+
+/// Counts the state's inverted elements into result.inverted_max: by the rotations' pass where it
+/// counted them, else by a pass of its own.
+void note_inverted(const FeProblem& problem, const RotationExtractor& rotate,
+                   const std::vector<Vec3>& positions, SimulationResult& result,
+                   PhaseClock& clock) {
+  clock.time("checks", [&] {
+    const int counted = rotate.stats().inverted;
+    result.inverted_max =
+        std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, positions));
+  });
+}
+
+/// Advances the state (result.displacement, `velocity`, result.rotations) by one fully implicit
+/// Euler step of options.dt, the fixed DOFs moving to `end`. `linearized`: problem.stiffness
+/// and `elastic` are already those of the state (else linearize() makes them). A step whose Newton
+/// iteration fails (no convergence, a singular tangent, a non-finite residual) is cut: the state
+/// is restored and the step taken as two of dt/2, the supports moving halfway in the first, at
+/// most `cuts_left` halvings deep; a cut is not the rotation method failing, and it is counted.
+SolveStats advance_by_newton(FeProblem& problem, RotationExtractor& rotate, NewtonStepper& newton,
+                             DynamicOptions options, int step, const Eigen::VectorXd& end,
+                             bool linearized, int cuts_left, Eigen::VectorXd& elastic,
+                             SimulationResult& result, Eigen::VectorXd& velocity,
+                             PhaseClock& clock) {
+  const Eigen::VectorXd start = result.displacement, start_velocity = velocity;
+  const std::vector<Mat3> start_rotations = result.rotations;
+  if (!linearized) {
+    std::vector<Vec3> p;
+    clock.time("rotate", [&] { p = problem.positions(result.displacement); });
+    linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock);
+    note_inverted(problem, rotate, p, result, clock);
+  }
+  DirichletConditions bc = problem.dirichlet;  // on the velocity: reach the prescribed u
+  for (int i = 0; i < problem.num_dofs(); ++i)
+    bc.value[i] = bc.fixed[i] ? (end[i] - start[i]) / options.dt : 0.0;
+  try {
+    const SolveStats stats =
+        newton_step(problem, rotate, newton, options, step, bc, elastic, result, velocity, clock);
+    result.displacement += options.dt * velocity;
+    return stats;
+  } catch (const NotConverged&) {
+    if (cuts_left == 0) throw;
+  } catch (const NumericalFault&) {
+    if (cuts_left == 0) throw;
+  }
+  result.displacement = start;
+  velocity = start_velocity;
+  result.rotations = start_rotations;  // problem.stiffness and `elastic` are still the start's
+  ++result.step_cuts;
+  options.dt /= 2;
+  const Eigen::VectorXd halfway = start + 0.5 * (end - start);  // read on the fixed DOFs only
+  const SolveStats first = advance_by_newton(problem, rotate, newton, options, step, halfway, true,
+                                             cuts_left - 1, elastic, result, velocity, clock);
+  const SolveStats second = advance_by_newton(problem, rotate, newton, options, step, end, false,
+                                              cuts_left - 1, elastic, result, velocity, clock);
+  return {first.iterations + second.iterations, second.residual, 0.0};
 }
 
 /// The linearly implicit step's system A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde (M lumped
@@ -190,12 +271,6 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     const auto step_start = std::chrono::steady_clock::now();
     const std::map<std::string, double> before = result.timings_ms;
     if (options.before_step) options.before_step(step, problem);
-    DirichletConditions bc = problem.dirichlet;  // on the velocity: reach the prescribed u
-    clock.time("system", [&] {
-      for (int i = 0; i < n; ++i)
-        bc.value[i] =
-            bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
-    });
     std::vector<Vec3> p;  // the rotations' input
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
     // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks: the
@@ -204,23 +279,24 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
               linear.assemble_into_system
                   ? AssemblyTarget{&linear.system, linear.k_scale, &linear.mass_diagonal}
                   : AssemblyTarget{});
-    clock.time(
-        "checks", [&] {  // counted by the rotations' pass where it can, else a pass of its own
-          const int counted = rotate.stats().inverted;
-          result.inverted_max =
-              std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, p));
-        });
+    note_inverted(problem, rotate, p, result, clock);
     SolveStats stats;
     if (options.newton) {
-      stats = newton_step(problem, rotate, *newton, options, step, bc, elastic, result, velocity,
-                          clock);
+      stats = advance_by_newton(problem, rotate, *newton, options, step, problem.dirichlet.value,
+                                true, options.max_step_cuts, elastic, result, velocity, clock);
     } else {
+      DirichletConditions bc = problem.dirichlet;  // on the velocity: reach the prescribed u
+      clock.time("system", [&] {
+        for (int i = 0; i < n; ++i)
+          bc.value[i] =
+              bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
+      });
       stats = linear_implicit_solve(problem, solver, options, step, bc, elastic, linear, velocity,
                                     clock);
+      result.displacement += dt * velocity;
     }
     result.linear_iterations += stats.iterations;
     result.last_solve_residual = stats.residual;
-    result.displacement += dt * velocity;
     clock.time("checks", [&] {
       check_finite(problem, result.displacement, "displacement", "step " + std::to_string(step));
     });

@@ -5,7 +5,9 @@
 // with f0 - Ktilde p = -f_int(u) evaluated element-wise (see internal_forces).
 // With `newton`, fully implicit Euler instead: per step Newton iterations on
 //   g(v') = (1 + dt alpha) M v' + dt beta Ktilde_n v' - M v - dt (f - f_int(u + dt v')) = 0
-// with the consistent tangent (fem/rotation_tangent.hpp), Ktilde_n frozen at the step's start.
+// with the consistent tangent (fem/rotation_tangent.hpp), Ktilde_n frozen at the step's start; a
+// line search on the incremental potential where the force has one, and a step that does not
+// converge cut to two of dt/2 (DynamicOptions::max_step_cuts).
 #include <functional>
 
 #include "fem/fe_problem.hpp"
@@ -33,8 +35,10 @@ struct DynamicOptions {
   /// callbacks that use it). Off, the assembly writes (dt beta + dt^2) Ktilde straight into the
   /// step's matrix, and problem.stiffness is not written.
   bool keep_stiffness = false;
-  NewtonSettings
-      newton_settings;  ///< per step; a step that misses the tolerance throws NotConverged
+  /// Per Newton step. A step that misses the tolerance is retried as two of dt/2 (supports
+  /// moving halfway in the first), at most max_step_cuts halvings deep; then NotConverged.
+  NewtonSettings newton_settings;
+  int max_step_cuts = 4;
 };
 
 /// State after each step, for records that follow a run (flutter, energy, VTU frames, timings).

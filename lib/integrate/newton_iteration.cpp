@@ -31,17 +31,29 @@ Eigen::VectorXd SparseLuSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& 
   return x;
 }
 
+namespace {
+
+/// Armijo's sufficient decrease: phi(z + alpha dz) <= phi(z) + kArmijo alpha g.dz.
+constexpr double kArmijo = 1e-4;
+/// The smallest decrease of the potential, relative to its size, that its rounding resolves: a
+/// Newton step whose predicted decrease g.dz is smaller (the last iterations, residual near
+/// 1e-8) is judged by the residual (the search would halve it on rounding noise).
+constexpr double kPotentialResolution = 1e-10;
+
+}  // namespace
+
 NewtonReport newton_iterate(Eigen::VectorXd& z,
                             const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
                             const std::function<void(BrcMatrix&)>& jacobian,
                             const DirichletConditions& fixed, double scale,
                             const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
-                            PhaseClock& clock) {
+                            PhaseClock& clock, const std::function<double()>& potential) {
   NewtonReport report;
   const DirichletConditions step_bc{fixed.fixed,
                                     Eigen::VectorXd::Zero(z.size())};  // dz = 0 where fixed
   Eigen::VectorXd g = residual(z);
   double norm = free_norm(fixed, g);
+  double phi = potential ? potential() : 0.0;
   for (;; ++report.iterations) {
     report.residual = norm / scale;
     if (report.residual <= settings.tolerance) {
@@ -53,25 +65,47 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
     Eigen::VectorXd rhs = -g;
     apply_dirichlet(step_bc, work, rhs);
     const Eigen::VectorXd dz = clock.time("solve", [&] { return lu.solve(work, rhs); });
-    // Safeguarded full steps: halve only when the residual would become non-finite or grow by
-    // more than max_growth (see NewtonSettings).
-    double alpha = 1;
-    for (int halving = 0;; ++halving) {
-      const Eigen::VectorXd trial = z + alpha * dz;
-      Eigen::VectorXd g_trial = residual(trial);
-      const double trial_norm = free_norm(fixed, g_trial);
-      if ((std::isfinite(trial_norm) && trial_norm <= settings.max_growth * norm) ||
-          halving == settings.max_halvings) {
-        if (!std::isfinite(trial_norm))
-          throw NumericalFault("Newton: the residual became non-finite");
-        z = trial;
-        g = std::move(g_trial);
-        norm = trial_norm;
-        report.halvings += halving;
-        break;
+    // The potential's slope along dz (dz is zero on the fixed DOFs): the line search on the
+    // potential where dz descends it; the safeguarded full step where it does not (an indefinite
+    // J), where the search finds no decrease (the potential has kinks where elements invert), or
+    // without a potential.
+    const double slope = g.dot(dz);
+    Eigen::VectorXd trial, g_trial;
+    double trial_norm = 0, trial_phi = 0;
+    const auto evaluate = [&](double alpha) {
+      trial = z + alpha * dz;
+      g_trial = residual(trial);
+      trial_norm = free_norm(fixed, g_trial);
+      trial_phi = potential ? potential() : 0.0;
+    };
+    int halvings = 0;
+    bool found = false;
+    if (potential && slope < -kPotentialResolution * std::abs(phi)) {  // Armijo on the potential
+      ++report.potential_steps;
+      double alpha = 1;
+      for (int h = 0; h <= settings.max_halvings && !found; ++h, alpha *= 0.5) {
+        evaluate(alpha);
+        found = std::isfinite(trial_phi) && trial_phi <= phi + kArmijo * alpha * slope;
+        halvings += !found;
       }
-      alpha *= 0.5;
+      report.potential_fallbacks += !found;
     }
+    if (!found) {  // the safeguarded full step
+      double alpha = 1;
+      for (int h = 0;; ++h, alpha *= 0.5) {
+        evaluate(alpha);
+        if ((std::isfinite(trial_norm) && trial_norm <= settings.max_growth * norm) ||
+            h == settings.max_halvings)
+          break;
+        ++halvings;
+      }
+    }
+    if (!std::isfinite(trial_norm)) throw NumericalFault("Newton: the residual became non-finite");
+    z = std::move(trial);
+    g = std::move(g_trial);
+    norm = trial_norm;
+    phi = trial_phi;
+    report.halvings += halvings;
   }
 }
 

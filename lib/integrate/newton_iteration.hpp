@@ -2,12 +2,17 @@
 // Damped Newton for the nonlinear systems of the corotated model, g(z) = 0 over the free DOFs:
 // static equilibrium f_ext - f_int(u) = 0 and the fully implicit Euler step. Each iteration solves
 // J dz = -g with a sparse LU (UMFPACK): J is non-symmetric for the non-conservative rotation
-// methods and indefinite past a buckling point, so neither CG nor Cholesky applies. Steps are full
-// Newton steps, halved only when the residual would become non-finite or grow by more than
-// max_growth: a line search on |g| (Armijo) stalls corotated problems, whose first step from a
-// straight state rotates elements linearly and stretches them (on the soft cantilever of the gates
-// the full step raises |g| 100-fold, then Newton converges in 3 more iterations; with Armijo
-// halving it took 57 iterations for the first load increment).
+// methods and indefinite past a buckling point, so neither CG nor Cholesky applies.
+// Step lengths:
+//  - where g is the gradient of a potential (the caller passes it: implicit Euler with polar
+//    rotations, whose force is conservative, is then the minimization of the incremental
+//    potential), a backtracking line search on that potential (Armijo) along every Newton step that
+//    descends it;
+//  - otherwise full Newton steps, halved only when the residual would become non-finite or grow by
+//    more than max_growth: a line search on |g| (Armijo) stalls corotated problems, whose first
+//    step from a straight state rotates elements linearly and stretches them (on the soft
+//    cantilever of the gates the full step raises |g| 100-fold, then Newton converges in 3 more
+//    iterations; with Armijo halving on |g| it took 57 iterations for the first load increment).
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
@@ -27,8 +32,10 @@ struct NewtonSettings {
 
 struct NewtonReport {
   int iterations = 0;
-  int halvings = 0;     ///< line-search halvings in all
-  double residual = 0;  ///< |g|_free / scale at the end
+  int halvings = 0;             ///< step halvings in all (both rules)
+  int potential_steps = 0;      ///< steps along which the potential descends
+  int potential_fallbacks = 0;  ///< of those, steps where the search found no decrease
+  double residual = 0;          ///< |g|_free / scale at the end
   bool converged = false;
 };
 
@@ -47,12 +54,13 @@ class SparseLuSolve {
 
 /// Solves g(z) = 0 from `z` (fixed DOFs of `fixed` keep their values in z). `residual(z)` returns
 /// g at z (and may update state such as rotations); `jacobian(z, J)` fills J at the z of the last
+/// residual call; `potential`, if given, the potential whose gradient g is, at the z of the last
 /// residual call. Phases "rotate"/"assemble" are the callers'; the LU solve is timed as "solve".
 NewtonReport newton_iterate(Eigen::VectorXd& z,
                             const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
                             const std::function<void(BrcMatrix&)>& jacobian,
                             const DirichletConditions& fixed, double scale,
                             const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
-                            PhaseClock& clock);
+                            PhaseClock& clock, const std::function<double()>& potential = {});
 
 }  // namespace corofem
