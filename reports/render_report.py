@@ -594,13 +594,14 @@ def render_mpi_scaling(scaling, md):
 
 
 # ----------------------------------------------------------------------------------------------
-STATUS_COLOURS = {"stable": "#8fd18f", "flutter": "#f2c14e", "stuck": "#b48ede", "diverged": "#e76f6f"}
+STATUS_COLOURS = {"stable": "#8fd18f", "motion": "#9cc3e6", "flutter": "#f2c14e", "stuck": "#b48ede",
+                  "diverged": "#e76f6f"}
 
 
 def status_cause(r):
     """One short line on why a run is not stable (empty when it is)."""
     cause = f"; cause: {r['cause']}" if r.get("cause") else ""
-    if r["status"] == "flutter":
+    if r["status"] in ("flutter", "motion"):
         return f"RMS {num(r.get('flutter_rms_rad'), 2)} rad/step{cause}"
     if r["status"] == "diverged":
         return f"step {r.get('diverged_step')}: {(r.get('divergence') or {}).get('kind', 'diverged')}{cause}"
@@ -756,7 +757,12 @@ def render_verdicts(st, md):
     md.append("\n**Verdict on the paper's claim (stable corotation), method by method.** A run that is not "
               "stable is caused by the *integrator* when the same method is stable under the other integrator "
               "(linearly implicit Euler, or fully implicit Euler by Newton with the consistent tangent) at "
-              "that step or at the smaller step, by the *method* when it fails in all of them. "
+              "that step or at the smaller step. Where none is, the same method under Newton at dt/4 (the "
+              "refined reference) decides: the *method* when it diverges or stays inverted there too, the "
+              "*scene* when it shows the same motion (at least half the rate in rad/s: physical motion, status "
+              "*motion*, unless another method settles the scene), the *integrator* when the flutter converges "
+              "away. Newton is robust: a line search on the incremental potential where the force has one "
+              "(polar, polar-fixed), steps cut to dt/2 where it does not converge. "
               "Asymmetry: median over elements of |J - J^T| / |J| of the element force Jacobian at the end "
               "(0: a conservative force). Energy error: the largest energy created over the hold, relative to "
               "the hold's energy (E + damping - work of the loads; backward Euler with a conservative force "

@@ -1,12 +1,14 @@
 #include "report/stability_study.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <ostream>
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "report/case_record.hpp"
 #include "report/stability_monitor.hpp"
 #include "report/timed_run.hpp"
@@ -92,6 +94,10 @@ void add_measurements(const StabilityMonitor& monitor, const TimedRun& run, bool
                                : json(nullptr);
   record["cause"] = nullptr;
   record["tets"] = run.tets;
+  if (record["integrator"] == "newton" && !diverged)  // how hard the robust Newton worked
+    record["newton"] = {{"step_cuts", run.result.step_cuts},
+                        {"step_halvings", run.result.newton_halvings},
+                        {"potential_fallbacks", run.result.potential_fallbacks}};
   record["series"] = {{"rotation_change_rms_rad", monitor.rms_series()},
                       {"rotation_change_max_rad", monitor.max_series()},
                       {"kinetic_energy", kinetic},
@@ -178,19 +184,38 @@ json run_stability_case(const json& scene, const std::string& scene_id, const St
   return record;
 }
 
-void attribute_causes(std::vector<json*>& group) {
+namespace {
+
+/// A run's RMS rotation change over the settled window per second (negative: not measured): the
+/// rate of motion, comparable between step sizes where the change per step is not.
+double rotation_rate(const json& run) {
+  return run["flutter_rms_rad"].is_number()
+             ? run["flutter_rms_rad"].get<double>() / run["dt"].get<double>()
+             : -1;
+}
+
+/// Motion the refined reference shows at at least this share of a fluttering run's rate is the
+/// scene's (it converges under refinement to itself, not to rest); below it, the flutter is
+/// numerical.
+constexpr double kSameMotionShare = 0.5;
+
+}  // namespace
+
+void attribute_causes(std::vector<json*>& group, const json* reference) {
   const auto describe = [](const json& run) {
     std::ostringstream text;
     text << run["integrator"].get<std::string>() << " at dt " << run["dt"].get<double>() << ": "
          << run["status"].get<std::string>();
     if (run["flutter_max_rad"].is_number())
-      text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad)";
+      text << " (flutter max " << run["flutter_max_rad"].get<double>() << " rad, RMS "
+           << rotation_rate(run) << " rad/s)";
     if (run["diverged_step"].is_number())
       text << " (at step " << run["diverged_step"].get<int>() << ")";
     if (run["status"] == "stuck")
       text << " (" << run["inverted_final"].get<int>() << " elements inverted at the end)";
     return text.str();
   };
+  const bool refined = reference && (*reference)["status"] != "failed";
   for (json* r : group) {
     if ((*r)["status"] == "stable" || (*r)["status"] == "failed") continue;
     // The comparisons: the other runs at the same step (the other integrator) or a smaller one.
@@ -202,14 +227,32 @@ void attribute_causes(std::vector<json*>& group) {
         others.push_back(o);
         if ((*o)["status"] == "stable" && !witness) witness = o;
       }
+    if (witness) {
+      (*r)["cause"] = "integrator";
+      (*r)["cause_detail"] = describe(*r) + "; but " + describe(*witness);
+      continue;
+    }
+    if (refined) {
+      // The same method under Newton at a step a fraction of the smallest: what the scene does
+      // when the time integration no longer matters.
+      const json& ref = *reference;
+      const std::string against = "; refined reference " + describe(ref);
+      const std::string status = (*r)["status"];
+      // A method that diverges or leaves the body inverted at the small step too fails by itself.
+      const bool fails_refined = ref["status"] == "diverged" || ref["status"] == "stuck";
+      std::string cause = fails_refined ? "method" : "integrator";
+      if (status == "flutter" && !fails_refined &&
+          rotation_rate(ref) >= kSameMotionShare * rotation_rate(*r))
+        cause = "scene";  // the motion is there at the small step too: physical, not numerical
+      (*r)["cause"] = cause;
+      (*r)["cause_detail"] = describe(*r) + against;
+      continue;
+    }
     const bool newton_only_unconverged =
         !others.empty() && std::all_of(others.begin(), others.end(), [](const json* o) {
           return o->contains("divergence") && (*o)["divergence"]["kind"] == "not_converged";
         });
-    if (witness) {
-      (*r)["cause"] = "integrator";
-      (*r)["cause_detail"] = describe(*r) + "; but " + describe(*witness);
-    } else if (others.empty() || newton_only_unconverged) {
+    if (others.empty() || newton_only_unconverged) {
       (*r)["cause"] = nullptr;
       (*r)["cause_detail"] =
           describe(*r) + (others.empty()
@@ -224,18 +267,45 @@ void attribute_causes(std::vector<json*>& group) {
   }
 }
 
+bool needs_refined_reference(const std::vector<json>& group) {
+  for (const json& r : group) {
+    if (r["status"] == "stable" || r["status"] == "failed") continue;
+    const bool explained = std::any_of(group.begin(), group.end(), [&](const json& o) {
+      return o["status"] == "stable" && o["dt"].get<double>() <= r["dt"].get<double>();
+    });
+    if (!explained) return true;
+  }
+  return false;
+}
+
+void attribute_scene_causes(json& runs, const std::string& scene) {
+  for (json& r : runs) {
+    if (r["scene"] != scene || r["cause"] != "scene") continue;
+    r["status"] = "motion";
+    for (const json& o : runs)
+      if (o["scene"] == scene && o["method"] != r["method"] && o["status"] == "stable" &&
+          o["integrator"] == r["integrator"] && o["dt"] == r["dt"]) {
+        r["status"] = "flutter";
+        r["cause"] = "method";
+        r["cause_detail"] = r["cause_detail"].get<std::string>() + "; but " +
+                            o["method"].get<std::string>() + " settles the scene there";
+        break;
+      }
+  }
+}
+
 namespace {
 
 json stability_verdicts(const json& runs) {
-  // Per method: the paper's claim (stable everywhere) held or not, and why not.
+  // Per method: the paper's claim (stable everywhere) held or not, and why not. Failures of the
+  // scene (motion the refined reference shows too, no method settling it) are not the method's.
   std::map<std::string, json> by_method;
   for (const json& r : runs) {
     json& v = by_method[r["method"].get<std::string>()];
     if (v.is_null())
-      v = {{"runs", 0},
-           {"not_stable", json::array()},
-           {"method_caused", 0},
-           {"integrator_caused", 0}};
+      v = {{"runs", 0},          {"not_stable", json::array()},
+           {"method_caused", 0}, {"integrator_caused", 0},
+           {"scene_caused", 0},  {"scenes_beyond_every_method", json::array()}};
     v["runs"] = v["runs"].get<int>() + 1;
     if (r["status"] == "stable") continue;
     v["not_stable"].push_back({{"scene", r["scene"]},
@@ -243,24 +313,80 @@ json stability_verdicts(const json& runs) {
                                {"dt", r["dt"]},
                                {"status", r["status"]},
                                {"cause", r["cause"]}});
-    if (r["cause"] == "method") v["method_caused"] = v["method_caused"].get<int>() + 1;
-    if (r["cause"] == "integrator") v["integrator_caused"] = v["integrator_caused"].get<int>() + 1;
+    for (const char* cause : {"method", "integrator", "scene"})
+      if (r["cause"] == cause) {
+        const std::string key = std::string(cause) + "_caused";
+        v[key] = v[key].get<int>() + 1;
+      }
+    json& beyond = v["scenes_beyond_every_method"];
+    if (r["cause"] == "scene" &&
+        std::find(beyond.begin(), beyond.end(), r["scene"]) == beyond.end())
+      beyond.push_back(r["scene"]);
   }
   json out = json::object();
   for (auto& [method, v] : by_method) {
-    const int by_method_count = v["method_caused"], by_integrator = v["integrator_caused"];
-    v["verdict"] = v["not_stable"].empty() ? "stable in every run"
-                   : by_method_count > 0
-                       ? "fails by itself in some scene (under both integrators, at both steps)"
-                   : by_integrator > 0 ? "stable once the integrator is: every failure goes with "
-                                         "the linearly implicit step or the larger dt"
-                                       : "failures without an attributable cause";
+    const int by_method_count = v["method_caused"], by_integrator = v["integrator_caused"],
+              by_scene = v["scene_caused"];
+    const int unattributed =
+        static_cast<int>(v["not_stable"].size()) - by_method_count - by_integrator - by_scene;
+    std::string verdict =
+        v["not_stable"].empty() ? "stable in every run"
+        : by_method_count > 0
+            ? "fails by itself in some scene (under both integrators, at both steps and at the "
+              "refined step)"
+        : by_integrator > 0 ? "stable once the integrator is: every failure goes with the "
+                              "linearly implicit step or the larger dt"
+        : by_scene > 0      ? "stable wherever the scene settles"
+                            : "failures without an attributable cause";
+    if (by_scene > 0 && (by_method_count > 0 || by_integrator > 0))
+      verdict += "; some scenes are beyond every method (physical motion)";
+    if (unattributed > 0 && by_method_count + by_integrator + by_scene > 0)
+      verdict += "; " + std::to_string(unattributed) + " failures without an attributable cause";
+    v["verdict"] = verdict;
     out[method] = v;
   }
   return out;
 }
 
 }  // namespace
+
+MethodRuns run_method_on_scene(const json& scene, const std::string& id, RotationMethod method,
+                               const MethodPlan& plan) {
+  MethodRuns out;
+  const auto run = [&](const StabilityRun& spec, bool keep_pose) {
+    const std::string integrator = kIntegrators.name(spec.integrator);
+    if (plan.progress)
+      *plan.progress << plan.progress_prefix << ", " << integrator << ", dt 0.01/"
+                     << spec.refinement << std::endl;
+    json pose;
+    const auto vtu_dir =
+        plan.vtu_dir.empty() || !keep_pose
+            ? std::filesystem::path()
+            : plan.vtu_dir / (std::string(kRotationMethods.name(method)) + "-" + integrator);
+    json record = run_stability_case(scene, id, spec, plan.ramp_steps, plan.hold_steps,
+                                     keep_pose ? &pose : nullptr, vtu_dir);
+    if (!pose.is_null()) out.poses.push_back(std::move(pose));
+    return record;
+  };
+  for (const Integrator integrator : {Integrator::LinearImplicit, Integrator::Newton})
+    out.runs.push_back(run({method, integrator, 1}, true));
+  // The smaller step decides the cause of a run that is not stable; where both integrators are
+  // stable at dt there is nothing to attribute.
+  const bool all_stable = std::all_of(out.runs.begin(), out.runs.end(),
+                                      [](const json& r) { return r["status"] == "stable"; });
+  if (plan.smaller_step_always || (plan.smaller_step && !all_stable))
+    for (const Integrator integrator : {Integrator::LinearImplicit, Integrator::Newton})
+      out.runs.push_back(run({method, integrator, 2}, false));
+  // A failure nothing in the group explains is checked against the scene refined in time.
+  if (plan.refined_reference && needs_refined_reference(out.runs)) {
+    out.reference = run({method, Integrator::Newton, kReferenceRefinement}, false);
+    out.reference.erase("series");
+  }
+  std::vector<json*> members;
+  for (json& r : out.runs) members.push_back(&r);
+  attribute_causes(members, out.reference.is_null() ? nullptr : &out.reference);
+  return out;
+}
 
 json run_stability_study(const ReportConfig& config) {
   const FlutterThresholds thresholds;
@@ -272,64 +398,73 @@ json run_stability_study(const ReportConfig& config) {
         {"stuck_inverted_share", thresholds.stuck_inverted_share},
         {"window", "second half of the hold (loads constant)"},
         {"statuses",
-         "diverged: NaN/inf, a lost factorization or |u| > blowup_factor x diagonal; "
+         "diverged: NaN/inf, a lost factorization, |u| > blowup_factor x diagonal, or Newton "
+         "not converging even with the step cut to dt/16; "
          "flutter: max or RMS rotation change per step above its threshold; stuck: more than "
          "stuck_inverted_share of the elements inverted at the end of the hold (a body that did "
-         "not recover); stable otherwise"}}},
+         "not recover); motion: flutter that the same method under Newton at dt/4 shows too (at "
+         "least half the rate in rad/s) and no method settles, the scene's physical motion "
+         "(cause scene); stable otherwise"}}},
+      {"newton",
+       "fully implicit Euler by Newton with a line search on the incremental potential where "
+       "the force has one (polar, polar-fixed), safeguarded full steps otherwise; a step that "
+       "does not converge is retried as two of dt/2, at most 4 times deep (newton.step_cuts)"},
       {"ramp_steps", config.stability_ramp()},
       {"hold_steps", config.stability_hold()},
       {"size", size_name(config.stability_size())},
       {"runs", json::array()},
+      {"references", json::array()},
       {"poses", json::array()}};
   out["scenes"] = json::object();
   out["surfaces"] = json::object();
-  for (const std::string& id : config.stability_scenes()) {
+  const std::vector<std::string> scenes = config.stability_scenes();
+  const int methods = static_cast<int>(kRotationMethods.entries.size()) - 1;  // all but none
+  const auto started = std::chrono::steady_clock::now();
+  int done = 0;  // scene-method groups
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const std::string& id = scenes[k];
     const json scene = stability_scene(id, config.stability_size(), config.stability_ramp(),
                                        config.stability_hold(), config.models_dir);
     out["scenes"][id] = scene;
-    for (const auto& [method_id, method_name] : kRotationMethods.entries) {
-      if (method_id == RotationMethod::None) continue;
-      const std::string method = method_name;
-      std::vector<json> group;
-      const auto run = [&](const StabilityRun& spec) {
-        if (config.progress)
-          *config.progress << "report: stability: " << id << ": " << method << ", "
-                           << kIntegrators.name(spec.integrator) << ", dt 0.01/" << spec.refinement
-                           << std::endl;
-        json pose;
-        const auto vtu_dir =
-            config.vtu && spec.refinement == 1
-                ? config.out_dir / "vtu" / id / (method + "-" + kIntegrators.name(spec.integrator))
-                : std::filesystem::path();
-        group.push_back(run_stability_case(scene, id, spec, config.stability_ramp(),
-                                           config.stability_hold(),
-                                           spec.refinement == 1 ? &pose : nullptr, vtu_dir));
-        if (!pose.is_null()) {
-          // The rest surface is the scene's, the same for every run: stored once.
-          if (!out["surfaces"].contains(id))
-            out["surfaces"][id] = {{"rest_points", pose["rest_points"]},
-                                   {"triangles", pose["triangles"]}};
-          pose.erase("rest_points");
-          pose.erase("triangles");
-          out["poses"].push_back(std::move(pose));
-        }
-      };
-      for (const Integrator integrator : {Integrator::LinearImplicit, Integrator::Newton})
-        run({method_id, integrator, 1});
-      // The smaller step decides the cause of a run that is not stable; where both integrators
-      // are stable at dt there is nothing to attribute, and only the full report runs it anyway.
-      // The smoke report (seconds, for the report's own tests) never does.
-      const bool all_stable = std::all_of(group.begin(), group.end(),
-                                          [](const json& r) { return r["status"] == "stable"; });
-      if (config.mode == ReportConfig::Mode::Full ||
-          (!all_stable && config.mode == ReportConfig::Mode::Quick))
-        for (const Integrator integrator : {Integrator::LinearImplicit, Integrator::Newton})
-          run({method_id, integrator, 2});
-      std::vector<json*> members;
-      for (json& r : group) members.push_back(&r);
-      attribute_causes(members);
-      for (json& r : group) out["runs"].push_back(std::move(r));
+    for (const auto& [method, method_name] : kRotationMethods.entries) {
+      if (method == RotationMethod::None) continue;
+      MethodPlan plan{config.stability_ramp(), config.stability_hold()};
+      plan.smaller_step_always = config.mode == ReportConfig::Mode::Full;
+      plan.smaller_step = config.mode != ReportConfig::Mode::Smoke;
+      plan.refined_reference = config.mode != ReportConfig::Mode::Smoke;
+      plan.progress = config.progress;
+      plan.progress_prefix = "report: stability " + std::to_string(done + 1) + "/" +
+                             std::to_string(scenes.size() * methods) + ": " + id + ": " +
+                             method_name;
+      if (done > 0) {
+        const double elapsed_min =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() / 60;
+        plan.progress_prefix +=
+            " (about " +
+            general_number(std::ceil(elapsed_min / done * (scenes.size() * methods - done))) +
+            " min left)";
+      }
+      if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
+      MethodRuns m = run_method_on_scene(scene, id, method, plan);
+      for (json& pose : m.poses) {
+        // The rest surface is the scene's, the same for every run: stored once.
+        if (!out["surfaces"].contains(id))
+          out["surfaces"][id] = {{"rest_points", pose["rest_points"]},
+                                 {"triangles", pose["triangles"]}};
+        pose.erase("rest_points");
+        pose.erase("triangles");
+        out["poses"].push_back(std::move(pose));
+      }
+      for (json& r : m.runs) out["runs"].push_back(std::move(r));
+      if (!m.reference.is_null()) out["references"].push_back(std::move(m.reference));
+      ++done;
     }
+    attribute_scene_causes(out["runs"], id);
+    for (json& pose : out["poses"])  // a pose shows its run's final status
+      for (const json& r : out["runs"])
+        if (pose["scene"] == id && r["scene"] == id && r["method"] == pose["method"] &&
+            r["integrator"] == pose["integrator"] && r["dt"] == 0.01)
+          pose["status"] = r["status"];
   }
   out["verdicts"] = stability_verdicts(out["runs"]);
   return out;

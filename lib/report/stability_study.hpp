@@ -7,7 +7,11 @@
 // that misses its tolerance or a blow-up stops the run and the study goes on), the energy balance
 // over the hold, the asymmetry of the element force Jacobians at the end (0: conservative), and for
 // every run that is not stable its cause: "integrator" when the method is stable under the other
-// integrator or at the smaller step, "method" when it fails there too.
+// integrator or at the smaller step, else from the same method under Newton at dt/4 (the refined
+// reference): "method" when it fails there too, "scene" for motion it shows too (and no other
+// method settles), "integrator" for flutter it does not show. Newton is robust: a line search on
+// the incremental potential where the force has one, and steps cut to dt/2 where it does not
+// converge (integrate/implicit_euler.hpp).
 #include <nlohmann/json.hpp>
 
 #include "report/report_config.hpp"
@@ -49,11 +53,49 @@ nlohmann::json run_stability_case(const nlohmann::json& scene, const std::string
                                   nlohmann::json* pose = nullptr,
                                   const std::filesystem::path& vtu_dir = {});
 
-/// Sets "cause" (and "cause_detail") of every run of one scene and method that is not stable, from
-/// the group's runs under the other integrator at the same step or at a smaller step: "integrator"
-/// if one of them is stable, "method" if none is, null (with the reason) when there are none or
-/// they failed only because Newton did not converge.
-void attribute_causes(std::vector<nlohmann::json*>& group);
+/// Whether some run of the group (one scene and method) is not stable and no stable run at its
+/// step or a smaller one explains it: its cause needs the refined reference.
+bool needs_refined_reference(const std::vector<nlohmann::json>& group);
+
+/// Sets "cause" (and "cause_detail") of every run of one scene and method that is not stable:
+/// "integrator" if a run under the other integrator at the same step or at a smaller step is
+/// stable; otherwise from `reference`, the method under Newton at dt/4 (the scene refined in
+/// time): "method" where it diverges or stays inverted too, "scene" for flutter whose rate of
+/// motion (rad/s) it shows at least half of (physical motion, not numerical), "integrator" for
+/// other flutter (it converges away under refinement). Without a reference (the smoke report):
+/// "method" if the group's other runs fail too, null (with the reason) when there are none or they
+/// failed only because Newton did not converge.
+void attribute_causes(std::vector<nlohmann::json*>& group,
+                      const nlohmann::json* reference = nullptr);
+
+/// After every method has run `scene`: a run of cause "scene" gets status "motion" (physical
+/// motion, not numerical flutter), or, where another method is stable under the same integrator at
+/// the same step (the scene can be settled), cause "method" and stays "flutter".
+void attribute_scene_causes(nlohmann::json& runs, const std::string& scene);
+
+/// The refined reference's step: dt / kReferenceRefinement, under Newton.
+inline constexpr int kReferenceRefinement = 4;
+
+/// How one method's runs on one scene are made.
+struct MethodPlan {
+  int ramp_steps = 0, hold_steps = 0;  ///< at dt
+  bool smaller_step = true;            ///< dt/2 runs where some dt run is not stable
+  bool smaller_step_always = false;    ///< dt/2 runs even where both dt runs are stable
+  bool refined_reference = true;       ///< Newton at dt/4 where nothing else explains a failure
+  std::ostream* progress = nullptr;
+  std::string progress_prefix;    ///< begins each progress line
+  std::filesystem::path vtu_dir;  ///< frames of the dt runs below it; empty: none
+};
+
+/// The runs of one method on one scene: both integrators at dt, at dt/2 and the refined reference
+/// as the plan says, with their causes (attribute_causes; the scene-wide pass is the caller's).
+struct MethodRuns {
+  std::vector<nlohmann::json> runs;
+  nlohmann::json reference;           ///< null where none was needed
+  std::vector<nlohmann::json> poses;  ///< of the dt runs
+};
+MethodRuns run_method_on_scene(const nlohmann::json& scene, const std::string& scene_id,
+                               RotationMethod method, const MethodPlan& plan);
 
 /// {"thresholds", "runs": [...], "surfaces": {scene: rest boundary}, "poses": [...]} for
 /// config.stability_scenes() x every extractor; a pose is a run's boundary at the end (dt runs).
