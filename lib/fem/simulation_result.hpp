@@ -18,6 +18,7 @@ struct SimulationResult {
   int steps = 0;                ///< dynamic: time steps taken; static: load increments converged
   int increment_cuts = 0;       ///< static Newton: load increments halved after not converging
   int step_cuts = 0;            ///< dynamic Newton: time steps halved after not converging
+  int newton_at_floor = 0;      ///< dynamic Newton: steps converged at the rounding floor
   int newton_halvings = 0;      ///< Newton: step lengths halved by its line search, in all
   int potential_fallbacks = 0;  ///< Newton: steps whose search on the potential found no decrease
   double residual = 0;          ///< |f_ext - f_int| / |f_ext| over free DOFs, final state

@@ -115,6 +115,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
       newton_iterate(v1, residual, jacobian, bc, scale, options.newton_settings, newton.lu,
                      newton.jacobian, clock, potential);
   result.newton_halvings += report.halvings;
+  result.newton_at_floor += report.at_floor;
   result.potential_fallbacks += report.potential_fallbacks;
   if (!report.converged)
     throw NotConverged("step " + std::to_string(step) + " (dt " + general_number(dt) +

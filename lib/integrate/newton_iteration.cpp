@@ -1,6 +1,7 @@
 #include "integrate/newton_iteration.hpp"
 
 #include <Eigen/UmfPackSupport>
+#include <limits>
 
 #include "core/errors.hpp"
 #include "sparse/brc_to_eigen.hpp"
@@ -54,12 +55,19 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
   Eigen::VectorXd g = residual(z);
   double norm = free_norm(fixed, g);
   double phi = potential ? potential() : 0.0;
+  double previous_norm = std::numeric_limits<double>::infinity();
   for (;; ++report.iterations) {
     report.residual = norm / scale;
     if (report.residual <= settings.tolerance) {
       report.converged = true;
       return report;
     }
+    if (report.residual <= settings.floor_factor * settings.tolerance &&
+        norm > 0.5 * previous_norm) {
+      report.converged = report.at_floor = true;
+      return report;
+    }
+    previous_norm = norm;
     if (report.iterations == settings.max_iterations) return report;
     jacobian(work);
     Eigen::VectorXd rhs = -g;

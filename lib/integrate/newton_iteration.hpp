@@ -28,6 +28,10 @@ struct NewtonSettings {
   int max_iterations = 50;
   int max_halvings = 12;    ///< smallest step 2^-12
   double max_growth = 1e4;  ///< largest accepted |g_new| / |g|
+  /// Converged at the rounding floor: |g| within floor_factor x tolerance and an iteration that
+  /// no longer halves it (Newton near a root would square it; rounding in f_int, whose element
+  /// terms cancel, stops it there).
+  double floor_factor = 100;
 };
 
 struct NewtonReport {
@@ -37,6 +41,7 @@ struct NewtonReport {
   int potential_fallbacks = 0;  ///< of those, steps where the search found no decrease
   double residual = 0;          ///< |g|_free / scale at the end
   bool converged = false;
+  bool at_floor = false;  ///< converged by the floor rule (see NewtonSettings::floor_factor)
 };
 
 /// The LU of the iteration matrices, built once per pattern and refactored each iteration.

@@ -38,9 +38,11 @@ bool newton_increment(FeProblem& problem, RotationExtractor& rotate, const Rotat
   const auto jacobian = [&](BrcMatrix& j) {
     clock.time("assemble", [&] { tangent.assemble(positions, result.rotations, j); });
   };
-  const NewtonReport report =
-      newton_iterate(u, residual, jacobian, problem.dirichlet, f_norm > 0 ? f_norm : 1.0,
-                     {options.tolerance, options.max_iterations}, lu, jacobian_matrix, clock);
+  const NewtonReport report = newton_iterate(
+      u, residual, jacobian, problem.dirichlet, f_norm > 0 ? f_norm : 1.0,
+      // The static residual is the user's criterion: no floor rule.
+      {.tolerance = options.tolerance, .max_iterations = options.max_iterations, .floor_factor = 1},
+      lu, jacobian_matrix, clock);
   check_finite(problem, u, "displacement", where);
   result.iterations += report.iterations;
   result.linear_iterations += report.iterations;

@@ -97,6 +97,7 @@ void add_measurements(const StabilityMonitor& monitor, const TimedRun& run, bool
   if (record["integrator"] == "newton" && !diverged)  // how hard the robust Newton worked
     record["newton"] = {{"step_cuts", run.result.step_cuts},
                         {"step_halvings", run.result.newton_halvings},
+                        {"steps_at_floor", run.result.newton_at_floor},
                         {"potential_fallbacks", run.result.potential_fallbacks}};
   record["series"] = {{"rotation_change_rms_rad", monitor.rms_series()},
                       {"rotation_change_max_rad", monitor.max_series()},
@@ -408,7 +409,9 @@ json run_stability_study(const ReportConfig& config) {
       {"newton",
        "fully implicit Euler by Newton with a line search on the incremental potential where "
        "the force has one (polar, polar-fixed), safeguarded full steps otherwise; a step that "
-       "does not converge is retried as two of dt/2, at most 4 times deep (newton.step_cuts)"},
+       "does not converge is retried as two of dt/2, at most 4 times deep (newton.step_cuts); a "
+       "step converges at 1e-8 of its terms, or within 100x that where an iteration no longer "
+       "halves the residual (rounding floor: newton.steps_at_floor)"},
       {"ramp_steps", config.stability_ramp()},
       {"hold_steps", config.stability_hold()},
       {"size", size_name(config.stability_size())},
