@@ -214,23 +214,30 @@ def render_tables(tables, folder, md):
     # Phase chart.
     ok = [r for r in tables.get("table1", []) if not failed(r)]
     if HAVE_MPL and ok:
+        # Shares of the step on a linear axis (a log axis hid the small phases and bent the shares),
+        # each bar's total ms written above it.
         phases = ["rotate_ms", "assemble_ms", "update_ms", "solve_ms"]
         fig, ax = plt.subplots(figsize=(8, 3.5))
-        labels, bottoms = [], [0.0] * (2 * len(ok))
+        labels, columns = [], []
         for r in ok:
             labels += [r["model"], f"paper {r['paper_model']}" if r.get("paper") else ""]
+            columns += [r, r.get("paper") or {}]
+        totals = [sum(c.get(p) or 0 for p in phases) for c in columns]
+        bottoms = [0.0] * len(columns)
         for phase in phases:
-            values = []
-            for r in ok:
-                values += [r.get(phase) or 0, (r.get("paper") or {}).get(phase) or 0]
-            ax.bar(range(len(values)), values, bottom=bottoms, label=phase[:-3])
-            bottoms = [b + v for b, v in zip(bottoms, values)]
+            shares = [100 * (c.get(phase) or 0) / total if total > 0 else 0
+                      for c, total in zip(columns, totals)]
+            ax.bar(range(len(columns)), shares, bottom=bottoms, label=phase[:-3])
+            bottoms = [b + v for b, v in zip(bottoms, shares)]
+        for i, total in enumerate(totals):
+            if total > 0:
+                ax.text(i, 101, f"{total:.3g} ms", ha="center", va="bottom", fontsize=6)
         ax.set_xticks(range(len(labels)))
         ax.set_xticklabels(labels, rotation=30, ha="right", fontsize=7)
-        ax.set_ylabel("ms per step")
-        ax.set_yscale("log")
-        ax.legend(fontsize=7)
-        ax.set_title("Step phases: ours beside the paper's")
+        ax.set_ylabel("share of the step's phases (%)")
+        ax.set_ylim(0, 112)
+        ax.legend(fontsize=7, loc="lower right")
+        ax.set_title("Step phases: ours beside the paper's, as shares of the step (total above)")
         fig.tight_layout()
         md.append(f"![phases]({save(fig, folder, 'table1_phases.png')})\n\n")
     # Verification summary.
