@@ -1,10 +1,14 @@
 #include "cli/run_scene.hpp"
 
+#include <unistd.h>
+
 #include <Eigen/LU>
 #include <algorithm>
+#include <iostream>
 #include <ostream>
 #include <string>
 
+#include "cli/step_progress.hpp"
 #include "core/memory_usage.hpp"
 #include "core/number_text.hpp"
 #include "io/run_context.hpp"
@@ -132,12 +136,9 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
     *progress << "corofem: " << problem.mesh.num_tets() << " tets, " << problem.mesh.num_vertices()
               << " vertices; " << kAnalysisTypes.name(scene.analysis.type) << " "
               << kFormulations.name(scene.analysis.formulation) << " analysis\n";
-  const AnalysisSpec& a = scene.analysis;
-  const int every = std::max(1, a.steps / 10);
-  SimulationResult result = simulation.run([&](const StepState& s) {
-    if (progress && (s.step % every == 0 || s.step == a.steps))
-      *progress << "corofem: step " << s.step << "/" << a.steps << "\n";
-  });
+  StepProgress steps(progress, progress == &std::cerr && isatty(STDERR_FILENO),
+                     scene.analysis.steps);
+  SimulationResult result = simulation.run([&](const StepState& s) { steps.step_done(s.step); });
 
   nlohmann::json r = run_summary(simulation, result);
   add_fields(simulation, result, r);

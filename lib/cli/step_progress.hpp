@@ -1,0 +1,23 @@
+#pragma once
+// Progress of a run's steps on stderr: on a terminal one line redrawn in place, a bar with the
+// time left; otherwise (a log file, CI) a line every tenth of the run, with the time left.
+#include <chrono>
+#include <ostream>
+
+namespace corofem {
+
+class StepProgress {
+ public:
+  /// `out` null: silent. `terminal`: out is a terminal (redraw in place).
+  StepProgress(std::ostream* out, bool terminal, int steps);
+  /// After step `step` (1-based) of the run.
+  void step_done(int step);
+
+ private:
+  std::ostream* out_;
+  bool terminal_;
+  int steps_, every_;
+  std::chrono::steady_clock::time_point start_, last_draw_;
+};
+
+}  // namespace corofem
