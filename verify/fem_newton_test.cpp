@@ -162,11 +162,13 @@ TEST(NewtonLineSearch, LowersThePolarPotentialOnEveryAcceptedStep) {
     return Eigen::VectorXd(internal_forces(p, rotations, u) - p.external_force);
   };
   const auto potential = [&] {
-    return elastic_energy(p.elements, p.mesh, rotations, at) - p.external_force.dot(at);
+    const double elastic = elastic_energy(p.elements, p.mesh, rotations, at),
+                 work = p.external_force.dot(at);
+    return PotentialValue{elastic - work, elastic + std::abs(work)};
   };
   std::vector<double> accepted;  // Pi at every iterate the tangent is assembled at
   const auto jacobian = [&](BrcMatrix& j) {
-    accepted.push_back(potential());
+    accepted.push_back(potential().value);
     tangent.assemble(positions, rotations, j);
   };
   std::map<std::string, double> timings;

@@ -65,19 +65,21 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
     });
     return g;
   };
-  std::function<double()> potential;
+  std::function<PotentialValue()> potential;
   if (force_has_potential(rotate.method()))
     potential = [&] {
       return clock.time("forces", [&] {
-        double phi = 0.5 * mass_factor * v_last.dot(problem.mass.cwiseProduct(v_last)) -
-                     v_last.dot(momentum + dt * problem.external_force) +
-                     elastic_energy(problem.elements, problem.mesh, rotations, u1);
+        const double kinetic = 0.5 * mass_factor * v_last.dot(problem.mass.cwiseProduct(v_last));
+        const double work = v_last.dot(momentum + dt * problem.external_force);
+        const double elastic = elastic_energy(problem.elements, problem.mesh, rotations, u1);
+        double damped = 0;
         if (damping != 0) {
           Eigen::VectorXd kv;
           problem.stiffness.multiply(v_last, kv);
-          phi += 0.5 * damping * v_last.dot(kv);
+          damped = 0.5 * damping * v_last.dot(kv);
         }
-        return phi;
+        return PotentialValue{kinetic + damped - work + elastic,
+                              kinetic + std::abs(damped) + std::abs(work) + std::abs(elastic)};
       });
     };
   const auto jacobian = [&](BrcMatrix& j) {

@@ -36,9 +36,9 @@ namespace {
 
 /// Armijo's sufficient decrease: phi(z + alpha dz) <= phi(z) + kArmijo alpha g.dz.
 constexpr double kArmijo = 1e-4;
-/// The smallest decrease of the potential, relative to its size, that its rounding resolves: a
-/// Newton step whose predicted decrease g.dz is smaller (the last iterations, residual near
-/// 1e-8) is judged by the residual (the search would halve it on rounding noise).
+/// The smallest decrease of the potential, relative to its terms' size, that its rounding resolves:
+/// a Newton step whose predicted decrease g.dz is smaller (the last iterations, residual near 1e-8)
+/// is judged by the residual (the search would halve it on rounding noise).
 constexpr double kPotentialResolution = 1e-10;
 
 }  // namespace
@@ -48,13 +48,13 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
                             const std::function<void(BrcMatrix&)>& jacobian,
                             const DirichletConditions& fixed, double scale,
                             const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
-                            PhaseClock& clock, const std::function<double()>& potential) {
+                            PhaseClock& clock, const std::function<PotentialValue()>& potential) {
   NewtonReport report;
   const DirichletConditions step_bc{fixed.fixed,
                                     Eigen::VectorXd::Zero(z.size())};  // dz = 0 where fixed
   Eigen::VectorXd g = residual(z);
   double norm = free_norm(fixed, g);
-  double phi = potential ? potential() : 0.0;
+  PotentialValue phi = potential ? potential() : PotentialValue{};
   double previous_norm = std::numeric_limits<double>::infinity();
   for (;; ++report.iterations) {
     report.residual = norm / scale;
@@ -79,21 +79,23 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
     // without a potential.
     const double slope = g.dot(dz);
     Eigen::VectorXd trial, g_trial;
-    double trial_norm = 0, trial_phi = 0;
+    double trial_norm = 0;
+    PotentialValue trial_phi;
     const auto evaluate = [&](double alpha) {
       trial = z + alpha * dz;
       g_trial = residual(trial);
       trial_norm = free_norm(fixed, g_trial);
-      trial_phi = potential ? potential() : 0.0;
+      trial_phi = potential ? potential() : PotentialValue{};
     };
     int halvings = 0;
     bool found = false;
-    if (potential && slope < -kPotentialResolution * std::abs(phi)) {  // Armijo on the potential
+    if (potential && slope < -kPotentialResolution * phi.magnitude) {  // Armijo on the potential
       ++report.potential_steps;
       double alpha = 1;
       for (int h = 0; h <= settings.max_halvings && !found; ++h, alpha *= 0.5) {
         evaluate(alpha);
-        found = std::isfinite(trial_phi) && trial_phi <= phi + kArmijo * alpha * slope;
+        found = std::isfinite(trial_phi.value) &&
+                trial_phi.value <= phi.value + kArmijo * alpha * slope;
         halvings += !found;
       }
       report.potential_fallbacks += !found;

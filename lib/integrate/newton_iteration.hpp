@@ -44,6 +44,13 @@ struct NewtonReport {
   bool at_floor = false;  ///< converged by the floor rule (see NewtonSettings::floor_factor)
 };
 
+/// A potential's value and the size of its terms before they cancel (what its rounding is
+/// relative to: an incremental potential's kinetic and momentum terms nearly cancel).
+struct PotentialValue {
+  double value = 0;
+  double magnitude = 0;
+};
+
 /// The LU of the iteration matrices, built once per pattern and refactored each iteration.
 class SparseLuSolve {
  public:
@@ -66,6 +73,7 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
                             const std::function<void(BrcMatrix&)>& jacobian,
                             const DirichletConditions& fixed, double scale,
                             const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
-                            PhaseClock& clock, const std::function<double()>& potential = {});
+                            PhaseClock& clock,
+                            const std::function<PotentialValue()>& potential = {});
 
 }  // namespace corofem
