@@ -105,7 +105,8 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
       add_lumped_mass(problem, mass_factor, newton.jacobian);
       apply_dirichlet(bc, newton.jacobian, b);
     });
-    v1 = clock.time("solve", [&] { return newton.lu.solve(newton.jacobian, b); });
+    // M + (dt^2 + dt beta) Ktilde_n: symmetric positive definite.
+    v1 = clock.time("solve", [&] { return newton.lu.solve(newton.jacobian, b, true); });
   }
   // |g| is measured against the size of its terms: the momenta before and after (the predictor's;
   // a step driven only by moving supports has nothing else) and the forces at the step's start.

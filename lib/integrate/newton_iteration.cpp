@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/errors.hpp"
+#include "linalg/cholmod_factorization.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
@@ -12,22 +13,39 @@ struct SparseLuSolve::State {
   explicit State(const BrcMatrix& pattern) : eigen(pattern) {}
   BrcToEigen eigen;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
-  bool analyzed = false;
+  CholmodFactorization cholesky;
+  bool lu_analyzed = false, cholesky_analyzed = false;
 };
 
 SparseLuSolve::SparseLuSolve(const BrcMatrix& pattern) : state_(std::make_unique<State>(pattern)) {}
 SparseLuSolve::~SparseLuSolve() = default;
 
-Eigen::VectorXd SparseLuSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& b) {
+Eigen::VectorXd SparseLuSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric) {
   state_->eigen.update(a);
-  if (!state_->analyzed) {
-    state_->lu.analyzePattern(state_->eigen.matrix());
-    state_->analyzed = true;
+  Eigen::VectorXd x;
+  bool solved = false;
+  if (symmetric) {
+    if (!state_->cholesky_analyzed) {
+      state_->cholesky.analyze(state_->eigen.matrix());
+      state_->cholesky_analyzed = true;
+    }
+    try {
+      state_->cholesky.factorize(state_->eigen.matrix());
+      x = state_->cholesky.solve(b);
+      solved = true;
+    } catch (const std::runtime_error&) {  // not positive definite: the LU below
+    }
   }
-  state_->lu.factorize(state_->eigen.matrix());
-  if (state_->lu.info() != Eigen::Success)
-    throw NumericalFault("Newton: the tangent matrix is singular");
-  Eigen::VectorXd x = state_->lu.solve(b);
+  if (!solved) {
+    if (!state_->lu_analyzed) {
+      state_->lu.analyzePattern(state_->eigen.matrix());
+      state_->lu_analyzed = true;
+    }
+    state_->lu.factorize(state_->eigen.matrix());
+    if (state_->lu.info() != Eigen::Success)
+      throw NumericalFault("Newton: the tangent matrix is singular");
+    x = state_->lu.solve(b);
+  }
   if (!x.allFinite()) throw NumericalFault("Newton: the tangent solve gave non-finite values");
   return x;
 }
@@ -72,7 +90,9 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
     jacobian(work);
     Eigen::VectorXd rhs = -g;
     apply_dirichlet(step_bc, work, rhs);
-    const Eigen::VectorXd dz = clock.time("solve", [&] { return lu.solve(work, rhs); });
+    // The Jacobian of a potential's gradient is its Hessian: symmetric.
+    const Eigen::VectorXd dz =
+        clock.time("solve", [&] { return lu.solve(work, rhs, static_cast<bool>(potential)); });
     // The potential's slope along dz (dz is zero on the fixed DOFs): the line search on the
     // potential where dz descends it; the safeguarded full step where it does not (an indefinite
     // J), where the search finds no decrease (the potential has kinks where elements invert), or

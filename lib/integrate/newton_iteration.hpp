@@ -2,7 +2,9 @@
 // Damped Newton for the nonlinear systems of the corotated model, g(z) = 0 over the free DOFs:
 // static equilibrium f_ext - f_int(u) = 0 and the fully implicit Euler step. Each iteration solves
 // J dz = -g with a sparse LU (UMFPACK): J is non-symmetric for the non-conservative rotation
-// methods and indefinite past a buckling point, so neither CG nor Cholesky applies.
+// methods and indefinite past a buckling point, so neither CG nor Cholesky applies in general;
+// where g is a potential's gradient J is its Hessian, factored by Cholesky while it is positive
+// definite (SparseLuSolve).
 // Step lengths:
 //  - where g is the gradient of a potential (the caller passes it: implicit Euler with polar
 //    rotations, whose force is conservative, is then the minimization of the incremental
@@ -51,13 +53,16 @@ struct PotentialValue {
   double magnitude = 0;
 };
 
-/// The LU of the iteration matrices, built once per pattern and refactored each iteration.
+/// The factorizations of the iteration matrices, analyzed once per pattern and refactored each
+/// iteration: CHOLMOD's Cholesky for a symmetric matrix (a time step's M + dt^2 K, the Hessian of
+/// a potential), unless it is not positive definite (a buckled body), then UMFPACK's LU, which
+/// every non-symmetric matrix gets.
 class SparseLuSolve {
  public:
   explicit SparseLuSolve(const BrcMatrix& pattern);
   ~SparseLuSolve();
   /// x = A^{-1} b; throws NumericalFault when A is singular.
-  Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b);
+  Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric = false);
 
  private:
   struct State;
