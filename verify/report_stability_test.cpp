@@ -175,6 +175,17 @@ TEST(Stability, TheRefinedReferenceTellsMotionFromFlutter) {
   reference["inverted_final"] = 40;
   attribute_causes(group, &reference);
   for (const json& r : runs) EXPECT_EQ(r["cause"], "method") << r.dump();
+  // A reference whose Newton cannot solve the steps says nothing against the method.
+  group = group_of(runs);
+  reference["status"] = "diverged";
+  reference["divergence"] = {{"kind", "not_converged"}};
+  attribute_causes(group, &reference);
+  for (const json& r : runs) EXPECT_EQ(r["cause"], "integrator") << r.dump();
+  reference["divergence"] = {{"kind", "numerical"}};  // a blow-up does
+  group = group_of(runs);
+  attribute_causes(group, &reference);
+  for (const json& r : runs) EXPECT_EQ(r["cause"], "method") << r.dump();
+  reference.erase("divergence");
   // Motion of the scene, unless another method settles it under the same integrator and step.
   group = group_of(runs);
   reference["status"] = "flutter";

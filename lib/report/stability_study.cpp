@@ -239,10 +239,15 @@ void attribute_causes(std::vector<json*>& group, const json* reference) {
       const json& ref = *reference;
       const std::string against = "; refined reference " + describe(ref);
       const std::string status = (*r)["status"];
-      // A method that diverges or leaves the body inverted at the small step too fails by itself.
-      const bool fails_refined = ref["status"] == "diverged" || ref["status"] == "stuck";
+      // A method that blows up or leaves the body inverted at the small step too fails by itself;
+      // a Newton that cannot solve the small steps (even cut to 1/16) is the integrator's failure
+      // (the method's own would show as energy created or a blow-up).
+      const bool newton_unsolved = ref["status"] == "diverged" && ref.contains("divergence") &&
+                                   ref["divergence"].value("kind", "") == "not_converged";
+      const bool fails_refined =
+          (ref["status"] == "diverged" && !newton_unsolved) || ref["status"] == "stuck";
       std::string cause = fails_refined ? "method" : "integrator";
-      if (status == "flutter" && !fails_refined &&
+      if (status == "flutter" && !fails_refined && !newton_unsolved &&
           rotation_rate(ref) >= kSameMotionShare * rotation_rate(*r))
         cause = "scene";  // the motion is there at the small step too: physical, not numerical
       (*r)["cause"] = cause;

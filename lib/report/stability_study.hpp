@@ -60,11 +60,11 @@ bool needs_refined_reference(const std::vector<nlohmann::json>& group);
 /// Sets "cause" (and "cause_detail") of every run of one scene and method that is not stable:
 /// "integrator" if a run under the other integrator at the same step or at a smaller step is
 /// stable; otherwise from `reference`, the method under Newton at dt/4 (the scene refined in
-/// time): "method" where it diverges or stays inverted too, "scene" for flutter whose rate of
+/// time): "method" where it blows up or stays inverted too, "scene" for flutter whose rate of
 /// motion (rad/s) it shows at least half of (physical motion, not numerical), "integrator" for
-/// other flutter (it converges away under refinement). Without a reference (the smoke report):
-/// "method" if the group's other runs fail too, null (with the reason) when there are none or they
-/// failed only because Newton did not converge.
+/// other flutter (it converges away under refinement) and where Newton cannot solve its steps.
+/// Without a reference (the smoke report): "method" if the group's other runs fail too, null (with
+/// the reason) when there are none or they failed only because Newton did not converge.
 void attribute_causes(std::vector<nlohmann::json*>& group,
                       const nlohmann::json* reference = nullptr);
 
