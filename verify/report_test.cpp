@@ -414,6 +414,24 @@ TEST(Report, GoldenFixturesHaveTheSchemaTheCodeWrites) {
       << read_text(dir / "drift");
 }
 
+TEST(Report, PublishedSnapshotHasTheSchemaTheCodeWrites) {
+  // reports/ (the published snapshot, drawn from the models) holds every field the renderer reads
+  // in the records the current code writes, so a change to the records comes with a fresh
+  // snapshot (reports/publish, from a clean commit). The snapshot may hold more: the models' rows.
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  if (!have_petsc())
+    GTEST_SKIP() << "the snapshot comes from a build with PETSc (its rival solvers' fields)";
+  const fs::path& out = smoke_report();
+  TempDir dir;
+  const std::string command =
+      "python3 '" + (test::source_dir() / "reports" / "schema_check.py").string() +
+      "' --snapshot '" + out.string() + "' '" + (test::source_dir() / "reports").string() +
+      "' > '" + (dir / "drift").string() + "' 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0) << read_text(dir / "drift");
+  EXPECT_EQ(read_text(dir / "drift").find(" 0 record file(s) compared"), std::string::npos)
+      << read_text(dir / "drift");
+}
+
 TEST(Report, SaysWhenTheSolveCarriedTheCoarsestFactorization) {
   // At two or more threads MG-PCG runs the coarsest factorization in the solve phase: the
   // thread table says so when a row's record does, and only then.

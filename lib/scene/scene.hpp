@@ -77,7 +77,7 @@ struct AnalysisSpec {
   RotationParams rotation_params;
   SolverKind solver = SolverKind::Cholmod;
   /// The multigrid's settings, parsed from their names (kGalerkinMethods, kHierarchyKinds,
-  /// kSmootherOrderings), each with the one default of its component's params.
+  /// kSmootherChoices), each with the one default of its component's params.
   /// naive | stream | stream-full | reuse | gather (multigrid coarse operators)
   GalerkinMethod galerkin = MultigridParams{}.galerkin;
   /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
