@@ -209,6 +209,30 @@ TEST(Stability, TheRefinedReferenceTellsMotionFromFlutter) {
   EXPECT_EQ(all[1]["status"], "flutter");
   EXPECT_NE(all[1]["cause_detail"].get<std::string>().find("polar settles the scene there"),
             std::string::npos);
+  // A scene nothing settles: failures the refined reference could not judge (Newton unsolved)
+  // are the scene's; a blow-up stays the method's.
+  json unsettled = json::array();
+  for (const char* method : {"polar", "qr"}) {
+    json flutter = fluttering("linear-implicit", 0.01, 0.05),
+         diverged = fake_run("newton", 0.01, "diverged");
+    diverged["divergence"] = {
+        {"kind", std::string(method) == "qr" ? "numerical" : "not_converged"}};
+    for (json* r : {&flutter, &diverged}) {
+      (*r)["scene"] = "horse";
+      (*r)["method"] = method;
+      (*r)["cause"] = "integrator";
+      (*r)["cause_detail"] = "";
+    }
+    diverged["cause"] = std::string(method) == "qr" ? "method" : "integrator";
+    unsettled.push_back(flutter);
+    unsettled.push_back(diverged);
+  }
+  attribute_scene_causes(unsettled, "horse");
+  EXPECT_EQ(unsettled[0]["cause"], "scene");
+  EXPECT_EQ(unsettled[0]["status"], "flutter");  // not shown to be motion
+  EXPECT_EQ(unsettled[1]["cause"], "scene");
+  EXPECT_EQ(unsettled[2]["cause"], "scene");
+  EXPECT_EQ(unsettled[3]["cause"], "method");  // qr's blow-up
 }
 
 /// A cantilever 1 x 0.1 x 0.1 m (E 1e7: its first bending mode at 1.6 Hz) with its tip lifted

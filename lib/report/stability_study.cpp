@@ -285,18 +285,35 @@ bool needs_refined_reference(const std::vector<json>& group) {
 }
 
 void attribute_scene_causes(json& runs, const std::string& scene) {
+  // No run of the scene stable: no method under either integrator at any step settles it.
+  const bool settled = std::any_of(runs.begin(), runs.end(), [&](const json& r) {
+    return r["scene"] == scene && r["status"] == "stable";
+  });
   for (json& r : runs) {
-    if (r["scene"] != scene || r["cause"] != "scene") continue;
-    r["status"] = "motion";
-    for (const json& o : runs)
-      if (o["scene"] == scene && o["method"] != r["method"] && o["status"] == "stable" &&
-          o["integrator"] == r["integrator"] && o["dt"] == r["dt"]) {
-        r["status"] = "flutter";
-        r["cause"] = "method";
-        r["cause_detail"] = r["cause_detail"].get<std::string>() + "; but " +
-                            o["method"].get<std::string>() + " settles the scene there";
-        break;
-      }
+    if (r["scene"] != scene || r["status"] == "stable" || r["status"] == "failed") continue;
+    if (r["cause"] == "scene") {
+      r["status"] = "motion";
+      for (const json& o : runs)
+        if (o["scene"] == scene && o["method"] != r["method"] && o["status"] == "stable" &&
+            o["integrator"] == r["integrator"] && o["dt"] == r["dt"]) {
+          r["status"] = "flutter";
+          r["cause"] = "method";
+          r["cause_detail"] = r["cause_detail"].get<std::string>() + "; but " +
+                              o["method"].get<std::string>() + " settles the scene there";
+          break;
+        }
+    } else if (!settled) {
+      // A method fails by itself only where it is confirmed: a blow-up or a body left inverted
+      // (energy created shows as one of them or as flutter that another method settles).
+      const bool confirmed =
+          r["status"] == "stuck" || (r["status"] == "diverged" && r.contains("divergence") &&
+                                     r["divergence"].value("kind", "") == "numerical");
+      if (confirmed) continue;
+      r["cause"] = "scene";
+      r["cause_detail"] = r["cause_detail"].get<std::string>() +
+                          "; no method under either integrator at any step settles " + scene +
+                          ": beyond every method";
+    }
   }
 }
 
@@ -344,8 +361,12 @@ json stability_verdicts(const json& runs) {
                               "linearly implicit step or the larger dt"
         : by_scene > 0      ? "stable wherever the scene settles"
                             : "failures without an attributable cause";
-    if (by_scene > 0 && (by_method_count > 0 || by_integrator > 0))
-      verdict += "; some scenes are beyond every method (physical motion)";
+    if (by_scene > 0) {
+      std::string scenes;
+      for (const json& scene : v["scenes_beyond_every_method"])
+        scenes += (scenes.empty() ? "" : ", ") + scene.get<std::string>();
+      verdict += "; beyond every method: " + scenes;
+    }
     if (unattributed > 0 && by_method_count + by_integrator + by_scene > 0)
       verdict += "; " + std::to_string(unattributed) + " failures without an attributable cause";
     v["verdict"] = verdict;

@@ -70,7 +70,9 @@ void attribute_causes(std::vector<nlohmann::json*>& group,
 
 /// After every method has run `scene`: a run of cause "scene" gets status "motion" (physical
 /// motion, not numerical flutter), or, where another method is stable under the same integrator at
-/// the same step (the scene can be settled), cause "method" and stays "flutter".
+/// the same step (the scene can be settled), cause "method" and stays "flutter". Where no run of
+/// the scene is stable (no method under either integrator at any step settles it), every failure
+/// not confirmed as the method's (a blow-up, a body left inverted) gets cause "scene".
 void attribute_scene_causes(nlohmann::json& runs, const std::string& scene);
 
 /// The refined reference's step: dt / kReferenceRefinement, under Newton.
