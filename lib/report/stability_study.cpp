@@ -359,7 +359,7 @@ json stability_verdicts(const json& runs) {
               "refined step)"
         : by_integrator > 0 ? "stable once the integrator is: every failure goes with the "
                               "linearly implicit step or the larger dt"
-        : by_scene > 0      ? "stable wherever the scene settles"
+        : by_scene > 0      ? "stable wherever some method settles the scene"
                             : "failures without an attributable cause";
     if (by_scene > 0) {
       std::string scenes;
