@@ -452,8 +452,15 @@ json run_stability_study(const ReportConfig& config) {
   int done = 0;  // scene-method groups
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const std::string& id = scenes[k];
-    const json scene = stability_scene(id, config.stability_size(), config.stability_ramp(),
-                                       config.stability_hold(), config.models_dir);
+    json scene = stability_scene(id, config.stability_size(), config.stability_ramp(),
+                                 config.stability_hold(), config.models_dir);
+    // The smoke report (seconds, for the report's own tests, also under the sanitizers) caps
+    // Newton at 8 iterations and one cut a step: its scenes are brutal (75 degrees of twist a
+    // step), and steps cut four times at 30 iterations each took its study from 8 to 22 s.
+    if (config.mode == ReportConfig::Mode::Smoke) {
+      scene["analysis"]["max_iterations"] = 8;
+      scene["analysis"]["max_step_cuts"] = 1;
+    }
     out["scenes"][id] = scene;
     for (const auto& [method, method_name] : kRotationMethods.entries) {
       if (method == RotationMethod::None) continue;

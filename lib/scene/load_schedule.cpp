@@ -60,6 +60,7 @@ DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem) {
   options.newton = a.integrator == Integrator::Newton;
   options.newton_settings.tolerance = a.tolerance;
   options.newton_settings.max_iterations = a.max_iterations;
+  options.max_step_cuts = a.max_step_cuts;
   auto schedule = std::make_shared<const LoadSchedule>(scene, problem);
   schedule->apply(1, problem);
   options.before_step = [schedule](int step, FeProblem& p) { schedule->apply(step, p); };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "element/material.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "mesh/vertex_selection.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -105,6 +106,8 @@ struct AnalysisSpec {
   /// runs on each step's matrix). Default: set up again at every matrix, as MG-PCG updates.
   bool setup_reuse = false;
   int max_iterations = 100;
+  /// Dynamic Newton: halvings of a step that does not converge (DynamicOptions::max_step_cuts).
+  int max_step_cuts = DynamicOptions{}.max_step_cuts;
   double rayleigh_alpha = 0, rayleigh_beta = 0;
 };
 
