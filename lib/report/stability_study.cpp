@@ -190,7 +190,8 @@ namespace {
 /// A run's RMS rotation change over the settled window per second (negative: not measured): the
 /// rate of motion, comparable between step sizes where the change per step is not.
 double rotation_rate(const json& run) {
-  return run["flutter_rms_rad"].is_number()
+  // contains() first: operator[] on a const json with the key missing is undefined.
+  return run.contains("flutter_rms_rad") && run["flutter_rms_rad"].is_number()
              ? run["flutter_rms_rad"].get<double>() / run["dt"].get<double>()
              : -1;
 }
