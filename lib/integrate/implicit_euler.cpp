@@ -35,8 +35,7 @@ struct NewtonStepper {
 /// One fully implicit Euler step: v' from g(v') = 0 (see the header), starting from the
 /// linearly implicit step's v'. `internal_start` is the elastic force at the step's start. Where
 /// the force has a potential, g is the gradient of the incremental potential
-///   Phi(v') = 1/2 v'^T ((1 + dt alpha) M + dt beta Ktilde_n) v' - v'^T (M v + dt f) + E(u + dt
-///   v'),
+///   Phi(v') = 1/2 v'^T ((1 + dt alpha) M + dt beta K_n) v' - v'^T (M v + dt f) + E(u + dt v'),
 /// which Newton's line search then lowers (newton_iteration.hpp).
 SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStepper& newton,
                        const DynamicOptions& options, int step, const DirichletConditions& bc,
@@ -47,7 +46,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
   const Eigen::VectorXd momentum = problem.mass.cwiseProduct(velocity);
   std::vector<Mat3> rotations = result.rotations;
   std::vector<Vec3> positions;
-  Eigen::VectorXd u1, v_last;  // of the last residual call, for the potential
+  Eigen::VectorXd u1, v_last, kv;  // of the last residual call, for the potential
   const auto residual = [&](const Eigen::VectorXd& v1) {
     u1 = result.displacement + dt * v1;
     v_last = v1;
@@ -58,7 +57,6 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
       g = mass_factor * problem.mass.cwiseProduct(v1) - momentum -
           dt * (problem.external_force - internal_forces(problem, rotations, u1));
       if (damping != 0) {
-        Eigen::VectorXd kv;
         problem.stiffness.multiply(v1, kv);
         g += damping * kv;
       }
@@ -72,12 +70,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
         const double kinetic = 0.5 * mass_factor * v_last.dot(problem.mass.cwiseProduct(v_last));
         const double work = v_last.dot(momentum + dt * problem.external_force);
         const double elastic = elastic_energy(problem.elements, problem.mesh, rotations, u1);
-        double damped = 0;
-        if (damping != 0) {
-          Eigen::VectorXd kv;
-          problem.stiffness.multiply(v_last, kv);
-          damped = 0.5 * damping * v_last.dot(kv);
-        }
+        const double damped = damping != 0 ? 0.5 * damping * v_last.dot(kv) : 0.0;
         return PotentialValue{kinetic + damped - work + elastic,
                               kinetic + std::abs(damped) + std::abs(work) + std::abs(elastic)};
       });
@@ -149,13 +142,12 @@ void note_inverted(const FeProblem& problem, const RotationExtractor& rotate,
 /// iteration fails (no convergence, a singular tangent, a non-finite residual) is cut: the state
 /// is restored and the step taken as two of dt/2, the supports moving halfway in the first, at
 /// most `cuts_left` halvings deep; a cut is not the rotation method failing, and it is counted.
+/// newton_step leaves the state untouched when it throws, so a cut restores nothing.
 SolveStats advance_by_newton(FeProblem& problem, RotationExtractor& rotate, NewtonStepper& newton,
                              DynamicOptions options, int step, const Eigen::VectorXd& end,
                              bool linearized, int cuts_left, Eigen::VectorXd& elastic,
                              SimulationResult& result, Eigen::VectorXd& velocity,
                              PhaseClock& clock) {
-  const Eigen::VectorXd start = result.displacement, start_velocity = velocity;
-  const std::vector<Mat3> start_rotations = result.rotations;
   if (!linearized) {
     std::vector<Vec3> p;
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
@@ -164,7 +156,7 @@ SolveStats advance_by_newton(FeProblem& problem, RotationExtractor& rotate, Newt
   }
   DirichletConditions bc = problem.dirichlet;  // on the velocity: reach the prescribed u
   for (int i = 0; i < problem.num_dofs(); ++i)
-    bc.value[i] = bc.fixed[i] ? (end[i] - start[i]) / options.dt : 0.0;
+    bc.value[i] = bc.fixed[i] ? (end[i] - result.displacement[i]) / options.dt : 0.0;
   try {
     const SolveStats stats =
         newton_step(problem, rotate, newton, options, step, bc, elastic, result, velocity, clock);
@@ -175,12 +167,10 @@ SolveStats advance_by_newton(FeProblem& problem, RotationExtractor& rotate, Newt
   } catch (const NumericalFault&) {
     if (cuts_left == 0) throw;
   }
-  result.displacement = start;
-  velocity = start_velocity;
-  result.rotations = start_rotations;  // problem.stiffness and `elastic` are still the start's
-  ++result.step_cuts;
+  ++result.step_cuts;  // problem.stiffness and `elastic` are still the step start's
   options.dt /= 2;
-  const Eigen::VectorXd halfway = start + 0.5 * (end - start);  // read on the fixed DOFs only
+  const Eigen::VectorXd halfway =
+      result.displacement + 0.5 * (end - result.displacement);  // read on the fixed DOFs only
   const SolveStats first = advance_by_newton(problem, rotate, newton, options, step, halfway, true,
                                              cuts_left - 1, elastic, result, velocity, clock);
   const SolveStats second = advance_by_newton(problem, rotate, newton, options, step, end, false,

@@ -500,7 +500,7 @@ json run_stability_study(const ReportConfig& config) {
     for (json& pose : out["poses"])  // a pose shows its run's final status
       for (const json& r : out["runs"])
         if (pose["scene"] == id && r["scene"] == id && r["method"] == pose["method"] &&
-            r["integrator"] == pose["integrator"] && r["dt"] == 0.01)
+            r["integrator"] == pose["integrator"] && r["dt"] == scene["analysis"]["dt"])
           pose["status"] = r["status"];
   }
   out["verdicts"] = stability_verdicts(out["runs"]);
