@@ -383,19 +383,30 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   pcg.set_matrix(system.matrix);
   auto jacobi = make_jacobi_pcg_solver(1e-4, 100000);
   jacobi->set_matrix(system.matrix);
-  // The same cycle with the threaded Gauss-Seidel orderings.
-  struct Ordered {
-    const char* name;
+  // The same hierarchy with the threaded Gauss-Seidel orderings and the other cycles (issue 36).
+  struct Variant {
+    std::string name;
     std::unique_ptr<MultigridSolver> vcycles, pcg;
     std::vector<double> ms;
     SolveStats rho, mg;
   };
-  std::vector<Ordered> ordered;
+  std::vector<std::pair<std::string, MultigridParams>> variants;
   for (const SmootherOrdering ordering :
        {SmootherOrdering::Multicolour, SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
-    MultigridParams p = params, s = stationary;
-    p.smoother = s.smoother = ordering;
-    Ordered o{kSmootherOrderings.name(ordering),
+    MultigridParams p = params;
+    p.smoother = ordering;
+    variants.emplace_back(kSmootherOrderings.name(ordering), p);
+  }
+  MultigridParams w_cycle = params, v22 = params;
+  w_cycle.cycle = CycleShape::W;
+  v22.pre_smoothing = v22.post_smoothing = 2;
+  variants.emplace_back("w_cycle", w_cycle);
+  variants.emplace_back("v22", v22);
+  std::vector<Variant> ordered;
+  for (const auto& [name, p] : variants) {
+    MultigridParams s = p;
+    s.vcycles = stationary.vcycles;
+    Variant o{name,
               std::make_unique<MultigridSolver>(system.matrix, built, s, false),
               std::make_unique<MultigridSolver>(system.matrix, built, p, true),
               {},
@@ -414,7 +425,7 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
     mg_ms.push_back(time_ms([&] { mg = pcg.solve(system.rhs, x); }));
     x.setZero();
     jacobi_ms.push_back(time_ms([&] { jc = jacobi->solve(system.rhs, x); }));
-    for (Ordered& o : ordered) {
+    for (Variant& o : ordered) {
       x.setZero();
       o.rho = o.vcycles->solve(system.rhs, x);
       x.setZero();
@@ -428,10 +439,10 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   state.counters["mgpcg_ms"] = median(mg_ms);
   state.counters["jacobi_ms"] = median(jacobi_ms);
   state.counters["jacobi_over_mgpcg"] = median(jacobi_ms) / median(mg_ms);
-  for (const Ordered& o : ordered) {
-    state.counters[std::string("rho_") + o.name] = o.rho.convergence_factor;
-    state.counters[std::string("mgpcg_iterations_") + o.name] = o.mg.iterations;
-    state.counters[std::string("mgpcg_") + o.name + "_ms"] = median(o.ms);
+  for (const Variant& o : ordered) {
+    state.counters["rho_" + o.name] = o.rho.convergence_factor;
+    state.counters["mgpcg_iterations_" + o.name] = o.mg.iterations;
+    state.counters["mgpcg_" + o.name + "_ms"] = median(o.ms);
   }
   state.counters["levels"] = params.hierarchy.levels;
   state.counters["operator_complexity"] = d["operator_complexity"].get<double>();

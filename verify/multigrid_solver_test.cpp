@@ -117,9 +117,12 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
     const char* hierarchy;
     bool setup_reuse;
     int coarsest_max_vertices = 0;
+    CycleShape cycle = CycleShape::V;
   };
   std::vector<Solver> solvers = {{"multigrid", "meshes", false},
                                  {"mgpcg", "meshes", false},
+                                 {"multigrid", "meshes", false, 0, CycleShape::W},
+                                 {"mgpcg", "meshes", false, 0, CycleShape::W},
                                  {"multigrid", "lattice", false},
                                  {"mgpcg", "lattice", false},
                                  {"jacobi-pcg", "lattice", false},
@@ -133,14 +136,20 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
     solvers.push_back({"petsc-gamg", "lattice", true});
     solvers.push_back({"hypre-boomeramg", "lattice", true});
   }
-  for (const auto& [name, hierarchy, setup_reuse, coarsest_max] : solvers) {
+  for (const auto& [name, hierarchy, setup_reuse, coarsest_max, cycle] : solvers) {
     const std::string what =
         c.name + ": " + name +
         (std::string(name).find('-') == std::string::npos || std::string(name) == "jacobi-pcg"
              ? std::string(" on ") + hierarchy
              : "") +
         (setup_reuse ? " (setup reused)" : "") +
-        (coarsest_max > 0 ? " (coarsest <= " + std::to_string(coarsest_max) + " vertices)" : "");
+        (coarsest_max > 0 ? " (coarsest <= " + std::to_string(coarsest_max) + " vertices)" : "") +
+        (cycle == CycleShape::W ? " (W-cycle)" : "");
+    auto analysis_of = [&](double tolerance, bool reuse) {
+      AnalysisSpec a = analysis(name, tolerance, hierarchy, reuse, coarsest_max);
+      a.cycle = cycle;
+      return a;
+    };
     try {
       // Static linear: one solve of K u = f to relative residual 1e-10, which leaves a solution
       // error of ~cond(K) x 1e-10 / 1e4 << 1e-8 for these meshes.
@@ -148,8 +157,7 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       auto none = make_rotation_extractor(RotationMethod::None, p.mesh);
       auto direct = make_cholmod_solver();
       const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
-      auto mg =
-          make_linear_solver(analysis(name, 1e-10, hierarchy, false, coarsest_max), p, coarse);
+      auto mg = make_linear_solver(analysis_of(1e-10, false), p, coarse);
       if (c.lattice_vcycles_stall && std::string(name) == "multigrid" &&
           std::string(hierarchy) == "lattice") {
         // Says so instead of returning a solution that misses its tolerance.
@@ -172,8 +180,7 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
       o.rayleigh_alpha = 0.5;
       o.rayleigh_beta = 0.001;
       const SimulationResult dref = solve_dynamic(p, *polar_a, *direct, o);
-      auto mg_dyn = make_linear_solver(analysis(name, 1e-12, hierarchy, setup_reuse, coarsest_max),
-                                       p, coarse);
+      auto mg_dyn = make_linear_solver(analysis_of(1e-12, setup_reuse), p, coarse);
       const SimulationResult dgot = solve_dynamic(p, *polar_b, *mg_dyn, o);
       EXPECT_LT((dgot.displacement - dref.displacement).norm(), 1e-8 * dref.displacement.norm())
           << what << " dynamic";
@@ -357,12 +364,13 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     FeProblem p = problem_for(c);
     Eigen::VectorXd b;
     const BrcMatrix system = small_strain_system(p, b);
-    double rho[3];
-    for (int k = 0; k < 3; ++k) {
+    double rho[4];
+    for (int k = 0; k < 4; ++k) {
       AnalysisSpec a = analysis("multigrid", 1e-10, k == 1 ? "lattice" : "meshes");
       a.vcycles = 12;
       if (k == 2)
         a.smoother = SmootherOrdering::Multicolour;  // the other threaded ordering, against hybrid
+      if (k == 3) a.cycle = CycleShape::W;
       auto solver = make_linear_solver(a, p, coarse);
       solver->set_matrix(system);
       Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
@@ -370,7 +378,7 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
       std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, "
                 << kHierarchyKinds.name(a.hierarchy) << " hierarchy, "
                 << kSmootherOrderings.name(a.smoother) << " Gauss-Seidel, rho = " << rho[k]
-                << " over 12 V(1,1) cycles\n";
+                << " over 12 " << kCycleShapes.name(a.cycle) << "(1,1) cycles\n";
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius
     // of 0.51 (nu = 0) to 0.57 (nu = 0.3) even on nested meshes (TwoGridEqualsDenseOperator);
@@ -386,6 +394,10 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     // Multicolour ordering: a different smoother, measured 0.59 (cube), 0.62 (gmsh cube), 0.96
     // (bar) against hybrid's 0.54, 0.63, 0.87: at most 15% above it.
     EXPECT_LE(rho[2], 1.15 * rho[0]) << c.name;
+    // The W-cycle's coarse correction is the V-cycle's iterated towards the exact one: in the
+    // energy norm it contracts at least as well (measured 0.50 against 0.54 on the cube, 0.83
+    // against 0.87 on the bar, equal on two levels); this rate is of the residual, hence 0.01.
+    EXPECT_LE(rho[3], rho[0] + 0.01) << c.name;
   }
 }
 
@@ -426,9 +438,12 @@ TEST(MultigridSolver, OverlappedFactorizationIsTheInUpdateBits) {
     int iterations = 0;
     bool deferred = false;
   };
-  auto run = [&](int threads) {
+  auto run = [&](int threads, CycleShape cycle) {
     const ScopedThreadCount count(threads);
-    auto mg = make_multigrid_solver(analysis("mgpcg", 1e-10, "lattice"), p, {}, true);
+    AnalysisSpec a = analysis("mgpcg", 1e-10, "lattice");
+    a.cycle = cycle;  // W: the deferred descent's ascent repeats the coarse cycles
+    auto mg = make_multigrid_solver(a, p, {}, true);
+    EXPECT_EQ(mg->hierarchy().num_levels(), 3) << "a W-cycle differs from V from 3 levels on";
     Run r;
     mg->set_matrix(system);
     EXPECT_FALSE(mg->update_deferred()) << "the first update analyses: never deferred";
@@ -456,16 +471,19 @@ TEST(MultigridSolver, OverlappedFactorizationIsTheInUpdateBits) {
         NumericalFault);
     return r;
   };
-  const Run one = run(1);
-  EXPECT_FALSE(one.deferred);
-  EXPECT_GT(one.iterations, 2);
-  for (const int threads : {2, 3}) {
-    const Run many = run(threads);
-    EXPECT_TRUE(many.deferred) << threads;
-    EXPECT_EQ(many.iterations, one.iterations) << threads;
-    EXPECT_TRUE(many.x == one.x) << threads << " threads: other bits";
-    EXPECT_TRUE(many.restarted == one.x) << threads;
-    EXPECT_TRUE(many.cycled == one.cycled) << threads;
+  for (const CycleShape cycle : {CycleShape::V, CycleShape::W}) {
+    const char* shape = kCycleShapes.name(cycle);
+    const Run one = run(1, cycle);
+    EXPECT_FALSE(one.deferred);
+    EXPECT_GT(one.iterations, 2);
+    for (const int threads : {2, 3}) {
+      const Run many = run(threads, cycle);
+      EXPECT_TRUE(many.deferred) << threads;
+      EXPECT_EQ(many.iterations, one.iterations) << shape << ", " << threads;
+      EXPECT_TRUE(many.x == one.x) << shape << ", " << threads << " threads: other bits";
+      EXPECT_TRUE(many.restarted == one.x) << shape << ", " << threads;
+      EXPECT_TRUE(many.cycled == one.cycled) << shape << ", " << threads;
+    }
   }
   set_items_per_thread(2048);
 }

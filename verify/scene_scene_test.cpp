@@ -44,6 +44,23 @@ TEST(Scene, SmootherNamesAnOrderingOrChebyshev) {
   EXPECT_THROW(parse_scene(j, "/base", "s.json"), InputError);
 }
 
+TEST(Scene, CycleIsVOrW) {
+  auto j = minimal();
+  j["analysis"] = {{"solver", "mgpcg"}};
+  EXPECT_EQ(parse_scene(j, "/base", "s.json").analysis.cycle, CycleShape::V);
+  j["analysis"]["cycle"] = "W";
+  const Scene s = parse_scene(j, "/base", "s.json");
+  EXPECT_EQ(s.analysis.cycle, CycleShape::W);
+  EXPECT_EQ(multigrid_params(s.analysis).cycle, CycleShape::W);
+  j["analysis"]["cycle"] = "F";
+  try {
+    parse_scene(j, "/base", "s.json");
+    ADD_FAILURE() << "cycle F accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cycle"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Scene, RelativePathsResolveAgainstSceneFolder) {
   auto j = minimal();
   j["mesh"] = {{"file", "meshes/a.msh"}};

@@ -65,7 +65,7 @@ const char* kReportHelp =
 
 Runs the report's sections and writes into DIR (default out/report):
   tables.json          Tables 1 and 2 of the paper, measured (dynamic runs: energy-newton rotations,
-                       MG-PCG, stream update; naive update, polar + smoothing, CHOLMOD step,
+                       MG-PCG, gather update; naive update, polar + smoothing, CHOLMOD step,
                        small strain, Jacobi-PCG), the paper's rows, and the oracle checks
   speed_accuracy.json  time per step against error for solver settings, rotation methods and
                        resolutions, with the Pareto front and the cheapest setting meeting targets

@@ -53,7 +53,7 @@ nlohmann::json to_json(const MultigridParams& p) {
       {"galerkin", kGalerkinMethods.name(p.galerkin)},
       {"smoother", smoother_json(p)},
       {"cycle",
-       {{"kind", "V"},
+       {{"kind", kCycleShapes.name(p.cycle)},
         {"vcycles", p.vcycles},
         {"max_iterations", p.max_iterations},
         {"tolerance", p.tolerance},

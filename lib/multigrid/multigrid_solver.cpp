@@ -170,8 +170,15 @@ void MultigridSolver::cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x,
     return;
   }
   descend(h, b, x, zero_guess);
-  cycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1], true);
+  for (int k = 0; k < coarse_visits(h); ++k)
+    cycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1], k == 0);
   ascend(h, b, x);
+}
+
+int MultigridSolver::coarse_visits(int h) const {
+  // The W-cycle iterates level h + 1's cycle from its own last iterate; the coarsest level is
+  // solved exactly, so once is enough there.
+  return h + 1 == hierarchy_.num_levels() - 1 || params_.cycle == CycleShape::V ? 1 : 2;
 }
 
 void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x,
@@ -223,8 +230,12 @@ void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
 void MultigridSolver::finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const int last = hierarchy_.num_levels() - 1;
   cycle(last, coarse_b_[last], coarse_x_[last], true);
-  for (int h = last - 1; h >= 0; --h)
+  for (int h = last - 1; h >= 0; --h) {
+    // Level h + 1's first cycle is complete here; a W-cycle repeats it.
+    for (int k = 1; k < coarse_visits(h); ++k)
+      cycle(h + 1, coarse_b_[h + 1], coarse_x_[h + 1], false);
     ascend(h, h == 0 ? b : coarse_b_[h], h == 0 ? x : coarse_x_[h]);
+  }
 }
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

@@ -32,15 +32,23 @@ inline constexpr NameTable<SmootherChoice, 5> kSmootherChoices{{{
     {{SmootherKind::Chebyshev, SmootherOrdering::Hybrid}, "chebyshev"},
 }}};
 
+/// The cycle's shape: V visits each coarser level once per visit of the level above; W twice (the
+/// coarse correction iterated, for where it is the weak part; the coarsest level, solved exactly,
+/// once).
+enum class CycleShape { V, W };
+inline constexpr NameTable<CycleShape, 2> kCycleShapes{
+    {{{CycleShape::V, "V"}, {CycleShape::W, "W"}}}};
+
 /// The parameters of every component, written into every record of a multigrid solve
 /// (io/multigrid_record.hpp).
 struct MultigridParams {
   HierarchyParams hierarchy;  ///< builder and level count
   int pre_smoothing = 1;      ///< forward Gauss-Seidel sweeps before the coarse correction
   int post_smoothing = 1;     ///< backward sweeps after it
-  int vcycles = 0;            ///< multigrid: fixed count; 0 = iterate to the tolerance
-  int max_iterations = 500;   ///< cap on V-cycles / CG iterations
-  double tolerance = 1e-8;    ///< relative residual |b - A x| / |b|
+  CycleShape cycle = CycleShape::V;
+  int vcycles = 0;           ///< multigrid: fixed count; 0 = iterate to the tolerance
+  int max_iterations = 500;  ///< cap on V-cycles / CG iterations
+  double tolerance = 1e-8;   ///< relative residual |b - A x| / |b|
   GalerkinMethod galerkin = GalerkinMethod::Gather;
   /// The Gauss-Seidel sweeps' order: hybrid, the one that threads with the sequential locality.
   SmootherOrdering smoother = SmootherOrdering::Hybrid;
@@ -115,6 +123,8 @@ class MultigridSolver : public LinearSolver {
   void complete_update(const std::function<void()>& beside = {});
   void update_coarsest();
   void cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
+  /// How many cycles on level h + 1 make level h's coarse correction.
+  int coarse_visits(int h) const;
   /// Level h's part of a V-cycle before its coarse correction (pre-smoothing, the residual
   /// restricted into coarse_b_[h + 1]), and the part after it (the correction prolongated into
   /// x, post-smoothing).

@@ -32,6 +32,11 @@ std::vector<SceneSize> ReportConfig::table_sizes(const std::string& model) const
   return {SceneSize::S};
 }
 
+std::vector<SceneSize> ReportConfig::multigrid_only_sizes(const std::string& model) const {
+  if (mode != Mode::Full || with_models() || model != "quadruped") return {};
+  return {SceneSize::XL};
+}
+
 int ReportConfig::table_warmup() const {
   return mode == Mode::Smoke ? 1 : 5;
 }

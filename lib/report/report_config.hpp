@@ -26,6 +26,9 @@ struct ReportConfig {
   /// The table models (procedural, or the files' with --models) and the sizes of each.
   std::vector<std::string> models() const;  ///< quadruped first: the paper's rows
   std::vector<SceneSize> table_sizes(const std::string& model) const;
+  /// Sizes past the tables' at which only the multigrid quality rows run: the quadruped at 270k
+  /// in the full report, so its sizes show whether rho and iterations stay flat (issue 36).
+  std::vector<SceneSize> multigrid_only_sizes(const std::string& model) const;
   int table_warmup() const;
   int table_measured() const;  ///< steps in each median (at least 20 outside smoke)
   double default_tolerance() const { return 1e-4; }  ///< MG-PCG relative residual per step

@@ -19,16 +19,17 @@ int size_index(SceneSize size) {
   return static_cast<int>(size);
 }
 
-/// Bars: 2 x 0.5 x 0.5 m in Kuhn cells (4n, n, n): 1536, 11904, 32670, 65856 tets.
+/// Bars: 2 x 0.5 x 0.5 m in Kuhn cells (4n, n, n): 1536, 11904, 32670, 65856, 261360 tets.
 json bar_mesh(SceneSize size) {
-  static const int cells[4][3] = {{16, 4, 4}, {31, 8, 8}, {45, 11, 11}, {56, 14, 14}};
+  static const int cells[5][3] = {{16, 4, 4}, {31, 8, 8}, {45, 11, 11}, {56, 14, 14}, {90, 22, 22}};
   const int* c = cells[size_index(size)];
   return {{"box", {2.0, 0.5, 0.5}}, {"cells", {c[0], c[1], c[2]}}};
 }
 
-/// Quadruped mesh sizes for about 3.7k, 11.2k, 33.7k and 67.3k tets (calibrated with gmsh 4.11).
+/// Quadruped mesh sizes for about 3.7k, 11.2k, 33.7k, 67.3k and 270k tets (calibrated with gmsh
+/// 4.11).
 json quadruped_mesh(SceneSize size) {
-  static const double h[4] = {0.1, 0.0642, 0.0434, 0.0339};
+  static const double h[5] = {0.1, 0.0642, 0.0434, 0.0339, 0.021};
   return {{"shape", "quadruped"}, {"size", h[size_index(size)]}, {"reorder", true}};
 }
 
@@ -88,17 +89,17 @@ const json kHorseHead = box(-0.3, 0.35, 0.15, 0.3, 0.55, 0.45);
 }  // namespace
 
 std::string size_name(SceneSize size) {
-  static const char* names[] = {"small", "11k", "34k", "67k"};
+  static const char* names[] = {"small", "11k", "34k", "67k", "270k"};
   return names[size_index(size)];
 }
 
 std::string paper_model_of(SceneSize size) {
-  static const char* names[] = {"", "bunny", "horse", "dragon"};
+  static const char* names[] = {"", "bunny", "horse", "dragon", ""};
   return names[size_index(size)];
 }
 
 int paper_levels(SceneSize size) {
-  static const int levels[] = {2, 3, 4, 4};
+  static const int levels[] = {2, 3, 4, 4, 4};
   return levels[size_index(size)];
 }
 

@@ -10,9 +10,10 @@
 namespace corofem {
 
 /// Mesh resolution: `small` for tests, quick runs and the stability study; S, M, L are the paper's
-/// three sizes (about 11k, 34k and 67k tets; the paper's bunny, horse and dragon rows).
-enum class SceneSize { Small, S, M, L };
-std::string size_name(SceneSize size);       ///< "small", "11k", "34k", "67k"
+/// three sizes (about 11k, 34k and 67k tets; the paper's bunny, horse and dragon rows); XL, about
+/// 270k, only for the multigrid's size independence (issue 36).
+enum class SceneSize { Small, S, M, L, XL };
+std::string size_name(SceneSize size);       ///< "small", "11k", "34k", "67k", "270k"
 std::string paper_model_of(SceneSize size);  ///< the paper row of that size: bunny, horse, dragon
 int paper_levels(SceneSize size);            ///< the paper's level count: 3, 4, 4 (2 for small)
 

@@ -207,6 +207,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.smoother_kind = smoother.kind;
   a.smoother = smoother.ordering;
   a.chebyshev_degree = integer_in(f, "chebyshev_degree", a.chebyshev_degree, 1, 16);
+  a.cycle = one_of(f, "cycle", a.cycle, kCycleShapes);
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);

@@ -66,7 +66,8 @@ inline constexpr const char* kMultigridAnalysisKeys[] = {"levels",
                                                          "hierarchy",
                                                          "smoother",
                                                          "coarsest_max_vertices",
-                                                         "chebyshev_degree"};
+                                                         "chebyshev_degree",
+                                                         "cycle"};
 
 struct AnalysisSpec {
   AnalysisType type = AnalysisType::Static;
@@ -97,6 +98,7 @@ struct AnalysisSpec {
   /// `smoother: "chebyshev"` picks Chebyshev smoothing (its ordering then unused).
   SmootherKind smoother_kind = MultigridParams{}.smoother_kind;
   int chebyshev_degree = MultigridParams{}.chebyshev_degree;
+  CycleShape cycle = MultigridParams{}.cycle;  ///< V | W
   double dt = 0.01;
   int steps = 1;
   int load_steps = 1;

@@ -17,6 +17,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   p.smoother = a.smoother;
   p.smoother_kind = a.smoother_kind;
   p.chebyshev_degree = a.chebyshev_degree;
+  p.cycle = a.cycle;
   return p;
 }
 
