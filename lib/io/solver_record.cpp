@@ -27,6 +27,14 @@ nlohmann::json to_json(const HierarchyParams& p) {
 
 namespace {
 
+/// Parts by name, those that ran (a part that never ran, 0, is left out).
+nlohmann::json parts_json(std::initializer_list<std::pair<const char*, double>> parts) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [name, ms] : parts)
+    if (ms != 0) j[name] = ms;
+  return j;
+}
+
 nlohmann::json smoother_json(const MultigridParams& p) {
   if (p.smoother_kind == SmootherKind::Chebyshev)
     return {{"kind", "chebyshev"},
@@ -45,6 +53,23 @@ nlohmann::json smoother_json(const MultigridParams& p) {
 }
 
 }  // namespace
+
+nlohmann::json to_json(const MultigridSetupParts& p) {
+  return parts_json({{"transfers", p.transfers}, {"galerkin_streams", p.galerkin_streams}});
+}
+
+nlohmann::json to_json(const MultigridUpdateParts& p) {
+  return parts_json(
+      {{"galerkin", p.galerkin}, {"smoothers", p.smoothers}, {"coarsest", p.coarsest}});
+}
+
+nlohmann::json to_json(const MultigridSolveParts& p) {
+  return parts_json({{"fine_smooth", p.fine_smooth},
+                     {"fine_residual", p.fine_residual},
+                     {"fine_transfer", p.fine_transfer},
+                     {"coarse_levels", p.coarse_levels},
+                     {"coarsest", p.coarsest}});
+}
 
 nlohmann::json to_json(const MultigridParams& p) {
   return {
@@ -113,9 +138,9 @@ nlohmann::json describe(const MultigridSolver& solver) {
       {"hierarchy", kHierarchyKinds.name(params.hierarchy.kind)},
       {"levels", levels},
       {"operator_complexity", blocks / static_cast<double>(hierarchy.matrix(0).col_index.size())},
-      {"setup_ms", solver.setup_ms()},
-      {"update_parts_ms", solver.update_parts_ms()},
-      {"solve_parts_ms", solver.solve_parts_ms()},
+      {"setup_ms", to_json(solver.setup_ms())},
+      {"update_parts_ms", to_json(solver.update_parts_ms())},
+      {"solve_parts_ms", to_json(solver.solve_parts_ms())},
       {"solves", rho.size()},
       {"rho", median_or_null(rho)},
       {"iterations", median_or_null(iterations)},

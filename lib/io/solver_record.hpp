@@ -12,6 +12,10 @@ nlohmann::json to_json(const RotationParams& params);
 nlohmann::json to_json(const HierarchyParams& params);
 /// The hierarchy, transfer, Galerkin method, smoother and cycle.
 nlohmann::json to_json(const MultigridParams& params);
+/// A multigrid solver's time by part (ms), the parts that ran.
+nlohmann::json to_json(const MultigridSetupParts& parts);
+nlohmann::json to_json(const MultigridUpdateParts& parts);
+nlohmann::json to_json(const MultigridSolveParts& parts);
 /// Where a coarse level came from: `source`, and a mesh's size and fit or a lattice's cell.
 nlohmann::json to_json(const CoarseLevelOrigin& origin);
 

@@ -86,7 +86,7 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
     built.transfers.push_back(std::move(coarse.transfer));
     points = std::move(coarse.points);
   }
-  built.setup_ms["transfers"] =
+  built.transfers_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return built;
 }

@@ -3,7 +3,6 @@
 //  - meshes: coarser tet meshes of the same body, as in the paper (non-nested; mesh_level.hpp);
 //  - lattice: covering Kuhn lattices with the cell doubling per level (lattice_level.hpp).
 // The parameters are written into every record of a multigrid solve (io/multigrid_record.hpp).
-#include <map>
 #include <string>
 #include <vector>
 
@@ -53,9 +52,9 @@ struct CoarseLevelOrigin {
 };
 
 struct BuiltHierarchy {
-  std::vector<Transfer> transfers;         ///< level h to h + 1
-  std::vector<CoarseLevelOrigin> levels;   ///< per coarse level
-  std::map<std::string, double> setup_ms;  ///< what building it cost, by part
+  std::vector<Transfer> transfers;        ///< level h to h + 1
+  std::vector<CoarseLevelOrigin> levels;  ///< per coarse level
+  double transfers_ms = 0;                ///< what building the transfers cost
   /// Why it has fewer levels than asked for (empty when it has them all, or a lattice ran out of
   /// vertices to coarsen).
   std::string ended_early;

@@ -24,16 +24,14 @@ double wall_ms(const F& f) {
       .count();
 }
 
-/// Runs f and adds its wall time in ms to totals[part].
+/// Runs f and adds its wall time in ms to `total`.
 template <class F>
-void timed(std::map<std::string, double>& totals, const char* part, const F& f) {
-  totals[part] += wall_ms(f);
+void timed(double& total, const F& f) {
+  total += wall_ms(f);
 }
 
-std::map<std::string, double> means(const std::map<std::string, double>& totals, int count) {
-  std::map<std::string, double> mean;
-  for (const auto& [part, total] : totals) mean[part] = count > 0 ? total / count : 0.0;
-  return mean;
+double mean(double total, int count) {
+  return count > 0 ? total / count : 0.0;
 }
 
 }  // namespace
@@ -58,18 +56,22 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       coarse_x_(hierarchy_.num_levels()),
       level_origins_(std::move(built.levels)),
       ended_early_(std::move(built.ended_early)),
-      setup_ms_(std::move(built.setup_ms)) {
+      setup_ms_{built.transfers_ms} {
   // The method's streams now, in the set-up, not in the first step's update.
-  timed(setup_ms_, "galerkin_streams", [&] { hierarchy_.prepare(params_.galerkin); });
+  timed(setup_ms_.galerkin_streams, [&] { hierarchy_.prepare(params_.galerkin); });
 }
 
 MultigridSolver::~MultigridSolver() = default;
 
-std::map<std::string, double> MultigridSolver::update_parts_ms() const {
-  return means(update_ms_, updates_);
+MultigridUpdateParts MultigridSolver::update_parts_ms() const {
+  const MultigridUpdateParts& t = update_ms_;
+  return {mean(t.galerkin, updates_), mean(t.smoothers, updates_), mean(t.coarsest, updates_)};
 }
-std::map<std::string, double> MultigridSolver::solve_parts_ms() const {
-  return means(solve_ms_, solves_);
+MultigridSolveParts MultigridSolver::solve_parts_ms() const {
+  const MultigridSolveParts& t = solve_ms_;
+  return {mean(t.fine_smooth, solves_), mean(t.fine_residual, solves_),
+          mean(t.fine_transfer, solves_), mean(t.coarse_levels, solves_),
+          mean(t.coarsest, solves_)};
 }
 
 double MultigridSolver::coarsest_factor_nonzeros() const {
@@ -81,13 +83,13 @@ double MultigridSolver::coarsest_factorization_flops() const {
 
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
   ++updates_;
-  timed(update_ms_, "galerkin", [&] { hierarchy_.update(a, params_.galerkin); });
+  timed(update_ms_.galerkin, [&] { hierarchy_.update(a, params_.galerkin); });
   update_levels();
 }
 
 void MultigridSolver::take_matrix(BrcMatrix& a) {
   ++updates_;
-  timed(update_ms_, "galerkin", [&] { hierarchy_.take_update(a, params_.galerkin); });
+  timed(update_ms_.galerkin, [&] { hierarchy_.take_update(a, params_.galerkin); });
   update_levels();
 }
 
@@ -124,8 +126,8 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
                      });
                      if (beside) beside();
                    });
-  update_ms_["smoothers"] += smoothers_ms;
-  update_ms_["coarsest"] += coarsest_ms;
+  update_ms_.smoothers += smoothers_ms;
+  update_ms_.coarsest += coarsest_ms;
 }
 
 void MultigridSolver::update_coarsest() {
@@ -166,7 +168,7 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
 
 void MultigridSolver::cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
   if (h == hierarchy_.num_levels() - 1) {
-    timed(solve_ms_, "coarsest", [&] { x = coarsest_->cholmod.solve(b); });
+    timed(solve_ms_.coarsest, [&] { x = coarsest_->cholmod.solve(b); });
     return;
   }
   descend(h, b, x, zero_guess);
@@ -188,7 +190,7 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
   // A single sweep from zero forms its residual as it goes (the blocks it reads, transposed, are
   // the rest of the rows above): that residual counts in the smoothing.
   const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1 && chebyshev_.empty();
-  timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
+  timed(fine ? solve_ms_.fine_smooth : solve_ms_.coarse_levels, [&] {
     if (!chebyshev_.empty()) {
       for (int s = 0; s < params_.pre_smoothing; ++s)
         chebyshev_[h].smooth(a, b, x, zero_guess && s == 0);
@@ -207,17 +209,17 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
     for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
   });
   if (!from_zero_sweep)
-    timed(solve_ms_, fine ? "fine_residual" : "coarse_levels",
+    timed(fine ? solve_ms_.fine_residual : solve_ms_.coarse_levels,
           [&] { a.residual(b, x, residual_[h]); });
-  timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
+  timed(fine ? solve_ms_.fine_transfer : solve_ms_.coarse_levels,
         [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
 }
 
 void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const bool fine = h == 0;
-  timed(solve_ms_, fine ? "fine_transfer" : "coarse_levels",
+  timed(fine ? solve_ms_.fine_transfer : solve_ms_.coarse_levels,
         [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
-  timed(solve_ms_, fine ? "fine_smooth" : "coarse_levels", [&] {
+  timed(fine ? solve_ms_.fine_smooth : solve_ms_.coarse_levels, [&] {
     for (int s = 0; s < params_.post_smoothing; ++s) {
       if (chebyshev_.empty())
         smoothers_[h].backward(hierarchy_.matrix(h), b, x);

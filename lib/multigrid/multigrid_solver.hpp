@@ -3,7 +3,6 @@
 // 2005): V-cycles with block Gauss-Seidel smoothing and CHOLMOD on the coarsest level, as a
 // solver ("multigrid") or as the preconditioner of CG ("mgpcg").
 #include <functional>
-#include <map>
 
 #include "linalg/chebyshev_smoother.hpp"
 #include "linalg/gauss_seidel.hpp"
@@ -60,6 +59,25 @@ struct MultigridParams {
   bool overlap_factorization = true;
 };
 
+/// Where a multigrid solver's time goes, in ms, by part (totals while it runs; the accessors give
+/// means per update or solve). A part that never ran stays 0 (records leave it out).
+struct MultigridSetupParts {
+  double transfers = 0;         ///< the hierarchy's transfers (hierarchy_builder.hpp)
+  double galerkin_streams = 0;  ///< the Galerkin method's precomputed streams
+};
+struct MultigridUpdateParts {
+  double galerkin = 0;   ///< every coarse E = R A R^T
+  double smoothers = 0;  ///< the smoothers' set-up (inverse diagonal blocks)
+  double coarsest = 0;   ///< CHOLMOD's numeric factorization and its input
+};
+/// A V-cycle's parts: the finest level's smoothing, residual (absent where a pre-smoothing of
+/// one sweep from zero forms it in passing: it then counts in fine_smooth) and transfers
+/// (restriction and prolongation); all of these on the levels between; the coarsest level's
+/// triangular solves. The rest of a solve is the outer iteration (CG's product and updates).
+struct MultigridSolveParts {
+  double fine_smooth = 0, fine_residual = 0, fine_transfer = 0, coarse_levels = 0, coarsest = 0;
+};
+
 class MultigridSolver : public LinearSolver {
  public:
   /// `built`: the transfers from hierarchy_builder.hpp (fixed fine vertices, whose rows are
@@ -90,15 +108,10 @@ class MultigridSolver : public LinearSolver {
   /// analysis; 0 before the first set_matrix).
   double coarsest_factor_nonzeros() const;
   double coarsest_factorization_flops() const;
-  /// Mean ms per set_matrix of its parts: "galerkin" (every coarse E = R A R^T), "smoothers"
-  /// (inverse diagonal blocks), "coarsest" (CHOLMOD's numeric factorization and its input).
-  std::map<std::string, double> update_parts_ms() const;
-  /// Mean ms per solve of the V-cycles' parts: "fine_smooth", "fine_residual", "fine_transfer"
-  /// (restriction and prolongation of the finest level), "coarse_levels" (all of these on the
-  /// levels between), "coarsest" (CHOLMOD's triangular solves). The rest of a solve is the outer
-  /// iteration (CG's product and vector updates). A pre-smoothing of one sweep from zero forms
-  /// its residual in passing: that residual then counts in fine_smooth (no "fine_residual").
-  std::map<std::string, double> solve_parts_ms() const;
+  /// Mean ms per set_matrix of its parts.
+  MultigridUpdateParts update_parts_ms() const;
+  /// Mean ms per solve of the V-cycles' parts.
+  MultigridSolveParts solve_parts_ms() const;
   /// How many coarsest-level factorizations needed the semidefinite shift (see set_matrix).
   int coarsest_shifts() const { return coarsest_shifts_; }
   /// Updates whose coarsest factorization ran in the next solve (run_overlapped_pcg).
@@ -108,7 +121,7 @@ class MultigridSolver : public LinearSolver {
   /// Why the hierarchy has fewer levels than its params ask for (BuiltHierarchy::ended_early).
   const std::string& ended_early() const { return ended_early_; }
   /// What the set-up cost, by part: the builder's and the Galerkin streams'.
-  const std::map<std::string, double>& setup_ms() const { return setup_ms_; }
+  const MultigridSetupParts& setup_ms() const { return setup_ms_; }
   /// Every solve's statistics, in order.
   const std::vector<SolveStats>& solve_log() const { return solve_log_; }
 
@@ -145,10 +158,10 @@ class MultigridSolver : public LinearSolver {
   int coarsest_shifts_ = 0;
   std::vector<CoarseLevelOrigin> level_origins_;
   std::string ended_early_;
-  std::map<std::string, double> setup_ms_;
-  std::map<std::string, double> update_ms_;  ///< totals over the updates
+  MultigridSetupParts setup_ms_;
+  MultigridUpdateParts update_ms_;  ///< totals over the updates
   int updates_ = 0;
-  std::map<std::string, double> solve_ms_;  ///< totals over the solves
+  MultigridSolveParts solve_ms_;  ///< totals over the solves
   int solves_ = 0;
   std::vector<SolveStats> solve_log_;
 };
