@@ -9,6 +9,7 @@
 #include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "multigrid/multigrid_solver.hpp"
+#include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 
@@ -163,10 +164,11 @@ json table1_row(ModelTables& m, int threads) {
           single_run = timed_run(m.scene, m.id, options);
         }
         m.say("naive Galerkin update");
-        const TimedRun naive = timed_run(with_analysis(m.scene, {{"galerkin", "naive"}}), m.id, {});
+        const TimedRun naive =
+            timed_run(with_analysis(m.scene, {.galerkin = GalerkinMethod::Naive}), m.id, {});
         m.say("CHOLMOD step");
         const TimedRun cholmod =
-            timed_run(with_analysis(m.scene, {{"solver", "cholmod"}}), m.id, {});
+            timed_run(with_analysis(m.scene, {.solver = SolverKind::Cholmod}), m.id, {});
         const TimedRun& main = m.main;
         return json{
             {"tets", main.tets},
@@ -225,7 +227,7 @@ json table2_row(const ModelTables& m) {
   m.say("polar + smoothing");
   return record_case({{"model", m.id}, {"paper_model", m.paper_model}}, [&] {
     const TimedRun polar =
-        timed_run(with_analysis(m.scene, {{"rotation", "polar-smoothed"}}), m.id, {});
+        timed_run(with_analysis(m.scene, {.rotation = RotationMethod::PolarSmoothed}), m.id, {});
     return json{{"tets", polar.tets},
                 {"tps", tps_of(polar, m.warmup)},
                 {"rotate_ms", polar.median_ms("rotate", m.warmup)},
@@ -238,7 +240,7 @@ json small_strain_row(const ModelTables& m) {
   m.say("small strain");
   return record_case({{"model", m.id}}, [&] {
     const TimedRun linear =
-        timed_run(with_analysis(m.scene, {{"formulation", "linear"}}), m.id, {});
+        timed_run(with_analysis(m.scene, {.formulation = Formulation::Linear}), m.id, {});
     if (!m.main_completed) throw NumericalFault("the corotated run of this model failed");
     return json{{"tps", tps_of(linear, m.warmup)},
                 {"corotated_tps", tps_of(m.main, m.warmup)},
@@ -261,18 +263,18 @@ json bare_surface(json scene) {
 
 /// Multigrid quality: the paper's re-meshed hierarchy (its levels as given, or `bare`: derived
 /// from the fine surface alone) or the covering lattice.
-json multigrid_row(const ModelTables& m, const char* hierarchy, bool bare = false) {
-  m.say(std::string("multigrid quality: ") + hierarchy + (bare ? ", bare surface" : ""));
+json multigrid_row(const ModelTables& m, HierarchyKind hierarchy, bool bare = false) {
+  const std::string name = kHierarchyKinds.name(hierarchy);
+  m.say("multigrid quality: " + name + (bare ? ", bare surface" : ""));
   return record_case({{"model", m.id}}, [&] {
-    const json on =
-        with_analysis(bare ? bare_surface(m.scene) : m.scene, {{"hierarchy", hierarchy}});
-    const std::string kind =
+    const json on = with_analysis(bare ? bare_surface(m.scene) : m.scene, {.hierarchy = hierarchy});
+    const std::string main_hierarchy =
         m.main.multigrid.is_null() ? "" : m.main.multigrid.value("hierarchy", "");
-    const TimedRun pcg = kind == hierarchy && !bare ? m.main : timed_run(on, m.id, {});
+    const TimedRun pcg = main_hierarchy == name && !bare ? m.main : timed_run(on, m.id, {});
     const TimedRun vcycle =
-        timed_run(with_analysis(on, {{"solver", "multigrid"}, {"vcycles", 0}}), m.id, {});
+        timed_run(with_analysis(on, {.solver = SolverKind::Multigrid, .vcycles = 0}), m.id, {});
     json row = multigrid_quality_row(pcg, vcycle, m.warmup);
-    if (std::string(hierarchy) == "meshes")
+    if (hierarchy == HierarchyKind::Meshes)
       row["coarse_meshes"] = bare                        ? "derived from the bare surface"
                              : has_given_levels(m.scene) ? "given"
                                                          : "derived";
@@ -316,7 +318,8 @@ json jacobi_row(const ModelTables& m, double young_scale) {
   m.say("Jacobi-PCG" + std::string(young_scale > 1 ? ", 100x stiffer" : ""));
   return record_case({{"model", m.id}, {"young_scale", young_scale}}, [&] {
     const json stiffer = with_young_scaled(m.scene, young_scale);
-    const TimedRun jacobi = timed_run(with_analysis(stiffer, {{"solver", "jacobi-pcg"}}), m.id, {});
+    const TimedRun jacobi =
+        timed_run(with_analysis(stiffer, {.solver = SolverKind::JacobiPcg}), m.id, {});
     const TimedRun mgpcg = young_scale == 1.0 ? m.main : timed_run(stiffer, m.id, {});
     const bool ran = !mgpcg.step_ms.empty();
     json row = {
@@ -337,11 +340,12 @@ json jacobi_row(const ModelTables& m, double young_scale) {
 /// An algebraic multigrid users would pick instead, to the same tolerance, its setup timed as the
 /// update phase (a new matrix every step), as ours is; or with its setup reused across steps
 /// (GAMG's interpolation, BoomerAMG's whole hierarchy).
-json rival_row(const ModelTables& m, const std::string& rival, bool reuse) {
-  m.say(rival + (reuse ? " (setup reuse)" : ""));
-  return record_case({{"model", m.id}, {"solver", rival}, {"setup_reuse", reuse}}, [&] {
+json rival_row(const ModelTables& m, SolverKind rival, bool reuse) {
+  const std::string name = kSolverKinds.name(rival);
+  m.say(name + (reuse ? " (setup reuse)" : ""));
+  return record_case({{"model", m.id}, {"solver", name}, {"setup_reuse", reuse}}, [&] {
     const TimedRun run =
-        timed_run(with_analysis(m.scene, {{"solver", rival}, {"setup_reuse", reuse}}), m.id, {});
+        timed_run(with_analysis(m.scene, {.solver = rival, .setup_reuse = reuse}), m.id, {});
     const bool ran = !m.main.step_ms.empty();
     const double mgpcg_step = ran ? m.main_median_ms("step") : 0.0;
     return json{
@@ -419,22 +423,23 @@ json run_paper_tables(const ReportConfig& config) {
       if (m.main_completed) tables["verification"].push_back(verification_row(m));
       tables["table2"].push_back(table2_row(m));
       tables["small_strain"].push_back(small_strain_row(m));
-      for (const char* hierarchy : {"meshes", "lattice"})
+      for (const HierarchyKind hierarchy : {HierarchyKind::Meshes, HierarchyKind::Lattice})
         tables["multigrid"].push_back(multigrid_row(m, hierarchy));
       if (has_given_levels(m.scene))
-        tables["multigrid"].push_back(multigrid_row(m, "meshes", true));
+        tables["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes, true));
       for (const double young_scale : {1.0, 100.0})
         tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
       for (const auto& [rival, reuse] :
-           std::vector<std::pair<std::string, bool>>{{"petsc-gamg", false},
-                                                     {"hypre-boomeramg", false},
-                                                     {"petsc-mg", false},
-                                                     {"petsc-gamg", true},
-                                                     {"hypre-boomeramg", true}})
+           std::vector<std::pair<SolverKind, bool>>{{SolverKind::PetscGamg, false},
+                                                    {SolverKind::HypreBoomeramg, false},
+                                                    {SolverKind::PetscMg, false},
+                                                    {SolverKind::PetscGamg, true},
+                                                    {SolverKind::HypreBoomeramg, true}})
         tables["rival_solvers"].push_back(rival_row(m, rival, reuse));
     }
     for (SceneSize size : config.multigrid_only_sizes(model))
-      tables["multigrid"].push_back(multigrid_row(model_tables(model, size), "meshes"));
+      tables["multigrid"].push_back(
+          multigrid_row(model_tables(model, size), HierarchyKind::Meshes));
   }
   tables["size_independence"] = size_independence(tables["multigrid"], "quadruped");
   return tables;

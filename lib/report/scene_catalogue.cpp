@@ -162,14 +162,6 @@ json table_scene(const std::string& model, SceneSize size, int steps, double tol
   return s;
 }
 
-json with_analysis(json scene, const json& changes) {
-  for (auto& [key, value] : changes.items()) scene["analysis"][key] = value;
-  const auto solver = kSolverKinds.find(scene["analysis"].value("solver", "cholmod"));
-  if (!solver || !is_multigrid_solver(*solver))
-    for (const char* key : kMultigridAnalysisKeys) scene["analysis"].erase(key);
-  return scene;
-}
-
 json with_young_scaled(json scene, double scale) {
   json& material = scene["material"];
   material["young"] = material["young"].get<double>() * scale;

@@ -33,9 +33,6 @@ SceneSize file_model_size(const std::string& model);
 nlohmann::json table_scene(const std::string& model, SceneSize size, int steps, double tolerance,
                            const std::filesystem::path& models_dir = {});
 
-/// `scene` with analysis keys replaced by `changes` (the multigrid keys dropped for other solvers).
-nlohmann::json with_analysis(nlohmann::json scene, const nlohmann::json& changes);
-
 /// `scene` with every Young's modulus (the material's and its regions') times `scale`.
 nlohmann::json with_young_scaled(nlohmann::json scene, double scale);
 

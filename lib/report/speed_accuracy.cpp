@@ -3,6 +3,7 @@
 #include <limits>
 #include <ostream>
 
+#include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
 #include "report/timed_run.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -20,35 +21,29 @@ double relative_error(const Eigen::VectorXd& u, const Eigen::VectorXd& reference
 
 /// Settings of the solver sweep (all with energy-newton rotations; multigrid on the scene's
 /// re-meshed hierarchy unless the setting says "hierarchy": "lattice").
-std::vector<json> solver_settings(const ReportConfig& config, int levels) {
-  std::vector<json> settings;
+std::vector<AnalysisVariant> solver_settings(const ReportConfig& config, int levels) {
+  using enum SolverKind;
+  constexpr HierarchyKind lattice = HierarchyKind::Lattice;
+  std::vector<AnalysisVariant> settings;
   for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8})
-    settings.push_back({{"solver", "mgpcg"}, {"tolerance", tolerance}});
-  for (int vcycles : {1, 2, 4}) settings.push_back({{"solver", "multigrid"}, {"vcycles", vcycles}});
+    settings.push_back({.solver = Mgpcg, .tolerance = tolerance});
+  for (int vcycles : {1, 2, 4}) settings.push_back({.solver = Multigrid, .vcycles = vcycles});
   for (int smoothing : {2, 3})
-    settings.push_back({{"solver", "multigrid"}, {"vcycles", 1}, {"smoothing", smoothing}});
+    settings.push_back({.solver = Multigrid, .vcycles = 1, .smoothing = smoothing});
   for (int l = 2; l <= levels + 1; ++l)
-    if (l != levels) settings.push_back({{"solver", "mgpcg"}, {"tolerance", 1e-4}, {"levels", l}});
+    if (l != levels) settings.push_back({.solver = Mgpcg, .tolerance = 1e-4, .levels = l});
   // The same solvers on the covering lattice hierarchy (the others run on re-meshed levels).
   for (double tolerance : {1e-2, 1e-4, 1e-6})
-    settings.push_back({{"solver", "mgpcg"}, {"tolerance", tolerance}, {"hierarchy", "lattice"}});
+    settings.push_back({.solver = Mgpcg, .hierarchy = lattice, .tolerance = tolerance});
   for (int vcycles : {1, 2})
-    settings.push_back({{"solver", "multigrid"}, {"vcycles", vcycles}, {"hierarchy", "lattice"}});
-  settings.push_back({{"solver", "jacobi-pcg"}, {"tolerance", 1e-4}});
+    settings.push_back({.solver = Multigrid, .hierarchy = lattice, .vcycles = vcycles});
+  settings.push_back({.solver = JacobiPcg, .tolerance = 1e-4});
   if (have_petsc())  // the algebraic multigrid users would pick instead
-    for (const char* rival : {"petsc-gamg", "hypre-boomeramg", "petsc-mg"})
+    for (const SolverKind rival : {PetscGamg, HypreBoomeramg, PetscMg})
       for (double tolerance : {1e-4, 1e-6})
-        settings.push_back({{"solver", rival}, {"tolerance", tolerance}});
+        settings.push_back({.solver = rival, .tolerance = tolerance});
   if (config.mode == ReportConfig::Mode::Smoke) settings.resize(3);
   return settings;
-}
-
-std::string label_of(const json& setting) {
-  std::string label;
-  for (auto& [key, value] : setting.items())
-    label += (label.empty() ? "" : " ") + key + "=" +
-             (value.is_string() ? value.get<std::string>() : value.dump());
-  return label;
 }
 
 /// Cheapest completed point with error <= tolerance (excluding the reference itself).
@@ -107,13 +102,14 @@ struct SceneSweeps {
       *config.progress << "report: speed-accuracy: " << id << ": " << what << std::endl;
   }
 
-  /// Runs `scene_json` and adds its point, its error given by `error`.
-  void point(const std::string& sweep, const json& setting, const json& scene_json,
+  /// Runs the scene's `variant` and adds its point, its error given by `error`.
+  void point(const std::string& sweep, const AnalysisVariant& variant,
              const std::function<double(const TimedRun&)>& error, bool is_reference = false) {
-    say(sweep + ": " + label_of(setting));
+    const std::string label = label_of(variant);
+    say(sweep + ": " + label);
     entry["points"].push_back(
-        record_case({{"sweep", sweep}, {"setting", setting}, {"label", label_of(setting)}}, [&] {
-          const TimedRun run = timed_run(scene_json, id, {});
+        record_case({{"sweep", sweep}, {"setting", to_json(variant)}, {"label", label}}, [&] {
+          const TimedRun run = timed_run(with_analysis(scene, variant), id, {});
           return json{{"time_per_step_ms", run.median_ms("step", warmup)},
                       {"rel_error", finite_or_null(error(run))},
                       {"tets", run.tets},
@@ -189,12 +185,11 @@ json scene_sweeps(const ReportConfig& config, const std::string& model,
   Eigen::VectorXd u_ref, u_exact;
   s.say("references (CHOLMOD)");
   const json refs = record_case({}, [&] {
-    u_ref =
-        timed_run(with_analysis(s.scene, {{"solver", "cholmod"}}), s.id, {}).result.displacement;
-    u_exact =
-        timed_run(with_analysis(s.scene, {{"solver", "cholmod"}, {"rotation", "energy-exact"}}),
-                  s.id, {})
-            .result.displacement;
+    const AnalysisVariant cholmod{.solver = SolverKind::Cholmod};
+    u_ref = timed_run(with_analysis(s.scene, cholmod), s.id, {}).result.displacement;
+    AnalysisVariant exact = cholmod;
+    exact.rotation = RotationMethod::EnergyExact;
+    u_exact = timed_run(with_analysis(s.scene, exact), s.id, {}).result.displacement;
     return json::object();
   });
   if (!refs["completed"]) {
@@ -208,17 +203,15 @@ json scene_sweeps(const ReportConfig& config, const std::string& model,
     };
   };
   const int levels = s.scene["analysis"]["levels"];
-  for (const json& setting : solver_settings(config, levels))
-    s.point("solver", setting, with_analysis(s.scene, setting), against(u_ref));
-  s.point("solver", {{"solver", "cholmod"}}, with_analysis(s.scene, {{"solver", "cholmod"}}),
-          against(u_ref), true);
+  for (const AnalysisVariant& setting : solver_settings(config, levels))
+    s.point("solver", setting, against(u_ref));
+  s.point("solver", {.solver = SolverKind::Cholmod}, against(u_ref), true);
   for (const auto& [method, name] : kRotationMethods.entries) {
     if (method == RotationMethod::None) continue;
     if (config.mode == ReportConfig::Mode::Smoke && method != RotationMethod::EnergyNewton &&
         method != RotationMethod::Polar)
       continue;
-    s.point("rotation", {{"rotation", name}}, with_analysis(s.scene, {{"rotation", name}}),
-            against(u_exact));
+    s.point("rotation", {.rotation = method}, against(u_exact));
   }
   s.resolution_sweep();
   s.mark_fronts(targets);

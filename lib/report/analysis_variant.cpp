@@ -1,0 +1,39 @@
+#include "report/analysis_variant.hpp"
+
+#include "scene/scene.hpp"
+
+namespace corofem {
+
+nlohmann::json to_json(const AnalysisVariant& v) {
+  nlohmann::json j = nlohmann::json::object();
+  if (v.solver) j["solver"] = kSolverKinds.name(*v.solver);
+  if (v.rotation) j["rotation"] = kRotationMethods.name(*v.rotation);
+  if (v.formulation) j["formulation"] = kFormulations.name(*v.formulation);
+  if (v.galerkin) j["galerkin"] = kGalerkinMethods.name(*v.galerkin);
+  if (v.hierarchy) j["hierarchy"] = kHierarchyKinds.name(*v.hierarchy);
+  if (v.tolerance) j["tolerance"] = *v.tolerance;
+  if (v.levels) j["levels"] = *v.levels;
+  if (v.vcycles) j["vcycles"] = *v.vcycles;
+  if (v.smoothing) j["smoothing"] = *v.smoothing;
+  if (v.setup_reuse) j["setup_reuse"] = *v.setup_reuse;
+  return j;
+}
+
+std::string label_of(const AnalysisVariant& variant) {
+  std::string label;
+  const nlohmann::json set = to_json(variant);  // held: items() refers into it
+  for (auto& [key, value] : set.items())
+    label += (label.empty() ? "" : " ") + key + "=" +
+             (value.is_string() ? value.get<std::string>() : value.dump());
+  return label;
+}
+
+nlohmann::json with_analysis(nlohmann::json scene, const AnalysisVariant& variant) {
+  const nlohmann::json set = to_json(variant);  // held: items() refers into it
+  for (auto& [key, value] : set.items()) scene["analysis"][key] = value;
+  if (variant.solver && !is_multigrid_solver(*variant.solver))
+    for (const char* key : kMultigridAnalysisKeys) scene["analysis"].erase(key);
+  return scene;
+}
+
+}  // namespace corofem

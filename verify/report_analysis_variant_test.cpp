@@ -1,0 +1,58 @@
+// The report's typed scene variants (report/analysis_variant.hpp): what they write is what the
+// scene parser reads back, and a change to a solver that is not multigrid drops the multigrid
+// keys, which that solver would warn about.
+#include <gtest/gtest.h>
+
+#include "report/analysis_variant.hpp"
+#include "scene/scene.hpp"
+
+namespace corofem {
+namespace {
+
+nlohmann::json mgpcg_scene() {
+  return {{"mesh", {{"box", {1, 0.5, 0.5}}, {"cells", {4, 2, 2}}}},
+          {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+          {"fixed", {{{"box", {{0, 0, 0}, {1e-6, 0.5, 0.5}}}}}},
+          {"analysis",
+           {{"type", "dynamic"},
+            {"solver", "mgpcg"},
+            {"levels", 2},
+            {"smoothing", 2},
+            {"tolerance", 1e-4}}}};
+}
+
+TEST(AnalysisVariant, WritesWhatTheSceneParserReadsBack) {
+  const AnalysisVariant variant{.solver = SolverKind::Multigrid,
+                                .rotation = RotationMethod::PolarSmoothed,
+                                .galerkin = GalerkinMethod::Naive,
+                                .hierarchy = HierarchyKind::Lattice,
+                                .tolerance = 1e-6,
+                                .vcycles = 3};
+  const Scene s = parse_scene(with_analysis(mgpcg_scene(), variant), "/base", "variant.json");
+  EXPECT_EQ(s.analysis.solver, SolverKind::Multigrid);
+  EXPECT_EQ(s.analysis.rotation, RotationMethod::PolarSmoothed);
+  EXPECT_EQ(s.analysis.galerkin, GalerkinMethod::Naive);
+  EXPECT_EQ(s.analysis.hierarchy, HierarchyKind::Lattice);
+  EXPECT_EQ(s.analysis.tolerance, 1e-6);
+  EXPECT_EQ(s.analysis.vcycles, 3);
+  EXPECT_EQ(s.analysis.levels, 2);     // the scene's, untouched
+  EXPECT_EQ(s.analysis.smoothing, 2);  // likewise
+  // The label names the set fields in key order, as the speed-accuracy points show them.
+  EXPECT_EQ(label_of(variant),
+            "galerkin=naive hierarchy=lattice rotation=polar-smoothed solver=multigrid "
+            "tolerance=1e-06 vcycles=3");
+}
+
+TEST(AnalysisVariant, AnotherSolverDropsTheMultigridKeys) {
+  const nlohmann::json cholmod = with_analysis(mgpcg_scene(), {.solver = SolverKind::Cholmod});
+  for (const char* key : kMultigridAnalysisKeys)
+    EXPECT_FALSE(cholmod["analysis"].contains(key)) << key;
+  EXPECT_EQ(cholmod["analysis"]["tolerance"], 1e-4);
+  // A change that leaves the solver keeps them.
+  const nlohmann::json polar = with_analysis(mgpcg_scene(), {.rotation = RotationMethod::Polar});
+  EXPECT_EQ(polar["analysis"]["levels"], 2);
+  EXPECT_EQ(polar["analysis"]["solver"], "mgpcg");
+}
+
+}  // namespace
+}  // namespace corofem
