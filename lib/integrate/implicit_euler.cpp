@@ -32,6 +32,28 @@ struct NewtonStepper {
   BrcMatrix jacobian;
 };
 
+/// Newton's start: the linearly implicit step's v' (the paper's; rotation-aware through
+/// Ktilde_n), solved with the same factorizations. From v itself, a prescribed turn of the
+/// supports (bar-twist: 75 degrees in the smoke run's first step) sends Newton off to residuals
+/// of 1e300.
+Eigen::VectorXd predictor(FeProblem& problem, NewtonStepper& newton, const DynamicOptions& options,
+                          const DirichletConditions& bc, const Eigen::VectorXd& momentum,
+                          const Eigen::VectorXd& internal_start, PhaseClock& clock) {
+  const double dt = options.dt;
+  const double mass_factor = 1 + dt * options.rayleigh_alpha, damping = dt * options.rayleigh_beta;
+  Eigen::VectorXd b;
+  clock.time("forces", [&] { b = momentum + dt * (problem.external_force - internal_start); });
+  clock.time("system", [&] {
+    const std::vector<double>& k = problem.stiffness.values;
+    for (std::size_t i = 0; i < k.size(); ++i)
+      newton.jacobian.values[i] = (damping + dt * dt) * k[i];
+    add_lumped_mass(problem, mass_factor, newton.jacobian);
+    apply_dirichlet(bc, newton.jacobian, b);
+  });
+  // M + (dt^2 + dt beta) Ktilde_n: symmetric positive definite.
+  return clock.time("solve", [&] { return newton.lu.solve(newton.jacobian, b, true); });
+}
+
 /// One fully implicit Euler step: v' from g(v') = 0 (see the header), starting from the
 /// linearly implicit step's v'. `internal_start` is the elastic force at the step's start. Where
 /// the force has a potential, g is the gradient of the incremental potential
@@ -84,23 +106,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
       add_lumped_mass(problem, mass_factor, j);
     });
   };
-  // Start from the linearly implicit step (the paper's; rotation-aware through Ktilde_n), solved
-  // with the same LU: from v itself, a prescribed turn of the supports (bar-twist: 75 degrees in
-  // the smoke run's first step) sends Newton off to residuals of 1e300.
-  Eigen::VectorXd v1;
-  {
-    Eigen::VectorXd b;
-    clock.time("forces", [&] { b = momentum + dt * (problem.external_force - internal_start); });
-    clock.time("system", [&] {
-      const std::vector<double>& k = problem.stiffness.values;
-      for (std::size_t i = 0; i < k.size(); ++i)
-        newton.jacobian.values[i] = (damping + dt * dt) * k[i];
-      add_lumped_mass(problem, mass_factor, newton.jacobian);
-      apply_dirichlet(bc, newton.jacobian, b);
-    });
-    // M + (dt^2 + dt beta) Ktilde_n: symmetric positive definite.
-    v1 = clock.time("solve", [&] { return newton.lu.solve(newton.jacobian, b, true); });
-  }
+  Eigen::VectorXd v1 = predictor(problem, newton, options, bc, momentum, internal_start, clock);
   // |g| is measured against the size of its terms: the momenta before and after (the predictor's;
   // a step driven only by moving supports has nothing else) and the forces at the step's start.
   const double scale = std::max(
