@@ -10,12 +10,14 @@
 #include "cantilever_fixture.hpp"
 #include "core/errors.hpp"
 #include "fem/corotated_assembly.hpp"
+#include "fem/dirichlet.hpp"
 #include "fem/rotation_tangent.hpp"
 #include "integrate/implicit_euler.hpp"
 #include "integrate/newton_iteration.hpp"
 #include "integrate/static_solver.hpp"
 #include "linalg/linear_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
+#include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
 namespace {
@@ -141,6 +143,51 @@ TEST(NewtonEuler, EveryMethodAndIntegratorDampsTheFreeVibrationAlike) {
     EXPECT_LE(t.largest_rise, 1e-7);
     EXPECT_NEAR(t.final_ratio, reference.final_ratio, 0.03);
   }
+}
+
+TEST(SparseLuSolve, EveryPathEqualsTheDenseSolution) {
+  // A step's Newton matrix M + dt^2 K_t with the energy rotations' tangent at a bent state: not
+  // symmetric (the rotations' derivative), its symmetric part positive definite: GMRES on that
+  // part's Cholesky factor. Negated, neither part is positive definite: the LU. Its symmetric
+  // part alone: the Cholesky. Each against Eigen's dense LU of the same matrix, to 1e-9 (GMRES
+  // stops at 1e-12 of the residual; these matrices' condition numbers are below 1e3).
+  FeProblem p = soft_cantilever().build(1);
+  Eigen::VectorXd u(p.num_dofs());
+  for (int v = 0; v < p.mesh.num_vertices(); ++v) {  // bent down along the bar, 0.3 m at the tip
+    const double x = p.mesh.rest[v].x();
+    u.segment<3>(3 * v) = Vec3(0, 0, -0.3 * x * x);
+  }
+  const std::vector<Vec3> positions = p.positions(u);
+  std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
+  auto rotation = make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh);
+  rotation->extract(positions, rotations);
+  BrcMatrix a = p.stiffness;
+  RotationTangent(p, RotationMethod::EnergyNewton).assemble(positions, rotations, a);
+  for (double& v : a.values) v *= 1e-4;  // dt = 0.01
+  for (int v = 0; v < a.block_rows; ++v) a.block(a.find(v, v)) += Mat3::Identity() * p.mass[3 * v];
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.num_dofs(), -1, 1);
+  apply_dirichlet(p.dirichlet, a, b);
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));
+  ASSERT_GT((dense - dense.transpose()).norm(), 1e-6 * dense.norm()) << "a symmetric tangent";
+  SparseLuSolve solve(a);
+  const auto expect_dense = [&](const BrcMatrix& m, const Eigen::MatrixXd& d, bool symmetric) {
+    const Eigen::VectorXd x = solve.solve(m, b, symmetric);
+    const Eigen::VectorXd ref = d.partialPivLu().solve(b);
+    EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm()) << (symmetric ? "symmetric" : "general");
+  };
+  expect_dense(a, dense, false);
+  EXPECT_EQ(solve.krylov_solves(), 1);
+  BrcMatrix negated = a;
+  for (double& v : negated.values) v = -v;
+  expect_dense(negated, -dense, false);
+  EXPECT_EQ(solve.lu_solves(), 1);
+  BrcMatrix symmetric_part = a;
+  for (int r = 0; r < a.block_rows; ++r)
+    for (int k = a.row_start[r]; k < a.row_start[r + 1]; ++k)
+      symmetric_part.block(k) = 0.5 * (a.block(k) + a.block(a.find(a.col_index[k], r)).transpose());
+  expect_dense(symmetric_part, 0.5 * (dense + dense.transpose()), true);
+  EXPECT_EQ(solve.cholesky_solves(), 1);
+  EXPECT_EQ(solve.krylov_solves(), 1);
 }
 
 TEST(NewtonLineSearch, LowersThePolarPotentialOnEveryAcceptedStep) {

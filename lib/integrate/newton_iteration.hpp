@@ -1,10 +1,10 @@
 #pragma once
 // Damped Newton for the nonlinear systems of the corotated model, g(z) = 0 over the free DOFs:
 // static equilibrium f_ext - f_int(u) = 0 and the fully implicit Euler step. Each iteration solves
-// J dz = -g with a sparse LU (UMFPACK): J is non-symmetric for the non-conservative rotation
-// methods and indefinite past a buckling point, so neither CG nor Cholesky applies in general;
-// where g is a potential's gradient J is its Hessian, factored by Cholesky while it is positive
-// definite (SparseLuSolve).
+// J dz = -g (SparseLuSolve): J is non-symmetric for the non-conservative rotation methods and
+// indefinite past a buckling point, so neither CG nor Cholesky applies in general; where g is a
+// potential's gradient J is its Hessian, factored by Cholesky while it is positive definite; a
+// non-symmetric J by GMRES on its symmetric part's Cholesky factor, or a sparse LU (UMFPACK).
 // Step lengths:
 //  - where g is the gradient of a potential (the caller passes it: implicit Euler with polar
 //    rotations, whose force is conservative, is then the minimization of the incremental
@@ -55,14 +55,19 @@ struct PotentialValue {
 
 /// The factorizations of the iteration matrices, analyzed once per pattern and refactored each
 /// iteration: CHOLMOD's Cholesky for a symmetric matrix (a time step's M + dt^2 K, the Hessian of
-/// a potential), unless it is not positive definite (a buckled body), then UMFPACK's LU, which
-/// every non-symmetric matrix gets.
+/// a potential); a non-symmetric one (a corotated tangent) by GMRES to 1e-12 preconditioned by
+/// the Cholesky factor of its symmetric part; UMFPACK's LU where either part is not positive
+/// definite (a buckled body) or GMRES misses.
 class SparseLuSolve {
  public:
   explicit SparseLuSolve(const BrcMatrix& pattern);
   ~SparseLuSolve();
   /// x = A^{-1} b; throws NumericalFault when A is singular.
   Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric = false);
+  /// How many solves each way went: Cholesky, GMRES on the symmetric part's factor, LU.
+  int cholesky_solves() const;
+  int krylov_solves() const;
+  int lu_solves() const;
 
  private:
   struct State;
