@@ -2,8 +2,6 @@
 
 #include <vector>
 
-#include "core/statistics.hpp"
-
 namespace corofem {
 
 nlohmann::json to_json(const RotationParams& p) {
@@ -55,7 +53,10 @@ nlohmann::json smoother_json(const MultigridParams& p) {
 }  // namespace
 
 nlohmann::json to_json(const MultigridSetupParts& p) {
-  return parts_json({{"transfers", p.transfers}, {"galerkin_streams", p.galerkin_streams}});
+  nlohmann::json j =
+      parts_json({{"transfers", p.transfers}, {"galerkin_streams", p.galerkin_streams}});
+  if (p.coarse_meshes) j["coarse_meshes"] = *p.coarse_meshes;
+  return j;
 }
 
 nlohmann::json to_json(const MultigridUpdateParts& p) {
@@ -109,45 +110,35 @@ nlohmann::json to_json(const CoarseLevelOrigin& o) {
   return nullptr;
 }
 
-nlohmann::json describe(const MultigridSolver& solver) {
-  const MultigridHierarchy& hierarchy = solver.hierarchy();
-  const std::vector<CoarseLevelOrigin>& origins = solver.level_origins();
+nlohmann::json to_json(const MultigridSummary& s) {
   nlohmann::json levels = nlohmann::json::array();
-  double blocks = 0;
-  for (int h = 0; h < hierarchy.num_levels(); ++h) {
-    const BrcMatrix& a = hierarchy.matrix(h);
+  for (std::size_t h = 0; h < s.levels.size(); ++h) {
     nlohmann::json level = {
-        {"level", h}, {"vertices", a.block_rows}, {"blocks", a.col_index.size()}};
-    if (h > 0 && h - 1 < static_cast<int>(origins.size()))
-      level["built_from"] = to_json(origins[h - 1]);
+        {"level", h}, {"vertices", s.levels[h].vertices}, {"blocks", s.levels[h].blocks}};
+    if (h > 0 && h - 1 < s.origins.size()) level["built_from"] = to_json(s.origins[h - 1]);
     levels.push_back(level);
-    blocks += static_cast<double>(a.col_index.size());
   }
-  std::vector<double> rho, iterations;
-  for (const SolveStats& s : solver.solve_log()) {
-    if (s.iterations == 0) continue;  // a zero right-hand side: nothing was solved
-    rho.push_back(s.convergence_factor);
-    iterations.push_back(s.iterations);
-  }
-  auto median_or_null = [](const std::vector<double>& v) -> nlohmann::json {
-    return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v));
+  auto or_null = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
-  const MultigridParams& params = solver.params();
-  nlohmann::json out = {
-      {"params", to_json(params)},
-      {"hierarchy", kHierarchyKinds.name(params.hierarchy.kind)},
-      {"levels", levels},
-      {"operator_complexity", blocks / static_cast<double>(hierarchy.matrix(0).col_index.size())},
-      {"setup_ms", to_json(solver.setup_ms())},
-      {"update_parts_ms", to_json(solver.update_parts_ms())},
-      {"solve_parts_ms", to_json(solver.solve_parts_ms())},
-      {"solves", rho.size()},
-      {"rho", median_or_null(rho)},
-      {"iterations", median_or_null(iterations)},
-      {"coarsest_shifts", solver.coarsest_shifts()},
-      {"deferred_updates", solver.deferred_updates()}};
-  if (!solver.ended_early().empty()) out["ended_early"] = solver.ended_early();
+  nlohmann::json out = {{"params", to_json(s.params)},
+                        {"hierarchy", kHierarchyKinds.name(s.params.hierarchy.kind)},
+                        {"levels", levels},
+                        {"operator_complexity", s.operator_complexity},
+                        {"setup_ms", to_json(s.setup)},
+                        {"update_parts_ms", to_json(s.update)},
+                        {"solve_parts_ms", to_json(s.solve)},
+                        {"solves", s.solves},
+                        {"rho", or_null(s.rho)},
+                        {"iterations", or_null(s.iterations)},
+                        {"coarsest_shifts", s.coarsest_shifts},
+                        {"deferred_updates", s.deferred_updates}};
+  if (!s.ended_early.empty()) out["ended_early"] = s.ended_early;
   return out;
+}
+
+nlohmann::json describe(const MultigridSolver& solver) {
+  return to_json(summarize(solver));
 }
 
 }  // namespace corofem

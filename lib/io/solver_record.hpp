@@ -3,7 +3,7 @@
 // solver measured, written from their typed structs (the numerics themselves hold no JSON).
 #include <nlohmann/json.hpp>
 
-#include "multigrid/multigrid_solver.hpp"
+#include "multigrid/multigrid_summary.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
@@ -23,6 +23,7 @@ nlohmann::json to_json(const CoarseLevelOrigin& origin);
 /// complexity, setup times, the mean parts of an update and a solve, the median rho and
 /// iterations over the solves so far, the coarsest level's semidefinite shifts, and how many
 /// updates had their coarsest factorization run in the next solve (`deferred_updates`).
-nlohmann::json describe(const MultigridSolver& solver);
+nlohmann::json to_json(const MultigridSummary& summary);
+nlohmann::json describe(const MultigridSolver& solver);  ///< to_json(summarize(solver))
 
 }  // namespace corofem

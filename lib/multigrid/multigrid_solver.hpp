@@ -3,6 +3,7 @@
 // 2005): V-cycles with block Gauss-Seidel smoothing and CHOLMOD on the coarsest level, as a
 // solver ("multigrid") or as the preconditioner of CG ("mgpcg").
 #include <functional>
+#include <optional>
 
 #include "linalg/chebyshev_smoother.hpp"
 #include "linalg/gauss_seidel.hpp"
@@ -64,6 +65,8 @@ struct MultigridParams {
 struct MultigridSetupParts {
   double transfers = 0;         ///< the hierarchy's transfers (hierarchy_builder.hpp)
   double galerkin_streams = 0;  ///< the Galerkin method's precomputed streams
+  /// Meshing the coarse levels, before the solver existed: set by the scene that meshed them.
+  std::optional<double> coarse_meshes;
 };
 struct MultigridUpdateParts {
   double galerkin = 0;   ///< every coarse E = R A R^T

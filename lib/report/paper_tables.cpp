@@ -8,6 +8,7 @@
 #include "core/machine_roofs.hpp"
 #include "core/number_text.hpp"
 #include "core/threads.hpp"
+#include "io/solver_record.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
@@ -59,33 +60,43 @@ json phase_medians(const TimedRun& run, int warmup) {
 /// The phase a multigrid run's coarsest factorizations were timed in: "solve" when the solver
 /// deferred them to its solves (MultigridSolver::defers_update), else "update".
 json coarsest_factorization_phase(const TimedRun& run) {
-  if (!run.multigrid.is_object()) return nullptr;
-  return run.multigrid.value("deferred_updates", 0) > 0 ? "solve" : "update";
+  if (!run.multigrid) return nullptr;
+  return run.multigrid->deferred_updates > 0 ? "solve" : "update";
+}
+
+/// A run's multigrid summary; NumericalFault where the run has none (its solver is another).
+const MultigridSummary& multigrid_of(const TimedRun& run) {
+  if (!run.multigrid) throw NumericalFault("the run has no multigrid solver to describe");
+  return *run.multigrid;
+}
+
+json or_null(const std::optional<double>& value) {
+  return value ? json(*value) : json(nullptr);
 }
 
 /// One row of the multigrid quality table: the hierarchy of `pcg` (an MG-PCG run) and its
 /// iterations and times, with the convergence factor of the stationary V(1,1) cycle (`vcycle`,
 /// the same scene solved by V-cycles to the same tolerance).
 json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warmup) {
-  const json& mg = pcg.multigrid;
+  const MultigridSummary& mg = multigrid_of(pcg);
+  const MultigridSummary& cycles = multigrid_of(vcycle);
   json sizes = json::array();
-  for (const json& level : mg["levels"]) sizes.push_back(level["vertices"]);
-  double setup = 0;
-  for (auto& [phase, ms] : mg["setup_ms"].items()) setup += ms.get<double>();
-  return {{"hierarchy", mg["hierarchy"]},
+  for (const MultigridLevelSummary& level : mg.levels) sizes.push_back(level.vertices);
+  const MultigridSetupParts& setup = mg.setup;
+  return {{"hierarchy", kHierarchyKinds.name(mg.params.hierarchy.kind)},
           {"tets", pcg.tets},
           {"levels", sizes.size()},
           {"level_vertices", sizes},
-          {"operator_complexity", mg["operator_complexity"]},
-          {"rho", vcycle.multigrid["rho"]},
-          {"vcycles", vcycle.multigrid["iterations"]},
-          {"mgpcg_iterations", mg["iterations"]},
-          {"setup_ms", setup},
-          {"setup_phases_ms", mg["setup_ms"]},
+          {"operator_complexity", mg.operator_complexity},
+          {"rho", or_null(cycles.rho)},
+          {"vcycles", or_null(cycles.iterations)},
+          {"mgpcg_iterations", or_null(mg.iterations)},
+          {"setup_ms", setup.transfers + setup.galerkin_streams + setup.coarse_meshes.value_or(0)},
+          {"setup_phases_ms", to_json(setup)},
           {"update_ms", pcg.median_ms("update", warmup)},
           {"solve_ms", pcg.median_ms("solve", warmup)},
-          {"solve_parts_ms", mg["solve_parts_ms"]},  // means over the run's solves
-          {"update_parts_ms", mg["update_parts_ms"]},
+          {"solve_parts_ms", to_json(mg.solve)},  // means over the run's solves
+          {"update_parts_ms", to_json(mg.update)},
           {"vcycle_solve_ms", vcycle.median_ms("solve", warmup)},
           {"step_ms", pcg.median_ms("step", warmup)},
           {"coarsest_factorization_in", coarsest_factorization_phase(pcg)}};
@@ -129,18 +140,18 @@ json one_thread_columns(const ModelTables& m, const TimedRun& single_run, bool s
 /// on the same matrices; null where PETSc did not run.
 json galerkin_vs_matptap(const TimedRun& main, const TimedRun& one_thread_run) {
   const auto galerkin_ms = [](const TimedRun& run) -> json {
-    if (!run.multigrid.is_object() || !run.multigrid.contains("update_parts_ms")) return nullptr;
-    return run.multigrid["update_parts_ms"].value("galerkin", 0.0);
+    return run.multigrid ? json(run.multigrid->update.galerkin) : json(nullptr);
   };
   if (main.matptap_ms < 0) return nullptr;
   const json ours_one = galerkin_ms(one_thread_run);
-  return {{"matptap_ms", main.matptap_ms},
-          {"galerkin", main.multigrid.value("params", json::object()).value("galerkin", "")},
-          {"galerkin_ms", galerkin_ms(main)},
-          {"galerkin_one_thread_ms", ours_one},
-          {"matptap_over_galerkin_one_thread", ours_one.is_number() && ours_one.get<double>() > 0
-                                                   ? json(main.matptap_ms / ours_one.get<double>())
-                                                   : json(nullptr)}};
+  return {
+      {"matptap_ms", main.matptap_ms},
+      {"galerkin", main.multigrid ? kGalerkinMethods.name(main.multigrid->params.galerkin) : ""},
+      {"galerkin_ms", galerkin_ms(main)},
+      {"galerkin_one_thread_ms", ours_one},
+      {"matptap_over_galerkin_one_thread", ours_one.is_number() && ours_one.get<double>() > 0
+                                               ? json(main.matptap_ms / ours_one.get<double>())
+                                               : json(nullptr)}};
 }
 
 /// Table 1: the paper's method, its phases at the run's thread count and at one thread, the naive
@@ -268,9 +279,9 @@ json multigrid_row(const ModelTables& m, HierarchyKind hierarchy, bool bare = fa
   m.say("multigrid quality: " + name + (bare ? ", bare surface" : ""));
   return record_case({{"model", m.id}}, [&] {
     const json on = with_analysis(bare ? bare_surface(m.scene) : m.scene, {.hierarchy = hierarchy});
-    const std::string main_hierarchy =
-        m.main.multigrid.is_null() ? "" : m.main.multigrid.value("hierarchy", "");
-    const TimedRun pcg = main_hierarchy == name && !bare ? m.main : timed_run(on, m.id, {});
+    const bool main_is_it =
+        m.main.multigrid && m.main.multigrid->params.hierarchy.kind == hierarchy;
+    const TimedRun pcg = main_is_it && !bare ? m.main : timed_run(on, m.id, {});
     const TimedRun vcycle =
         timed_run(with_analysis(on, {.solver = SolverKind::Multigrid, .vcycles = 0}), m.id, {});
     json row = multigrid_quality_row(pcg, vcycle, m.warmup);

@@ -7,6 +7,7 @@
 
 #include "cholmod_oracle.hpp"
 #include "galerkin_oracle.hpp"
+#include "io/solver_record.hpp"
 #include "mesh/vertex_selection.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "multigrid/transfer.hpp"
@@ -96,9 +97,10 @@ nlohmann::json TimedRun::roofline(int warmup, const MachineRoofs& roofs) const {
   nlohmann::json record = roofline_record(traffic, measured, roofs, working_set_bytes);
   // The update's parts, timed by the multigrid solver (means over every update of the run).
   std::map<std::string, double> parts;
-  if (multigrid.contains("update_parts_ms"))
-    for (const auto& [part, ms] : multigrid["update_parts_ms"].items())
-      parts[part] = ms.get<double>();
+  if (multigrid) {
+    const nlohmann::json timed = to_json(multigrid->update);  // held: items() refers into it
+    for (auto& [part, ms] : timed.items()) parts[part] = ms.get<double>();
+  }
   record["update_parts"] =
       roofline_record(update_traffic, parts, roofs, working_set_bytes)["phases"];
   // Work of a step outside every named phase: each step's own remainder, then the median (a
@@ -207,7 +209,7 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
         iterations.empty() ? 0.0 : sum / static_cast<double>(iterations.size()));
     if (options.on_step) options.on_step(s, problem);
   });
-  out.multigrid = simulation.describe_multigrid(under_test);
+  out.multigrid = simulation.multigrid_summary(under_test);
   if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
     const int warmup = std::min<int>(options.warmup_steps, static_cast<int>(out.solves.size()) - 1);
     const std::vector<double> after(out.rotation_iterations.begin() + std::max(warmup, 0),

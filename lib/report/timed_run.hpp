@@ -5,11 +5,13 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/statistics.hpp"
 #include "integrate/implicit_euler.hpp"
+#include "multigrid/multigrid_summary.hpp"
 #include "report/step_roofline.hpp"
 
 namespace corofem {
@@ -42,9 +44,8 @@ struct TimedRun {
   /// PETSc's MatPtAP in numeric-reuse mode on the run's final fine matrix and transfers, every
   /// coarse level: median ms of 5 updates after the symbolic one (negative: not run).
   double matptap_ms = -1;
-  /// A multigrid solve's description (MultigridSolver::describe() with setup_ms.coarse_meshes);
-  /// null for other solvers.
-  nlohmann::json multigrid;
+  /// What a multigrid solver measured (with the coarse meshing time); none for other solvers.
+  std::optional<MultigridSummary> multigrid;
   /// Per step: mean rotation iterations per element (0 for closed-form methods).
   std::vector<double> rotation_iterations;
   /// Bytes and flops per step of each phase (step_roofline.hpp) at the median iteration counts

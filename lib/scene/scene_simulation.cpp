@@ -33,12 +33,18 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
   setup_ms_ = ms_since(start);
 }
 
-nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) const {
+std::optional<MultigridSummary> SceneSimulation::multigrid_summary(
+    const LinearSolver& solver) const {
   const auto* mg = dynamic_cast<const MultigridSolver*>(&solver);
-  if (!mg) return nullptr;
-  nlohmann::json d = describe(*mg);
-  d["setup_ms"]["coarse_meshes"] = coarse_meshing_ms_;
-  return d;
+  if (!mg) return std::nullopt;
+  MultigridSummary s = summarize(*mg);
+  s.setup.coarse_meshes = coarse_meshing_ms_;
+  return s;
+}
+
+nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) const {
+  const std::optional<MultigridSummary> s = multigrid_summary(solver);
+  return s ? to_json(*s) : nlohmann::json(nullptr);
 }
 
 SimulationResult SceneSimulation::run(const std::function<void(const StepState&)>& on_step) {

@@ -8,6 +8,7 @@
 #include "integrate/implicit_euler.hpp"
 #include "integrate/static_solver.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "multigrid/multigrid_summary.hpp"
 #include "scene/scene.hpp"
 
 namespace corofem {
@@ -27,8 +28,10 @@ class SceneSimulation {
   /// Time spent meshing the multigrid hierarchy's coarse levels (inside the setup time).
   double coarse_meshing_ms() const { return coarse_meshing_ms_; }
   bool corotational() const { return scene_.analysis.formulation == Formulation::Corotational; }
-  /// The record's `multigrid` entry for `solver` (this scene's solver, or the one it wraps):
-  /// MultigridSolver::describe() with setup_ms.coarse_meshes; null for other solvers.
+  /// What `solver` (this scene's solver, or the one it wraps) measured, with the coarse meshing
+  /// time; none for a solver that is not multigrid.
+  std::optional<MultigridSummary> multigrid_summary(const LinearSolver& solver) const;
+  /// The record's `multigrid` entry: the summary's JSON; null for other solvers.
   nlohmann::json describe_multigrid(const LinearSolver& solver) const;
 
   /// Dynamic runs: problem().stiffness holds each step's Ktilde when on_step is called
