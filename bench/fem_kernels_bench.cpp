@@ -3,7 +3,12 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_support.hpp"
+#include "core/statistics.hpp"
 #include "fem/corotated_assembly.hpp"
+#include "fem/dirichlet.hpp"
+#include "fem/rotation_tangent.hpp"
+#include "integrate/newton_iteration.hpp"
+#include "mesh/box_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem::bench {
@@ -54,6 +59,47 @@ void BM_BrcSpmv(benchmark::State& state, const std::string& model) {
       benchmark::Counter(bytes / 1e9, benchmark::Counter::kIsIterationInvariantRate);
 }
 
+/// A Newton Euler step's tangent solve, M + dt^2 K_t with the energy rotations' (non-symmetric)
+/// tangent of a cube of 7^3 vertices (the stability study's squashed block) squashed to 70% of
+/// its height: GMRES on the symmetric part's Cholesky factor against UMFPACK's LU, alternated in
+/// one run (medians; the ratio is the one to quote).
+void BM_NewtonTangentSolve(benchmark::State& state) {
+  TetMesh mesh = make_box_mesh({0.5, 0.5, 0.5}, {6, 6, 6});
+  std::vector<Material> materials(mesh.tets.size(), Material{1e5, 0.3, 1000});
+  FeProblem p = make_fe_problem(std::move(mesh), std::move(materials));
+  for (int v = 0; v < p.mesh.num_vertices(); ++v)
+    if (p.mesh.rest[v].z() < 1e-9) p.dirichlet.fix_vertex(v);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(p.num_dofs());
+  for (int v = 0; v < p.mesh.num_vertices(); ++v) {  // squashed, and sheared a little
+    const Vec3 x = p.mesh.rest[v];
+    u.segment<3>(3 * v) = Vec3(0.2 * x.z() * x.z(), 0, -0.3 * x.z());
+  }
+  const std::vector<Vec3> positions = p.positions(u);
+  std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
+  make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh)->extract(positions, rotations);
+  BrcMatrix a = p.stiffness;
+  RotationTangent(p, RotationMethod::EnergyNewton).assemble(positions, rotations, a);
+  for (double& v : a.values) v *= 1e-4;  // dt = 0.01
+  for (int v = 0; v < a.block_rows; ++v) a.block(a.find(v, v)) += Mat3::Identity() * p.mass[3 * v];
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.num_dofs(), -1, 1);
+  apply_dirichlet(p.dirichlet, a, b);
+  SparseLuSolve krylov(a), lu(a);
+  lu.set_krylov(false);
+  krylov.solve(a, b);  // the analyses, once per pattern
+  lu.solve(a, b);
+  std::vector<double> krylov_ms, lu_ms;
+  for (auto _ : state) {
+    krylov_ms.push_back(time_ms([&] { benchmark::DoNotOptimize(krylov.solve(a, b).data()); }));
+    lu_ms.push_back(time_ms([&] { benchmark::DoNotOptimize(lu.solve(a, b).data()); }));
+  }
+  state.counters["dofs"] = p.num_dofs();
+  state.counters["krylov_ms"] = median(krylov_ms);
+  state.counters["lu_ms"] = median(lu_ms);
+  state.counters["krylov_over_lu"] = median(krylov_ms) / median(lu_ms);
+  state.counters["krylov_solves"] = krylov.krylov_solves();
+  state.counters["lu_fallbacks"] = krylov.lu_solves();
+}
+
 BENCHMARK_CAPTURE(BM_CorotatedAssembly, bunny, std::string("bunny"), false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CorotatedAssembly, horse, std::string("horse"), false)
@@ -65,6 +111,7 @@ BENCHMARK_CAPTURE(BM_CorotatedAssembly, dragon_cold, std::string("dragon"), true
 BENCHMARK_CAPTURE(BM_BrcSpmv, bunny, std::string("bunny"))->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BrcSpmv, horse, std::string("horse"))->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_BrcSpmv, dragon, std::string("dragon"))->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NewtonTangentSolve)->Unit(benchmark::kMillisecond)->Iterations(20);
 
 }  // namespace
 }  // namespace corofem::bench

@@ -49,6 +49,7 @@ struct SparseLuSolve::State {
   CholmodFactorization cholesky, symmetric_part;
   bool lu_analyzed = false, cholesky_analyzed = false, symmetric_part_analyzed = false;
   int cholesky_solves = 0, krylov_solves = 0, lu_solves = 0;
+  bool krylov = true;
   Eigen::GMRES<Eigen::SparseMatrix<double>, SymmetricPartPreconditioner> gmres;
 
   /// A non-symmetric A by GMRES, preconditioned by the Cholesky factor of its symmetric part
@@ -83,6 +84,9 @@ struct SparseLuSolve::State {
 
 SparseLuSolve::SparseLuSolve(const BrcMatrix& pattern) : state_(std::make_unique<State>(pattern)) {}
 SparseLuSolve::~SparseLuSolve() = default;
+void SparseLuSolve::set_krylov(bool enabled) {
+  state_->krylov = enabled;
+}
 int SparseLuSolve::cholesky_solves() const {
   return state_->cholesky_solves;
 }
@@ -110,7 +114,7 @@ Eigen::VectorXd SparseLuSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& 
     } catch (const std::runtime_error&) {  // not positive definite: the LU below
     }
   }
-  if (!solved && !symmetric && (solved = state_->solve_by_symmetric_part(b, x)))
+  if (!solved && !symmetric && state_->krylov && (solved = state_->solve_by_symmetric_part(b, x)))
     ++state_->krylov_solves;
   if (!solved) {
     ++state_->lu_solves;

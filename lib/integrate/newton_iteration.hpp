@@ -64,6 +64,8 @@ class SparseLuSolve {
   ~SparseLuSolve();
   /// x = A^{-1} b; throws NumericalFault when A is singular.
   Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric = false);
+  /// false: every non-symmetric matrix by the LU (the baseline BM_NewtonTangentSolve measures).
+  void set_krylov(bool enabled);
   /// How many solves each way went: Cholesky, GMRES on the symmetric part's factor, LU.
   int cholesky_solves() const;
   int krylov_solves() const;

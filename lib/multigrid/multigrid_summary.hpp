@@ -21,9 +21,9 @@ struct MultigridSummary {
   std::vector<CoarseLevelOrigin> origins;     ///< where level h + 1 came from, at h
   double operator_complexity = 0;             ///< blocks of all levels / blocks of the finest
   MultigridSetupParts setup;
-  MultigridUpdateParts update;  ///< means per update
-  MultigridSolveParts solve;    ///< means per solve
-  int solves = 0;               ///< solves of a non-zero right-hand side
+  MultigridUpdateParts update;            ///< means per update
+  MultigridSolveParts solve;              ///< means per solve
+  int solves = 0;                         ///< solves of a non-zero right-hand side
   std::optional<double> rho, iterations;  ///< medians over those solves
   int coarsest_shifts = 0, deferred_updates = 0;
   std::string ended_early;  ///< MultigridSolver::ended_early
