@@ -7,6 +7,7 @@
 #include "fem/corotated_assembly.hpp"
 #include "fem/dirichlet.hpp"
 #include "fem/rotation_tangent.hpp"
+#include "integrate/implicit_euler.hpp"
 #include "integrate/newton_iteration.hpp"
 #include "mesh/box_mesh.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -79,8 +80,7 @@ void BM_NewtonTangentSolve(benchmark::State& state) {
   make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh)->extract(positions, rotations);
   BrcMatrix a = p.stiffness;
   RotationTangent(p, RotationMethod::EnergyNewton).assemble(positions, rotations, a);
-  for (double& v : a.values) v *= 1e-4;  // dt = 0.01
-  for (int v = 0; v < a.block_rows; ++v) a.block(a.find(v, v)) += Mat3::Identity() * p.mass[3 * v];
+  euler_newton_matrix(p, 0.01, 0, 1, a);  // M + dt^2 K_t at dt = 0.01
   Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.num_dofs(), -1, 1);
   apply_dirichlet(p.dirichlet, a, b);
   SparseLuSolve krylov(a), lu(a);

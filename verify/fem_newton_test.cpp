@@ -163,8 +163,7 @@ TEST(SparseLuSolve, EveryPathEqualsTheDenseSolution) {
   rotation->extract(positions, rotations);
   BrcMatrix a = p.stiffness;
   RotationTangent(p, RotationMethod::EnergyNewton).assemble(positions, rotations, a);
-  for (double& v : a.values) v *= 1e-4;  // dt = 0.01
-  for (int v = 0; v < a.block_rows; ++v) a.block(a.find(v, v)) += Mat3::Identity() * p.mass[3 * v];
+  euler_newton_matrix(p, 0.01, 0, 1, a);  // M + dt^2 K_t at dt = 0.01
   Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.num_dofs(), -1, 1);
   apply_dirichlet(p.dirichlet, a, b);
   const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));

@@ -99,12 +99,7 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
     };
   const auto jacobian = [&](BrcMatrix& j) {
     clock.time("assemble", [&] { newton.tangent.assemble(positions, rotations, j); });
-    clock.time("system", [&] {
-      const std::vector<double>& k = problem.stiffness.values;
-      for (std::size_t i = 0; i < k.size(); ++i)
-        j.values[i] = dt * dt * j.values[i] + damping * k[i];
-      add_lumped_mass(problem, mass_factor, j);
-    });
+    clock.time("system", [&] { euler_newton_matrix(problem, dt, damping, mass_factor, j); });
   };
   Eigen::VectorXd v1 = predictor(problem, newton, options, bc, momentum, internal_start, clock);
   // |g| is measured against the size of its terms: the momenta before and after (the predictor's;
@@ -246,6 +241,13 @@ std::map<std::string, double> step_phases(const std::map<std::string, double>& b
 }
 
 }  // namespace
+
+void euler_newton_matrix(const FeProblem& problem, double dt, double damping, double mass_factor,
+                         BrcMatrix& j) {
+  const std::vector<double>& k = problem.stiffness.values;
+  for (std::size_t i = 0; i < k.size(); ++i) j.values[i] = dt * dt * j.values[i] + damping * k[i];
+  add_lumped_mass(problem, mass_factor, j);
+}
 
 SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
                                LinearSolver& solver, const DynamicOptions& options,

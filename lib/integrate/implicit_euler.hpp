@@ -52,6 +52,12 @@ struct StepState {
   const SolveStats& solve;  ///< newton: iterations = Newton iterations, residual = |g| / scale
 };
 
+/// The fully implicit Euler step's Newton matrix from the tangent K_t in `j`, in place:
+/// j = dt^2 K_t + damping K + mass_factor M (K the problem's stiffness, M lumped), where
+/// damping = dt beta and mass_factor = 1 + dt alpha (Rayleigh).
+void euler_newton_matrix(const FeProblem& problem, double dt, double damping, double mass_factor,
+                         BrcMatrix& j);
+
 /// Fixed DOFs keep zero velocity. Throws NumericalFault naming the step on NaN/inf.
 SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
                                LinearSolver& solver, const DynamicOptions& options,
