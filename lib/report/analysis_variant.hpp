@@ -12,15 +12,17 @@
 
 namespace corofem {
 
+/// Every field initialized, so that a designated initializer naming a few says nothing of the
+/// rest (-Wmissing-field-initializers).
 struct AnalysisVariant {
-  std::optional<SolverKind> solver;
-  std::optional<RotationMethod> rotation;
-  std::optional<Formulation> formulation;
-  std::optional<GalerkinMethod> galerkin;
-  std::optional<HierarchyKind> hierarchy;
-  std::optional<double> tolerance;
-  std::optional<int> levels, vcycles, smoothing;
-  std::optional<bool> setup_reuse;
+  std::optional<SolverKind> solver{};
+  std::optional<RotationMethod> rotation{};
+  std::optional<Formulation> formulation{};
+  std::optional<GalerkinMethod> galerkin{};
+  std::optional<HierarchyKind> hierarchy{};
+  std::optional<double> tolerance{};
+  std::optional<int> levels{}, vcycles{}, smoothing{};
+  std::optional<bool> setup_reuse{};
 };
 
 /// The set fields as analysis keys and values (names from the name tables).
