@@ -169,9 +169,12 @@ TEST(SparseLuSolve, EveryPathEqualsTheDenseSolution) {
   const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));
   ASSERT_GT((dense - dense.transpose()).norm(), 1e-6 * dense.norm()) << "a symmetric tangent";
   SparseLuSolve solve(a);
+  // Row-major LU: libgmsh carries its own PartialPivLU<MatrixXd>, and one instantiation of it in
+  // this binary would be bound into gmsh's calls too (ASan: bad-free inside gmsh's Eigen).
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const auto expect_dense = [&](const BrcMatrix& m, const Eigen::MatrixXd& d, bool symmetric) {
     const Eigen::VectorXd x = solve.solve(m, b, symmetric);
-    const Eigen::VectorXd ref = d.partialPivLu().solve(b);
+    const Eigen::VectorXd ref = Eigen::PartialPivLU<RowMajorMatrix>(RowMajorMatrix(d)).solve(b);
     EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm()) << (symmetric ? "symmetric" : "general");
   };
   expect_dense(a, dense, false);
