@@ -26,11 +26,15 @@ nlohmann::json to_json(const HierarchyParams& p) {
 namespace {
 
 /// Parts by name, those that ran (a part that never ran, 0, is left out).
-nlohmann::json parts_json(std::initializer_list<std::pair<const char*, double>> parts) {
+template <class Parts>
+nlohmann::json parts_json(const Parts& parts) {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& [name, ms] : parts)
     if (ms != 0) j[name] = ms;
   return j;
+}
+nlohmann::json parts_json(std::initializer_list<std::pair<const char*, double>> parts) {
+  return parts_json<std::initializer_list<std::pair<const char*, double>>>(parts);
 }
 
 nlohmann::json smoother_json(const MultigridParams& p) {
@@ -52,6 +56,10 @@ nlohmann::json smoother_json(const MultigridParams& p) {
 
 }  // namespace
 
+nlohmann::json to_json(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
 nlohmann::json to_json(const MultigridSetupParts& p) {
   nlohmann::json j =
       parts_json({{"transfers", p.transfers}, {"galerkin_streams", p.galerkin_streams}});
@@ -60,8 +68,7 @@ nlohmann::json to_json(const MultigridSetupParts& p) {
 }
 
 nlohmann::json to_json(const MultigridUpdateParts& p) {
-  return parts_json(
-      {{"galerkin", p.galerkin}, {"smoothers", p.smoothers}, {"coarsest", p.coarsest}});
+  return parts_json(named_parts(p));
 }
 
 nlohmann::json to_json(const MultigridSolveParts& p) {
@@ -118,9 +125,6 @@ nlohmann::json to_json(const MultigridSummary& s) {
     if (h > 0 && h - 1 < s.origins.size()) level["built_from"] = to_json(s.origins[h - 1]);
     levels.push_back(level);
   }
-  auto or_null = [](const std::optional<double>& v) {
-    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-  };
   nlohmann::json out = {{"params", to_json(s.params)},
                         {"hierarchy", kHierarchyKinds.name(s.params.hierarchy.kind)},
                         {"levels", levels},
@@ -129,8 +133,8 @@ nlohmann::json to_json(const MultigridSummary& s) {
                         {"update_parts_ms", to_json(s.update)},
                         {"solve_parts_ms", to_json(s.solve)},
                         {"solves", s.solves},
-                        {"rho", or_null(s.rho)},
-                        {"iterations", or_null(s.iterations)},
+                        {"rho", to_json(s.rho)},
+                        {"iterations", to_json(s.iterations)},
                         {"coarsest_shifts", s.coarsest_shifts},
                         {"deferred_updates", s.deferred_updates}};
   if (!s.ended_early.empty()) out["ended_early"] = s.ended_early;

@@ -2,11 +2,15 @@
 // The records' entries for the numerical components: their parameters and what a multigrid
 // solver measured, written from their typed structs (the numerics themselves hold no JSON).
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "multigrid/multigrid_summary.hpp"
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
+
+/// A measurement that may not exist (a median over no solves): its value, or null.
+nlohmann::json to_json(const std::optional<double>& value);
 
 nlohmann::json to_json(const RotationParams& params);
 nlohmann::json to_json(const HierarchyParams& params);

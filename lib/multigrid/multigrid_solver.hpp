@@ -2,8 +2,10 @@
 // Geometric multigrid with Galerkin coarse operators (paper section 4; Georgii and Westermann
 // 2005): V-cycles with block Gauss-Seidel smoothing and CHOLMOD on the coarsest level, as a
 // solver ("multigrid") or as the preconditioner of CG ("mgpcg").
+#include <array>
 #include <functional>
 #include <optional>
+#include <utility>
 
 #include "linalg/chebyshev_smoother.hpp"
 #include "linalg/gauss_seidel.hpp"
@@ -73,6 +75,10 @@ struct MultigridUpdateParts {
   double smoothers = 0;  ///< the smoothers' set-up (inverse diagonal blocks)
   double coarsest = 0;   ///< CHOLMOD's numeric factorization and its input
 };
+/// The update's parts by the names the records and the update's roofline use.
+inline std::array<std::pair<const char*, double>, 3> named_parts(const MultigridUpdateParts& p) {
+  return {{{"galerkin", p.galerkin}, {"smoothers", p.smoothers}, {"coarsest", p.coarsest}}};
+}
 /// A V-cycle's parts: the finest level's smoothing, residual (absent where a pre-smoothing of
 /// one sweep from zero forms it in passing: it then counts in fine_smooth) and transfers
 /// (restriction and prolongation); all of these on the levels between; the coarsest level's

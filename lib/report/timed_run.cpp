@@ -97,10 +97,9 @@ nlohmann::json TimedRun::roofline(int warmup, const MachineRoofs& roofs) const {
   nlohmann::json record = roofline_record(traffic, measured, roofs, working_set_bytes);
   // The update's parts, timed by the multigrid solver (means over every update of the run).
   std::map<std::string, double> parts;
-  if (multigrid) {
-    const nlohmann::json timed = to_json(multigrid->update);  // held: items() refers into it
-    for (auto& [part, ms] : timed.items()) parts[part] = ms.get<double>();
-  }
+  if (multigrid)
+    for (const auto& [part, ms] : named_parts(multigrid->update))
+      if (ms != 0) parts[part] = ms;  // as the record: a part that did not run is absent
   record["update_parts"] =
       roofline_record(update_traffic, parts, roofs, working_set_bytes)["phases"];
   // Work of a step outside every named phase: each step's own remainder, then the median (a
