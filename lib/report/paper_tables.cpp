@@ -70,10 +70,6 @@ const MultigridSummary& multigrid_of(const TimedRun& run) {
   return *run.multigrid;
 }
 
-json or_null(const std::optional<double>& value) {
-  return value ? json(*value) : json(nullptr);
-}
-
 /// One row of the multigrid quality table: the hierarchy of `pcg` (an MG-PCG run) and its
 /// iterations and times, with the convergence factor of the stationary V(1,1) cycle (`vcycle`,
 /// the same scene solved by V-cycles to the same tolerance).
@@ -88,9 +84,9 @@ json multigrid_quality_row(const TimedRun& pcg, const TimedRun& vcycle, int warm
           {"levels", sizes.size()},
           {"level_vertices", sizes},
           {"operator_complexity", mg.operator_complexity},
-          {"rho", or_null(cycles.rho)},
-          {"vcycles", or_null(cycles.iterations)},
-          {"mgpcg_iterations", or_null(mg.iterations)},
+          {"rho", to_json(cycles.rho)},
+          {"vcycles", to_json(cycles.iterations)},
+          {"mgpcg_iterations", to_json(mg.iterations)},
           {"setup_ms", setup.transfers + setup.galerkin_streams + setup.coarse_meshes.value_or(0)},
           {"setup_phases_ms", to_json(setup)},
           {"update_ms", pcg.median_ms("update", warmup)},
