@@ -692,14 +692,14 @@ def shaded_colours(vertices, triangles, values):
     return colours
 
 
-def draw_poses(st, integrator, folder):
+def draw_poses(st, frames, integrator, folder):
     """One row per scene, one column per method: the run's boundary at the end as shaded triangles
     coloured by the largest rotation change per step while held, the rest shape faint beside it,
     and the run's status on the panel."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    poses = [p for p in st.get("poses", []) if p.get("integrator", "linear-implicit") == integrator]
-    surfaces = st.get("surfaces", {})
+    poses = [p for p in frames.get("poses", []) if p.get("integrator", "linear-implicit") == integrator]
+    surfaces = frames.get("surfaces", {})
     scenes = [s for s in dict.fromkeys(p["scene"] for p in poses) if s in surfaces]
     methods = list(dict.fromkeys(r["method"] for r in st.get("runs", [])))
     if not scenes:
@@ -807,7 +807,10 @@ def render_verdicts(st, md):
     md.append("\n")
 
 
-def render_stability(st, folder, md):
+def render_stability(st, frames, folder, md):
+    """`frames` (stability_frames.json: each run's per-step series, in the order of the runs, and
+    the final poses) draws the charts; without it (the published snapshot keeps only the records of
+    at most 200 kB) the tables alone."""
     md.append("## Stability where methods fail\n\n")
     md.append(context_lines(st))
     render_verdicts(st, md)
@@ -857,13 +860,18 @@ def render_stability(st, folder, md):
     if not HAVE_MPL:
         return
     md.append(f"![status]({draw_status_matrix(runs, scenes, methods, folder)})\n\n")
+    if not frames:
+        md.append("(The per-step series and final poses are in stability_frames.json, absent here: no flutter "
+                  "or pose charts.)\n\n")
+        return
+    series_of = frames.get("series", [])
     for s in scenes:
         fig, ax = plt.subplots(figsize=(7, 3.6))
         base = next((run_setting(r) for r in runs if r["scene"] == s), "")
-        for r in runs:
-            if r["scene"] != s or run_setting(r) != base:
+        for i, r in enumerate(runs):
+            if r["scene"] != s or run_setting(r) != base or i >= len(series_of) or not series_of[i]:
                 continue
-            series = r["series"]["rotation_change_max_rad"]
+            series = series_of[i]["rotation_change_max_rad"]
             ax.plot(range(1, len(series) + 1), [max(v, 1e-12) for v in series], label=r["method"], linewidth=0.9)
         ax.axvline(st.get("ramp_steps", 0), color="gray", linestyle=":", linewidth=0.8)
         ax.axhline(th.get("flutter_max_rad", 0.1), color="red", linestyle="--", linewidth=0.8)
@@ -874,8 +882,8 @@ def render_stability(st, folder, md):
         ax.legend(fontsize=6, ncol=2)
         fig.tight_layout()
         md.append(f"![{s} flutter]({save(fig, folder, 'stability_flutter_' + s + '.png')})\n\n")
-    for integrator in dict.fromkeys(p.get("integrator", "linear-implicit") for p in st.get("poses", [])):
-        chart = draw_poses(st, integrator, folder)
+    for integrator in dict.fromkeys(p.get("integrator", "linear-implicit") for p in frames.get("poses", [])):
+        chart = draw_poses(st, frames, integrator, folder)
         if chart:
             md.append(f"![poses under {integrator}]({chart})\n\n")
 
@@ -925,6 +933,7 @@ def main(argv):
     tables = load(folder, "tables.json")
     sa = load(folder, "speed_accuracy.json")
     st = load(folder, "stability.json")
+    frames = load(folder, "stability_frames.json")
     cache = load(folder, "cache_profile.json")
     scaling = load(folder, "mpi_scaling.json")
     ma = load(folder, "model_accuracy.json")
@@ -944,7 +953,7 @@ def main(argv):
         render_cache(cache, md)
         render_mpi_scaling(scaling, md)
     if st:
-        render_stability(st, folder, md)
+        render_stability(st, frames, folder, md)
     if ma:
         render_model_accuracy(ma, md)
     text = "".join(md)

@@ -13,6 +13,7 @@
 
 #include "core/errors.hpp"
 #include "report/case_record.hpp"
+#include "report/report_config.hpp"
 #include "report/speed_accuracy.hpp"
 #include "solver/petsc_solver.hpp"
 #include "test_support.hpp"
@@ -304,8 +305,9 @@ TEST(Report, StabilityRunsHaveTheDocumentedSchema) {
     expect_keys(
         run,
         {"scene", "method", "integrator", "dt", "status", "flutter_rms_rad", "flutter_max_rad",
-         "inverted_max", "diverged_step", "asymmetry", "energy_error", "cause", "series"},
+         "inverted_max", "diverged_step", "asymmetry", "energy_error", "cause"},
         "run");
+    EXPECT_FALSE(run.contains("series")) << "the per-step series belong in stability_frames.json";
     const std::string status = run["status"];
     EXPECT_TRUE(status == "stable" || status == "flutter" || status == "diverged") << status;
     EXPECT_EQ(run["diverged_step"].is_null(), status != "diverged");
@@ -316,6 +318,18 @@ TEST(Report, StabilityRunsHaveTheDocumentedSchema) {
   EXPECT_EQ(methods.size(), 7u);  // every extractor
   EXPECT_EQ(integrators, (std::set<std::string>{"linear-implicit", "newton"}));
   for (const std::string& method : methods) EXPECT_TRUE(st["verdicts"].contains(method)) << method;
+  // The charts' frames beside it: one series per run, in the runs' order, as long as the run.
+  const json frames = load(smoke_report() / "stability_frames.json");
+  expect_context(frames, "stability_frames.json");
+  expect_keys(frames, {"series", "poses", "surfaces"}, "stability_frames.json");
+  ASSERT_EQ(frames["series"].size(), st["runs"].size());
+  for (std::size_t i = 0; i < st["runs"].size(); ++i) {
+    const json& series = frames["series"][i];
+    ASSERT_TRUE(series.contains("rotation_change_max_rad")) << i;
+    EXPECT_EQ(series["rotation_change_max_rad"].size(), st["runs"][i]["steps_run"].get<size_t>())
+        << i;
+  }
+  EXPECT_FALSE(frames["poses"].empty());
 }
 
 TEST(Report, ModelAccuracyHasTheDocumentedSchema) {
@@ -341,8 +355,8 @@ TEST(Report, MarkdownIsRedrawnFromTheJsonAlone) {
   const fs::path& out = smoke_report();
   ASSERT_TRUE(fs::exists(out / "REPORT.md"));
   TempDir copy;
-  for (const char* file :
-       {"tables.json", "speed_accuracy.json", "stability.json", "model_accuracy.json"})
+  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json",
+                           "stability_frames.json", "model_accuracy.json"})
     fs::copy_file(out / file, copy / file);
   const std::string script = (test::source_dir() / "reports" / "render").string();
   ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>/dev/null").c_str()),
@@ -369,7 +383,7 @@ int render_golden_fixture(const TempDir& dir, const std::string& options,
                           const std::string& stderr_file,
                           const std::function<void(json&)>& edit_tables = {}) {
   for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json",
-                           "model_accuracy.json", "mpi_scaling.json"})
+                           "stability_frames.json", "model_accuracy.json", "mpi_scaling.json"})
     fs::copy_file(golden_dir() / file, dir / file);
   if (edit_tables) {
     json tables = json::parse(read_text(dir / "tables.json"));
@@ -521,8 +535,33 @@ TEST(Report, RecordCaseKeepsTheErrorKind) {
   EXPECT_EQ(bad["id"], 1);
 }
 
+/// The main job's default (issue 38): Table 1 at the paper's three sizes, the comparison tables
+/// where they cost seconds; --full at every size.
+TEST(Report, StandardModeRunsTableOneAtThePapersThreeSizes) {
+  ReportConfig standard;
+  ASSERT_EQ(standard.mode, ReportConfig::Mode::Standard);
+  const std::vector<SceneSize> paper{SceneSize::S, SceneSize::M, SceneSize::L};
+  EXPECT_EQ(standard.table_sizes("quadruped"), paper);
+  std::vector<std::string> paper_models;
+  for (SceneSize size : paper) paper_models.push_back(paper_model_of(size));
+  EXPECT_EQ(paper_models, (std::vector<std::string>{"bunny", "horse", "dragon"}));
+  EXPECT_TRUE(standard.comparison_tables(SceneSize::S));
+  EXPECT_FALSE(standard.comparison_tables(SceneSize::M));
+  EXPECT_FALSE(standard.comparison_tables(SceneSize::L));
+  EXPECT_EQ(standard.stability_scenes().size(), 6u);  // every procedural stability scene
+  ReportConfig full;
+  full.mode = ReportConfig::Mode::Full;
+  EXPECT_EQ(full.table_sizes("quadruped"), paper);
+  EXPECT_TRUE(full.comparison_tables(SceneSize::L));
+  EXPECT_GT(full.stability_hold(), standard.stability_hold());
+  ReportConfig quick;
+  quick.mode = ReportConfig::Mode::Quick;
+  EXPECT_EQ(quick.table_sizes("quadruped"), std::vector<SceneSize>{SceneSize::Small});
+}
+
 TEST(Report, BadOptionsExitTwo) {
   EXPECT_EQ(run_cli("report --quick --smoke --out x").exit_code, 2);
+  EXPECT_EQ(run_cli("report --full --quick --out x").exit_code, 2);
   EXPECT_EQ(run_cli("report --tables-only --stability-only --out x").exit_code, 2);
   TempDir empty;
   const auto r = run_cli("report --models '" + empty.path().string() + "' --out x");

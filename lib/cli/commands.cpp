@@ -26,7 +26,7 @@ Commands:
   export-matrices SCENE.json --out DIR
                                      Matrix Market files of every level's system matrix
                                      and transfer operator, and levels.json
-  report [--out DIR] [--quick] [--models DIR] [--tables-only | --stability-only]
+  report [--out DIR] [--full | --quick] [--models DIR] [--tables-only | --stability-only]
                                      the main job: paper tables, speed against accuracy,
                                      stability study (JSON), REPORT.md and charts
   help [COMMAND]                     this text, or a command's
@@ -59,7 +59,7 @@ levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver com
 )";
 
 const char* kReportHelp =
-    R"(Usage: corofem report [--out DIR] [--quick | --smoke] [--models DIR] [--only NAME]
+    R"(Usage: corofem report [--out DIR] [--full | --quick | --smoke] [--models DIR] [--only NAME]
                       [--tables-only | --speed-accuracy-only | --stability-only | --model-accuracy-only]
                       [--vtu] [--no-render] [--threads N]
 
@@ -79,7 +79,11 @@ then draws REPORT.md and charts/*.png from the JSON alone (reports/render; needs
 A cache_profile.json (bench/cache_profile.sh) and an mpi_scaling.json (bench/mpi_scaling.py) in DIR,
 both run by ci/report, are included.
 
-  --quick        small versions of every scene (about 16 minutes)
+  (default)      Table 1 at the paper's three sizes, small versions of every other section
+                 (about 7 minutes on 2 cores; longer with --models)
+  --full         every table and sweep at the paper's sizes, the stability study at full length
+                 (about an hour)
+  --quick        small versions of every section (about 5 minutes)
   --smoke        a seconds-long run for the report's own tests
   --models DIR   the bunny, horse and dragon surfaces instead of the procedural scenes
   --only NAME    just one model (cantilever, twisting-bar, quadruped, bunny, horse, dragon) or
@@ -192,7 +196,7 @@ int export_command(const std::vector<std::string>& args) {
 int report_command(const std::vector<std::string>& args) {
   ParsedArgs parsed =
       parse_args(args, {"--out", "--models", "--only", "--threads"},
-                 {"--quick", "--smoke", "--tables-only", "--speed-accuracy-only",
+                 {"--full", "--quick", "--smoke", "--tables-only", "--speed-accuracy-only",
                   "--stability-only", "--model-accuracy-only", "--vtu", "--no-render"});
   if (parsed.help) {
     std::cout << kReportHelp;
@@ -203,8 +207,11 @@ int report_command(const std::vector<std::string>& args) {
   ReportConfig config;
   config.progress = &std::cerr;
   if (parsed.options.count("--out")) config.out_dir = parsed.options["--out"];
-  if (parsed.options.count("--quick") && parsed.options.count("--smoke"))
-    throw InputError("report: --quick and --smoke exclude each other");
+  if (parsed.options.count("--full") + parsed.options.count("--quick") +
+          parsed.options.count("--smoke") >
+      1)
+    throw InputError("report: give at most one of --full, --quick and --smoke");
+  if (parsed.options.count("--full")) config.mode = ReportConfig::Mode::Full;
   if (parsed.options.count("--quick")) config.mode = ReportConfig::Mode::Quick;
   if (parsed.options.count("--smoke")) config.mode = ReportConfig::Mode::Smoke;
   if (parsed.options.count("--models")) {

@@ -434,6 +434,7 @@ json run_paper_tables(const ReportConfig& config) {
         tables["multigrid"].push_back(multigrid_row(m, hierarchy));
       if (has_given_levels(m.scene))
         tables["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes, true));
+      if (!config.comparison_tables(size)) continue;
       for (const double young_scale : {1.0, 100.0})
         tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
       for (const auto& [rival, reuse] :

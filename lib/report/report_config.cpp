@@ -3,7 +3,17 @@
 namespace corofem {
 
 std::string ReportConfig::mode_name() const {
-  return mode == Mode::Full ? "full" : mode == Mode::Quick ? "quick" : "smoke";
+  switch (mode) {
+    case Mode::Standard:
+      return "standard";
+    case Mode::Full:
+      return "full";
+    case Mode::Quick:
+      return "quick";
+    case Mode::Smoke:
+      return "smoke";
+  }
+  return "standard";
 }
 
 namespace {
@@ -23,13 +33,17 @@ std::vector<std::string> ReportConfig::models() const {
 }
 
 std::vector<SceneSize> ReportConfig::table_sizes(const std::string& model) const {
-  if (mode != Mode::Full) return {SceneSize::Small};
+  if (mode == Mode::Quick || mode == Mode::Smoke) return {SceneSize::Small};
   if (with_models()) return {file_model_size(model)};
   // The quadruped at the paper's three sizes stands in for its three models; the bars, whose
-  // lattice order flatters every kernel, at the bunny's size (their M and L meshes run in the
-  // resolution sweeps). This keeps the full report under 20 minutes on 2 cores.
+  // lattice order flatters every kernel, at the bunny's size in the full report (their M and L
+  // meshes run in the resolution sweeps) and small in the standard one.
   if (model == "quadruped") return {SceneSize::S, SceneSize::M, SceneSize::L};
-  return {SceneSize::S};
+  return {mode == Mode::Full ? SceneSize::S : SceneSize::Small};
+}
+
+bool ReportConfig::comparison_tables(SceneSize size) const {
+  return mode != Mode::Standard || size == SceneSize::Small || size == SceneSize::S;
 }
 
 std::vector<SceneSize> ReportConfig::multigrid_only_sizes(const std::string& model) const {
@@ -51,18 +65,18 @@ SceneSize ReportConfig::sweep_size(const std::string& model) const {
 
 std::vector<SceneSize> ReportConfig::resolution_sizes() const {
   if (mode == Mode::Smoke) return {SceneSize::Small};
-  if (mode == Mode::Quick || with_models()) return {SceneSize::Small, SceneSize::S};
+  if (mode != Mode::Full || with_models()) return {SceneSize::Small, SceneSize::S};
   return {SceneSize::Small, SceneSize::S, SceneSize::M, SceneSize::L};
 }
 
 int ReportConfig::sweep_steps() const {
-  return mode == Mode::Smoke ? 3 : mode == Mode::Quick ? 10 : 20;
+  return mode == Mode::Smoke ? 3 : mode == Mode::Full ? 20 : 10;
 }
 int ReportConfig::stability_ramp() const {
-  return mode == Mode::Smoke ? 6 : mode == Mode::Quick ? 40 : 100;
+  return mode == Mode::Smoke ? 6 : mode == Mode::Full ? 100 : 40;
 }
 int ReportConfig::stability_hold() const {
-  return mode == Mode::Smoke ? 6 : mode == Mode::Quick ? 100 : 200;
+  return mode == Mode::Smoke ? 6 : mode == Mode::Full ? 200 : 100;
 }
 
 std::vector<std::string> ReportConfig::stability_scenes() const {

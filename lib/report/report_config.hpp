@@ -10,10 +10,12 @@
 namespace corofem {
 
 struct ReportConfig {
-  /// full: the paper's sizes (about an hour on 2 cores, most of it the stability study's Newton
-  /// runs); quick: small versions (about 16 minutes); smoke: seconds-long, for the tests of the
+  /// standard (the default, the main job): Table 1 at the paper's three sizes and small versions
+  /// of every other section, about 7 minutes on 2 cores; full: every table and sweep at the
+  /// paper's sizes and the stability study at its full length (about an hour); quick: small
+  /// versions of every section (about 5 minutes); smoke: seconds-long, for the tests of the
   /// report itself.
-  enum class Mode { Full, Quick, Smoke } mode = Mode::Full;
+  enum class Mode { Standard, Full, Quick, Smoke } mode = Mode::Standard;
   std::filesystem::path out_dir = "out/report";
   std::filesystem::path models_dir;  ///< empty: procedural scenes only
   bool tables = true, speed_accuracy = true, stability = true, model_accuracy = true;
@@ -26,6 +28,9 @@ struct ReportConfig {
   /// The table models (procedural, or the files' with --models) and the sizes of each.
   std::vector<std::string> models() const;  ///< quadruped first: the paper's rows
   std::vector<SceneSize> table_sizes(const std::string& model) const;
+  /// Whether the tables past Table 1 (Jacobi-PCG, the rival solvers) run at this size: in the
+  /// standard report only up to the paper's smallest size, where they cost seconds, not minutes.
+  bool comparison_tables(SceneSize size) const;
   /// Sizes past the tables' at which only the multigrid quality rows run: the quadruped at 270k
   /// in the full report, so its sizes show whether rho and iterations stay flat (issue 36).
   std::vector<SceneSize> multigrid_only_sizes(const std::string& model) const;

@@ -31,6 +31,13 @@ json header(const ReportConfig& config, const char* section) {
                                             : "embedded procedural scenes"}}}};
 }
 
+fs::path write_record(const ReportConfig& config, const char* file, const json& record) {
+  const fs::path path = config.out_dir / file;
+  write_file_atomically(path, [&](std::ostream& o) { o << record.dump(1) << '\n'; });
+  if (config.progress) *config.progress << "report: wrote " << path.string() << std::endl;
+  return path;
+}
+
 template <class F>
 fs::path write_section(const ReportConfig& config, const char* section, const char* file, F&& run) {
   const auto start = std::chrono::steady_clock::now();
@@ -39,10 +46,7 @@ fs::path write_section(const ReportConfig& config, const char* section, const ch
   for (auto& [key, value] : body.items()) record[key] = value;
   record["elapsed_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const fs::path path = config.out_dir / file;
-  write_file_atomically(path, [&](std::ostream& o) { o << record.dump(1) << '\n'; });
-  if (config.progress) *config.progress << "report: wrote " << path.string() << std::endl;
-  return path;
+  return write_record(config, file, record);
 }
 
 }  // namespace
@@ -56,9 +60,17 @@ std::vector<fs::path> run_report(const ReportConfig& config) {
   if (config.speed_accuracy)
     written.push_back(write_section(config, "speed-accuracy", "speed_accuracy.json",
                                     [&] { return run_speed_accuracy(config); }));
-  if (config.stability)
-    written.push_back(write_section(config, "stability", "stability.json",
-                                    [&] { return run_stability_study(config); }));
+  if (config.stability) {
+    json frames;  // the charts' series and poses, beside the study's record
+    written.push_back(write_section(config, "stability", "stability.json", [&] {
+      json study = run_stability_study(config);
+      frames = take_stability_frames(study);
+      return study;
+    }));
+    json record = header(config, "stability frames");
+    for (auto& [key, value] : frames.items()) record[key] = std::move(value);
+    written.push_back(write_record(config, "stability_frames.json", record));
+  }
   if (config.model_accuracy)
     written.push_back(write_section(config, "model accuracy", "model_accuracy.json",
                                     [&] { return run_model_accuracy(config); }));

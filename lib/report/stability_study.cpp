@@ -507,4 +507,17 @@ json run_stability_study(const ReportConfig& config) {
   return out;
 }
 
+json take_stability_frames(json& study) {
+  json frames = {{"series", json::array()},
+                 {"poses", study.value("poses", json::array())},
+                 {"surfaces", study.value("surfaces", json::object())}};
+  study.erase("poses");
+  study.erase("surfaces");
+  for (json& run : study["runs"]) {
+    frames["series"].push_back(run.contains("series") ? std::move(run["series"]) : json(nullptr));
+    run.erase("series");
+  }
+  return frames;
+}
+
 }  // namespace corofem

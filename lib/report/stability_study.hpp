@@ -103,4 +103,9 @@ MethodRuns run_method_on_scene(const nlohmann::json& scene, const std::string& s
 /// config.stability_scenes() x every extractor; a pose is a run's boundary at the end (dt runs).
 nlohmann::json run_stability_study(const ReportConfig& config);
 
+/// Moves what only the charts draw out of a study: {"series": each run's per-step series, in the
+/// order of study["runs"], "poses", "surfaces"}. The study keeps its measurements and verdicts,
+/// a record small enough to review (the quick study's series and poses are 5 MB).
+nlohmann::json take_stability_frames(nlohmann::json& study);
+
 }  // namespace corofem
