@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <sstream>
 
+#include "core/threads.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "report/report_config.hpp"
 #include "report/stability_study.hpp"
@@ -39,6 +41,35 @@ TEST(Stability, EnergyMethodsStayStableOnEverySmallScene) {
       EXPECT_LT(run["flutter_rms_rad"].get<double>(), thresholds.rms_rad);
     }
   }
+}
+
+/// The study runs its (scene, method) groups side by side, one thread each: the records must not
+/// depend on it. The smoke study (two scenes, seven methods, both integrators) at one thread and
+/// at three (more workers than this machine's cores: groups finish out of order) gives the same
+/// runs, references and verdicts, every value to the last bit; and every progress line whole.
+TEST(Stability, SameStudyAtEveryThreadCount) {
+  ReportConfig smoke;
+  smoke.mode = ReportConfig::Mode::Smoke;
+  std::ostringstream lines;
+  smoke.progress = &lines;
+  json one, three;
+  {
+    const ScopedThreadCount threads(1);
+    one = run_stability_study(smoke);
+  }
+  lines.str("");
+  {
+    const ScopedThreadCount threads(3);
+    three = run_stability_study(smoke);
+  }
+  ASSERT_FALSE(one["runs"].empty());
+  for (const char* key : {"runs", "references", "verdicts", "poses", "surfaces"})
+    EXPECT_EQ(one[key].dump(), three[key].dump()) << key;
+  std::istringstream in(lines.str());
+  int count = 0;
+  for (std::string line; std::getline(in, line); ++count)
+    EXPECT_EQ(line.rfind("report: stability ", 0), 0u) << "a line mixed with another: " << line;
+  EXPECT_GE(count, 14 * 2);  // every group's two runs at dt at least
 }
 
 TEST(Stability, BlowUpIsRecordedAsDivergedWithItsStep) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "linalg/blas_turn.hpp"
 #include "linalg/cholmod_factorization.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
@@ -161,6 +162,7 @@ Eigen::VectorXd SparseLuSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& 
     ++state_->krylov_solves;
   if (!solved) {
     ++state_->lu_solves;
+    const auto turn = take_blas_turn();  // UMFPACK's dense kernels are BLAS
     if (!state_->lu_analyzed) {
       state_->lu.analyzePattern(state_->eigen.matrix());
       state_->lu_analyzed = true;

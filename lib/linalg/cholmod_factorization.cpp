@@ -6,6 +6,8 @@
 #include <omp.h>
 #endif
 
+#include "linalg/blas_turn.hpp"
+
 namespace corofem {
 
 namespace {
@@ -48,6 +50,7 @@ CholmodFactorization::CholmodFactorization(CholmodFactorization&&) noexcept = de
 CholmodFactorization& CholmodFactorization::operator=(CholmodFactorization&&) noexcept = default;
 
 void CholmodFactorization::analyze(const Eigen::SparseMatrix<double>& a) {
+  const auto turn = take_blas_turn();
   const SerialOpenMp serial;
   impl_->llt.analyzePattern(a);
   impl_->analyzed = true;
@@ -57,6 +60,7 @@ void CholmodFactorization::analyze(const Eigen::SparseMatrix<double>& a) {
 
 void CholmodFactorization::factorize(const Eigen::SparseMatrix<double>& a) {
   if (!impl_->analyzed) analyze(a);
+  const auto turn = take_blas_turn();
   const SerialOpenMp serial;
   impl_->llt.factorize(a);
   if (impl_->llt.info() != Eigen::Success)
@@ -64,6 +68,7 @@ void CholmodFactorization::factorize(const Eigen::SparseMatrix<double>& a) {
 }
 
 Eigen::VectorXd CholmodFactorization::solve(const Eigen::VectorXd& b) const {
+  const auto turn = take_blas_turn();
   const SerialOpenMp serial;
   Eigen::VectorXd x = impl_->llt.solve(b);
   if (impl_->llt.info() != Eigen::Success) throw std::runtime_error("CHOLMOD: solve failed");

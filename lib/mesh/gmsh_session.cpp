@@ -12,9 +12,14 @@ namespace {
 
 constexpr int kLinearTet = 4;  // gmsh element type of the 4-node tetrahedron
 
+std::recursive_mutex& gmsh_turn() {
+  static std::recursive_mutex turn;
+  return turn;
+}
+
 }  // namespace
 
-GmshSession::GmshSession() {
+GmshSession::GmshSession() : turn_(gmsh_turn()) {
   gmsh::initialize(0, nullptr, false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.AbortOnError", 3);  // errors become exceptions

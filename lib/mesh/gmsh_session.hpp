@@ -2,6 +2,7 @@
 // What every use of the gmsh API shares: a clean session per model, gmsh's exceptions turned into
 // InputError, and the model's linear tets collected into a TetMesh.
 #include <filesystem>
+#include <mutex>
 #include <string>
 
 #include "core/errors.hpp"
@@ -9,13 +10,17 @@
 
 namespace corofem {
 
-/// One gmsh API session; gmsh keeps global state, so each model gets a clean one.
+/// One gmsh API session; gmsh keeps global state, so each model gets a clean one, and sessions in
+/// threads running side by side (the stability study's runs) take turns.
 class GmshSession {
  public:
   GmshSession();
   ~GmshSession();
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
+
+ private:
+  std::unique_lock<std::recursive_mutex> turn_;
 };
 
 /// gmsh's last logged error, or "unknown gmsh error".

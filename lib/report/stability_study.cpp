@@ -4,11 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/line_stream.hpp"
 #include "core/number_text.hpp"
+#include "core/threads.hpp"
 #include "report/case_record.hpp"
 #include "report/stability_monitor.hpp"
 #include "report/timed_run.hpp"
@@ -416,6 +420,70 @@ MethodRuns run_method_on_scene(const json& scene, const std::string& id, Rotatio
   return out;
 }
 
+namespace {
+
+/// Every (scene, method) group of the study, in that order. The groups run side by side, one
+/// thread each (a small mesh's step does not use two cores; two groups do), their progress lines
+/// whole; the results are each group's own, so the study is the same at any thread count. With
+/// --vtu one at a time (the frame writers share the partial-file registry).
+std::vector<MethodRuns> run_groups(const ReportConfig& config,
+                                   const std::vector<std::string>& scenes,
+                                   const std::vector<json>& scene_specs) {
+  std::vector<std::pair<std::size_t, RotationMethod>> plan_of;
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    for (const auto& entry : kRotationMethods.entries)
+      if (entry.first != RotationMethod::None) plan_of.emplace_back(k, entry.first);
+  const int total = static_cast<int>(plan_of.size());
+  std::vector<MethodRuns> groups(plan_of.size());
+  std::vector<std::exception_ptr> failed(plan_of.size());
+  std::mutex progress_lock;
+  int started = 0, done = 0;
+  const auto clock_start = std::chrono::steady_clock::now();
+  const int workers = config.vtu ? 1 : thread_count();
+  const ScopedThreadCount one_each(1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(workers)
+  for (int g = 0; g < total; ++g) {
+    const auto& [k, method] = plan_of[static_cast<std::size_t>(g)];
+    const std::string& id = scenes[k];
+    std::optional<LineStream> progress;
+    MethodPlan plan{config.stability_ramp(), config.stability_hold()};
+    plan.smaller_step_always = config.mode == ReportConfig::Mode::Full;
+    plan.smaller_step = config.mode != ReportConfig::Mode::Smoke;
+    plan.refined_reference = config.mode != ReportConfig::Mode::Smoke;
+    {
+      const std::lock_guard<std::mutex> hold(progress_lock);
+      plan.progress_prefix = "report: stability " + std::to_string(++started) + "/" +
+                             std::to_string(total) + ": " + id + ": " +
+                             kRotationMethods.name(method);
+      if (done > 0) {
+        const double elapsed_min =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count() /
+            60;
+        plan.progress_prefix += " (about " +
+                                general_number(std::ceil(elapsed_min / done * (total - done))) +
+                                " min left)";
+      }
+    }
+    if (config.progress) {
+      progress.emplace(*config.progress, progress_lock);
+      plan.progress = &*progress;
+    }
+    if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
+    try {
+      groups[static_cast<std::size_t>(g)] = run_method_on_scene(scene_specs[k], id, method, plan);
+    } catch (...) {
+      failed[static_cast<std::size_t>(g)] = std::current_exception();  // none may leave the loop
+    }
+    const std::lock_guard<std::mutex> hold(progress_lock);
+    ++done;
+  }
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  return groups;
+}
+
+}  // namespace
+
 json run_stability_study(const ReportConfig& config) {
   const FlutterThresholds thresholds;
   json out = {
@@ -448,11 +516,8 @@ json run_stability_study(const ReportConfig& config) {
   out["scenes"] = json::object();
   out["surfaces"] = json::object();
   const std::vector<std::string> scenes = config.stability_scenes();
-  const int methods = static_cast<int>(kRotationMethods.entries.size()) - 1;  // all but none
-  const auto started = std::chrono::steady_clock::now();
-  int done = 0;  // scene-method groups
-  for (std::size_t k = 0; k < scenes.size(); ++k) {
-    const std::string& id = scenes[k];
+  std::vector<json> scene_specs;
+  for (const std::string& id : scenes) {
     json scene = stability_scene(id, config.stability_size(), config.stability_ramp(),
                                  config.stability_hold(), config.models_dir);
     // The smoke report (seconds, for the report's own tests, also under the sanitizers) caps
@@ -463,26 +528,15 @@ json run_stability_study(const ReportConfig& config) {
       scene["analysis"]["max_step_cuts"] = 1;
     }
     out["scenes"][id] = scene;
-    for (const auto& [method, method_name] : kRotationMethods.entries) {
-      if (method == RotationMethod::None) continue;
-      MethodPlan plan{config.stability_ramp(), config.stability_hold()};
-      plan.smaller_step_always = config.mode == ReportConfig::Mode::Full;
-      plan.smaller_step = config.mode != ReportConfig::Mode::Smoke;
-      plan.refined_reference = config.mode != ReportConfig::Mode::Smoke;
-      plan.progress = config.progress;
-      plan.progress_prefix = "report: stability " + std::to_string(done + 1) + "/" +
-                             std::to_string(scenes.size() * methods) + ": " + id + ": " +
-                             method_name;
-      if (done > 0) {
-        const double elapsed_min =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() / 60;
-        plan.progress_prefix +=
-            " (about " +
-            general_number(std::ceil(elapsed_min / done * (scenes.size() * methods - done))) +
-            " min left)";
-      }
-      if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
-      MethodRuns m = run_method_on_scene(scene, id, method, plan);
+    scene_specs.push_back(std::move(scene));
+  }
+  std::vector<MethodRuns> groups = run_groups(config, scenes, scene_specs);
+  for (std::size_t k = 0, g = 0; k < scenes.size(); ++k) {
+    const std::string& id = scenes[k];
+    const json& scene = scene_specs[k];
+    for (const auto& entry : kRotationMethods.entries) {
+      if (entry.first == RotationMethod::None) continue;
+      MethodRuns& m = groups[g++];
       for (json& pose : m.poses) {
         // The rest surface is the scene's, the same for every run: stored once.
         if (!out["surfaces"].contains(id))
@@ -494,7 +548,6 @@ json run_stability_study(const ReportConfig& config) {
       }
       for (json& r : m.runs) out["runs"].push_back(std::move(r));
       if (!m.reference.is_null()) out["references"].push_back(std::move(m.reference));
-      ++done;
     }
     attribute_scene_causes(out["runs"], id);
     for (json& pose : out["poses"])  // a pose shows its run's final status
