@@ -88,7 +88,7 @@ both run by ci/report, are included.
   --models DIR   the bunny, horse and dragon surfaces instead of the procedural scenes
   --only NAME    just one model (cantilever, twisting-bar, quadruped, bunny, horse, dragon) or
                  stability scene (bar-twist, bar-stretch, block-squash, quadruped-stretched,
-                 quadruped-posed, horse-stretched, horse-posed)
+                 quadruped-posed, horse-stretched, horse-stretched-paper, horse-posed)
   --vtu          VTU frames of the stability runs (every 10th step) under DIR/vtu/
   --no-render    JSON only
   --threads N    threads of the step's kernels (default: all cores; "all"); Table 1 is measured

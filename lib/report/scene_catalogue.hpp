@@ -43,7 +43,9 @@ nlohmann::json probe_box(const std::string& model);
 /// "bar-stretch" (to 3x), "block-squash" (until elements invert, then released),
 /// "quadruped-stretched", "quadruped-stretched-far" (2.5x the pull), "quadruped-posed" (stiff legs,
 /// soft knees, fore legs folded); with a
-/// models folder also "horse-stretched" and "horse-posed". Load for `ramp_steps`, hold for
+/// models folder also "horse-stretched" (a stress case: the hind legs pulled into strands),
+/// "horse-stretched-paper" (a quarter of its pull: the paper's Figure 5 strength) and
+/// "horse-posed" (the paper's pose). Load for `ramp_steps`, hold for
 /// `hold_steps` (the squash is released at the start of the hold). Solver: CHOLMOD.
 std::vector<std::string> stability_scene_ids(bool with_models);
 nlohmann::json stability_scene(const std::string& id, SceneSize size, int ramp_steps,
