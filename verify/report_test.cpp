@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "report/case_record.hpp"
 #include "report/report_config.hpp"
+#include "report/section_progress.hpp"
 #include "report/speed_accuracy.hpp"
 #include "solver/petsc_solver.hpp"
 #include "test_support.hpp"
@@ -558,6 +559,17 @@ TEST(Report, StandardModeRunsTableOneAtThePapersThreeSizes) {
   ReportConfig quick;
   quick.mode = ReportConfig::Mode::Quick;
   EXPECT_EQ(quick.table_sizes("quadruped"), std::vector<SceneSize>{SceneSize::Small});
+}
+
+/// Each line of a section names its unit, its number of how many and, once a unit has finished,
+/// the minutes left at the rate so far (issue 38's "stability 14/96, about 3 min left").
+TEST(Report, SectionProgressCountsUnitsAndEstimatesTheTimeLeft) {
+  SectionProgress progress(nullptr, "tables", 3);
+  EXPECT_EQ(progress.begin("quadruped-11k"), "report: tables 1/3: quadruped-11k");
+  progress.finish();
+  const std::string second = progress.begin("quadruped-34k");
+  EXPECT_EQ(second.rfind("report: tables 2/3: quadruped-34k (about ", 0), 0u) << second;
+  EXPECT_NE(second.find(" min left)"), std::string::npos) << second;
 }
 
 TEST(Report, BadOptionsExitTwo) {

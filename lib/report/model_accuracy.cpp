@@ -7,6 +7,7 @@
 #include "linalg/linear_solver.hpp"
 #include "report/calculix_oracle.hpp"
 #include "report/case_record.hpp"
+#include "report/section_progress.hpp"
 #include "rotation/polar_decomposition.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene.hpp"
@@ -28,7 +29,8 @@ json errors(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
           {"max", finite_or_null((a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff())}};
 }
 
-json run_case(const std::string& id, SceneSize size, const ReportConfig& config) {
+json run_case(const std::string& id, SceneSize size, const ReportConfig& config,
+              const std::string& progress_prefix) {
   const json scene_json = model_accuracy_scene(id, size);
   const Scene scene = parse_scene(scene_json, ".", id);
   const AnalysisSpec& a = scene.analysis;
@@ -55,9 +57,7 @@ json run_case(const std::string& id, SceneSize size, const ReportConfig& config)
   out["methods"] = json::array();
   for (const auto& [method, name] : kRotationMethods.entries) {
     if (method == RotationMethod::None) continue;
-    if (config.progress)
-      *config.progress << "report: model accuracy: " << id << " " << size_name(size) << ": " << name
-                       << std::endl;
+    if (config.progress) *config.progress << progress_prefix << ": " << name << std::endl;
     out["methods"].push_back(record_case({{"method", name}}, [&] {
       auto rotation = make_rotation_extractor(method, problem.mesh, a.rotation_params);
       const auto t0 = std::chrono::steady_clock::now();
@@ -86,13 +86,20 @@ json run_model_accuracy(const ReportConfig& config) {
       {"oracle", "CalculiX ccx, C3D4, *STATIC with NLGEOM (St. Venant-Kirchhoff) and without"},
       {"errors", "l2: |u - u_ccx| / |u_ccx| over every DOF; max: max |u - u_ccx| / max |u_ccx|"},
       {"cases", json::array()}};
-  for (const std::string& id : model_accuracy_ids()) {
-    if (config.mode == ReportConfig::Mode::Smoke && id != "cantilever") continue;
-    if (!config.only.empty() && config.only != id) continue;
-    for (SceneSize size : sizes)
+  std::vector<std::string> ids;
+  for (const std::string& id : model_accuracy_ids())
+    if ((config.mode != ReportConfig::Mode::Smoke || id == "cantilever") &&
+        (config.only.empty() || config.only == id))
+      ids.push_back(id);
+  SectionProgress progress(config.progress, "model accuracy",
+                           static_cast<int>(ids.size() * sizes.size()));
+  for (const std::string& id : ids)
+    for (SceneSize size : sizes) {
+      const std::string prefix = progress.begin(id + " " + size_name(size));
       out["cases"].push_back(record_case({{"scene", id}, {"size", size_name(size)}},
-                                         [&] { return run_case(id, size, config); }));
-  }
+                                         [&] { return run_case(id, size, config, prefix); }));
+      progress.finish();
+    }
   return out;
 }
 

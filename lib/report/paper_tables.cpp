@@ -12,6 +12,7 @@
 #include "multigrid/multigrid_solver.hpp"
 #include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
+#include "report/section_progress.hpp"
 #include "report/timed_run.hpp"
 
 namespace corofem {
@@ -107,11 +108,12 @@ struct ModelTables {
   std::vector<int> check_steps;
   MachineRoofs roofs, roofs_one;  ///< at the run's thread count and at one thread
   std::ostream* progress = nullptr;
+  std::string progress_prefix;  ///< "report: tables 2/5: quadruped-34k (about 3 min left)"
   TimedRun main;
   bool main_completed = false;
 
   void say(const std::string& what) const {
-    if (progress) *progress << "report: tables: " << id << ": " << what << std::endl;
+    if (progress) *progress << progress_prefix << ": " << what << std::endl;
   }
   double main_median_ms(const char* phase) const { return main.median_ms(phase, warmup); }
 };
@@ -409,9 +411,15 @@ json run_paper_tables(const ReportConfig& config) {
   tables["dense_gflops"] = roofs.dense_gflops;
   tables["one_thread_roofs"] = {{"stream_triad_GBps", roofs_one.stream_gbps},
                                 {"dense_gflops", roofs_one.dense_gflops}};
+  int units = 0;
+  for (const std::string& model : config.models())
+    units += static_cast<int>(config.table_sizes(model).size() +
+                              config.multigrid_only_sizes(model).size());
+  SectionProgress progress(config.progress, "tables", units);
   auto model_tables = [&](const std::string& model, SceneSize size) {
     ModelTables m;
     m.id = model + "-" + size_name(size);
+    m.progress_prefix = progress.begin(m.id);
     // The paper's row sits beside ours only at the paper's size (not beside quick runs).
     m.paper_model =
         config.with_models() ? (size == file_model_size(model) ? model : "") : paper_model_of(size);
@@ -434,20 +442,24 @@ json run_paper_tables(const ReportConfig& config) {
         tables["multigrid"].push_back(multigrid_row(m, hierarchy));
       if (has_given_levels(m.scene))
         tables["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes, true));
-      if (!config.comparison_tables(size)) continue;
-      for (const double young_scale : {1.0, 100.0})
-        tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
-      for (const auto& [rival, reuse] :
-           std::vector<std::pair<SolverKind, bool>>{{SolverKind::PetscGamg, false},
-                                                    {SolverKind::HypreBoomeramg, false},
-                                                    {SolverKind::PetscMg, false},
-                                                    {SolverKind::PetscGamg, true},
-                                                    {SolverKind::HypreBoomeramg, true}})
-        tables["rival_solvers"].push_back(rival_row(m, rival, reuse));
+      if (config.comparison_tables(size)) {
+        for (const double young_scale : {1.0, 100.0})
+          tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
+        for (const auto& [rival, reuse] :
+             std::vector<std::pair<SolverKind, bool>>{{SolverKind::PetscGamg, false},
+                                                      {SolverKind::HypreBoomeramg, false},
+                                                      {SolverKind::PetscMg, false},
+                                                      {SolverKind::PetscGamg, true},
+                                                      {SolverKind::HypreBoomeramg, true}})
+          tables["rival_solvers"].push_back(rival_row(m, rival, reuse));
+      }
+      progress.finish();
     }
-    for (SceneSize size : config.multigrid_only_sizes(model))
+    for (SceneSize size : config.multigrid_only_sizes(model)) {
       tables["multigrid"].push_back(
           multigrid_row(model_tables(model, size), HierarchyKind::Meshes));
+      progress.finish();
+    }
   }
   tables["size_independence"] = size_independence(tables["multigrid"], "quadruped");
   return tables;

@@ -5,6 +5,7 @@
 
 #include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
+#include "report/section_progress.hpp"
 #include "report/timed_run.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "solver/petsc_solver.hpp"
@@ -96,10 +97,10 @@ struct SceneSweeps {
   json scene;
   int steps = 0, warmup = 0;
   json entry;
+  std::string progress_prefix;  ///< "report: speed-accuracy 2/3: cantilever-small (...)"
 
   void say(const std::string& what) const {
-    if (config.progress)
-      *config.progress << "report: speed-accuracy: " << id << ": " << what << std::endl;
+    if (config.progress) *config.progress << progress_prefix << ": " << what << std::endl;
   }
 
   /// Runs the scene's `variant` and adds its point, its error given by `error`.
@@ -170,7 +171,7 @@ struct SceneSweeps {
 
 /// The solver, rotation and resolution sweeps of one model at its sweep size.
 json scene_sweeps(const ReportConfig& config, const std::string& model,
-                  const AccuracyTargets& targets) {
+                  const AccuracyTargets& targets, SectionProgress& progress) {
   const int steps = config.sweep_steps();
   const SceneSize size = config.sweep_size(model);
   SceneSweeps s{config,
@@ -179,7 +180,9 @@ json scene_sweeps(const ReportConfig& config, const std::string& model,
                 table_scene(model, size, steps, config.default_tolerance(), config.models_dir),
                 steps,
                 std::min(2, steps - 1),
-                json()};
+                json(),
+                ""};
+  s.progress_prefix = progress.begin(s.id);
   s.entry = {{"scene", s.id}, {"model", model}, {"steps", steps}, {"points", json::array()}};
   // References at this resolution.
   Eigen::VectorXd u_ref, u_exact;
@@ -238,8 +241,12 @@ json run_speed_accuracy(const ReportConfig& config) {
          "|p - p_ref| / |p_ref| of the mean displacement of a probe region, p_ref: the finest "
          "resolution"}}},
       {"scenes", json::array()}};
-  for (const std::string& model : config.models())
-    out["scenes"].push_back(scene_sweeps(config, model, targets));
+  const std::vector<std::string> models = config.models();
+  SectionProgress progress(config.progress, "speed-accuracy", static_cast<int>(models.size()));
+  for (const std::string& model : models) {
+    out["scenes"].push_back(scene_sweeps(config, model, targets, progress));
+    progress.finish();
+  }
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "report/case_record.hpp"
+#include "report/section_progress.hpp"
 #include "report/stability_monitor.hpp"
 #include "report/timed_run.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -436,37 +437,23 @@ std::vector<MethodRuns> run_groups(const ReportConfig& config,
   const int total = static_cast<int>(plan_of.size());
   std::vector<MethodRuns> groups(plan_of.size());
   std::vector<std::exception_ptr> failed(plan_of.size());
-  std::mutex progress_lock;
-  int started = 0, done = 0;
-  const auto clock_start = std::chrono::steady_clock::now();
+  SectionProgress progress(config.progress, "stability", total);
+  std::mutex line_lock;  // progress lines of the groups side by side, each whole
   const int workers = config.vtu ? 1 : thread_count();
   const ScopedThreadCount one_each(1);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(workers)
   for (int g = 0; g < total; ++g) {
     const auto& [k, method] = plan_of[static_cast<std::size_t>(g)];
     const std::string& id = scenes[k];
-    std::optional<LineStream> progress;
+    std::optional<LineStream> lines;
     MethodPlan plan{config.stability_ramp(), config.stability_hold()};
     plan.smaller_step_always = config.mode == ReportConfig::Mode::Full;
     plan.smaller_step = config.mode != ReportConfig::Mode::Smoke;
     plan.refined_reference = config.mode != ReportConfig::Mode::Smoke;
-    {
-      const std::lock_guard<std::mutex> hold(progress_lock);
-      plan.progress_prefix = "report: stability " + std::to_string(++started) + "/" +
-                             std::to_string(total) + ": " + id + ": " +
-                             kRotationMethods.name(method);
-      if (done > 0) {
-        const double elapsed_min =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count() /
-            60;
-        plan.progress_prefix += " (about " +
-                                general_number(std::ceil(elapsed_min / done * (total - done))) +
-                                " min left)";
-      }
-    }
+    plan.progress_prefix = progress.begin(id + ": " + kRotationMethods.name(method));
     if (config.progress) {
-      progress.emplace(*config.progress, progress_lock);
-      plan.progress = &*progress;
+      lines.emplace(*config.progress, line_lock);
+      plan.progress = &*lines;
     }
     if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
     try {
@@ -474,8 +461,7 @@ std::vector<MethodRuns> run_groups(const ReportConfig& config,
     } catch (...) {
       failed[static_cast<std::size_t>(g)] = std::current_exception();  // none may leave the loop
     }
-    const std::lock_guard<std::mutex> hold(progress_lock);
-    ++done;
+    progress.finish();
   }
   for (const std::exception_ptr& e : failed)
     if (e) std::rethrow_exception(e);
