@@ -33,7 +33,7 @@ double warm_time_ms(const std::function<void()>& f) {
 
 void evict_caches() {
   static std::vector<char> buffer(512u << 20);
-  static volatile char sink;  // the writes must happen
+  [[maybe_unused]] static volatile char sink;  // the writes must happen
   for (std::size_t i = 0; i < buffer.size(); i += 64) buffer[i] += 1;
   sink = buffer[buffer.size() / 2];
 }

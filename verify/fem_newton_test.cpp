@@ -244,7 +244,9 @@ TEST(NewtonLineSearch, LowersThePolarPotentialOnEveryAcceptedStep) {
             << " Newton iterations with the line search on the potential, "
             << (without.converged ? std::to_string(without.iterations) : std::string("no"))
             << " without\n";
-  if (without.converged) EXPECT_LT((u - v).norm(), 1e-6 * u.norm());
+  if (without.converged) {
+    EXPECT_LT((u - v).norm(), 1e-6 * u.norm());
+  }
 }
 
 /// The soft cantilever dropped under 20x gravity at dt 0.05, fully implicit Euler by Newton

@@ -29,7 +29,7 @@ struct DynamicOptions {
   /// Called before each step (1-based) to set time-varying loads and supports:
   /// problem.external_force, and problem.dirichlet with the displacement prescribed at the end of
   /// the step. Without it both stay as they are.
-  std::function<void(int step, FeProblem& problem)> before_step;
+  std::function<void(int step, FeProblem& problem)> before_step{};
   bool newton = false;  ///< fully implicit Euler by Newton (else linearly implicit)
   /// Linearly implicit: problem.stiffness holds the step's Ktilde when on_step is called (for
   /// callbacks that use it). Off, the assembly writes (dt beta + dt^2) Ktilde straight into the
@@ -37,7 +37,7 @@ struct DynamicOptions {
   bool keep_stiffness = false;
   /// Per Newton step. A step that misses the tolerance is retried as two of dt/2 (supports
   /// moving halfway in the first), at most max_step_cuts halvings deep; then NotConverged.
-  NewtonSettings newton_settings;
+  NewtonSettings newton_settings{};
   int max_step_cuts = 4;
 };
 

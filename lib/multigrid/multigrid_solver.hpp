@@ -68,7 +68,7 @@ struct MultigridSetupParts {
   double transfers = 0;         ///< the hierarchy's transfers (hierarchy_builder.hpp)
   double galerkin_streams = 0;  ///< the Galerkin method's precomputed streams
   /// Meshing the coarse levels, before the solver existed: set by the scene that meshed them.
-  std::optional<double> coarse_meshes;
+  std::optional<double> coarse_meshes{};
 };
 struct MultigridUpdateParts {
   double galerkin = 0;   ///< every coarse E = R A R^T

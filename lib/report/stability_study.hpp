@@ -85,8 +85,8 @@ struct MethodPlan {
   bool smaller_step_always = false;    ///< dt/2 runs even where both dt runs are stable
   bool refined_reference = true;       ///< Newton at dt/4 where nothing else explains a failure
   std::ostream* progress = nullptr;
-  std::string progress_prefix;    ///< begins each progress line
-  std::filesystem::path vtu_dir;  ///< frames of the dt runs below it; empty: none
+  std::string progress_prefix{};    ///< begins each progress line
+  std::filesystem::path vtu_dir{};  ///< frames of the dt runs below it; empty: none
 };
 
 /// The runs of one method on one scene: both integrators at dt, at dt/2 and the refined reference
