@@ -18,14 +18,6 @@
 #include "scene/scene.hpp"
 #include "test_support.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define COROFEM_ASAN_BUILD 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define COROFEM_ASAN_BUILD 1
-#endif
-#endif
-
 namespace corofem {
 namespace {
 

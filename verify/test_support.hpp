@@ -12,6 +12,15 @@
 #include "sparse/block_kernels.hpp"
 #include "sparse/brc_matrix.hpp"
 
+// The sanitizer build (its shadow memory and quarantine change every resident-set size).
+#if defined(__SANITIZE_ADDRESS__)
+#define COROFEM_ASAN_BUILD 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define COROFEM_ASAN_BUILD 1
+#endif
+#endif
+
 namespace corofem::test {
 
 /// A fresh empty folder under the system temp dir, removed at destruction.

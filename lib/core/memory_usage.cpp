@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -29,14 +30,25 @@ double physical_memory_bytes() {
   return pages > 0 && page > 0 ? static_cast<double>(pages) * page : 0.0;
 }
 
-void require_memory_for_tets(double tets, const std::string& what) {
-  const double need = tets * kBytesPerTet, have = physical_memory_bytes();
+int ranks_on_this_machine() {
+  for (const char* name : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"})
+    if (const char* value = std::getenv(name)) {
+      const int ranks = std::atoi(value);
+      if (ranks > 0) return ranks;
+    }
+  return 1;
+}
+
+void require_memory(double tets, double bytes, const std::string& what, const std::string& basis) {
+  const int ranks = ranks_on_this_machine();
+  const double need = bytes * ranks, have = physical_memory_bytes();
   if (have <= 0 || need <= have) return;
   std::ostringstream message;
   message.precision(3);
   message << what << " would give about " << tets << " tets, which need about " << need / 1e9
-          << " GB (" << kBytesPerTet / 1e3 << " kB per tet); this machine has " << have / 1e9
-          << " GB";
+          << " GB (" << basis;
+  if (ranks > 1) message << "; x " << ranks << " ranks on this machine, each holding the mesh";
+  message << "); this machine has " << have / 1e9 << " GB";
   throw InputError(message.str());
 }
 

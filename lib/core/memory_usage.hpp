@@ -14,12 +14,13 @@ long current_rss_kb();
 /// This machine's physical memory in bytes (sysconf); 0 where unavailable.
 double physical_memory_bytes();
 
-/// Bytes a run needs per tet, measured: a dynamic MG-PCG run of a 384,000-tet box peaks at
-/// 3.37 GB (8.8 kB per tet; 48,000 tets: 6.7 kB), rounded up.
-constexpr double kBytesPerTet = 10e3;
+/// Ranks of this job on this machine: mpirun's OMPI_COMM_WORLD_LOCAL_SIZE (or MPI_LOCALNRANKS),
+/// 1 outside mpirun. Each rank holds the whole mesh today, so they multiply a run's memory.
+int ranks_on_this_machine();
 
-/// Throws InputError("<what> would give about N tets, which need about X GB ...; this machine has
-/// Y GB") when `tets` x kBytesPerTet exceeds the physical memory, before anything is allocated.
-void require_memory_for_tets(double tets, const std::string& what);
+/// Throws InputError("<what> would give about N tets, which need about X GB (<basis>) ...; this
+/// machine has Y GB") when ranks_on_this_machine() x `bytes` exceeds the physical memory, before
+/// anything is allocated.
+void require_memory(double tets, double bytes, const std::string& what, const std::string& basis);
 
 }  // namespace corofem

@@ -11,6 +11,7 @@
 #include "linalg/linear_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/json_fields.hpp"
+#include "scene/memory_estimate.hpp"
 
 namespace corofem {
 namespace fs = std::filesystem;
@@ -121,8 +122,7 @@ MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
     m.size = number_in(f, "size", std::nullopt, kMinLength, kMaxLength);
     if (m.kind == MeshSpec::Kind::Quadruped)  // gmsh gives about 2.6 / size^3 tets (11k at 0.062,
                                               // 67k at 0.033)
-      require_memory_for_tets(2.6 / std::pow(m.size, 3),
-                              "scene '" + f.file() + "': " + f.path_of("size"));
+      m.estimated_tets = 2.6 / std::pow(m.size, 3);
   } else {
     m.kind = MeshSpec::Kind::Box;
     m.box = f.vec3("box");
@@ -138,7 +138,7 @@ MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
       m.cells[i] = cells[i].get<int>();
       tets *= m.cells[i];
     }
-    require_memory_for_tets(tets, "scene '" + f.file() + "': " + f.path_of("cells"));
+    m.estimated_tets = tets;
   }
   f.reject_unknown_keys();
   return m;
@@ -310,6 +310,11 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   s.analysis.hierarchy = remeshable ? HierarchyKind::Meshes : HierarchyKind::Lattice;
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
+  if (s.mesh.estimated_tets > 0)  // before anything is allocated
+    require_memory(
+        s.mesh.estimated_tets, run_bytes(s.analysis.solver, s.mesh.estimated_tets),
+        "scene '" + name + "': mesh." + (s.mesh.kind == MeshSpec::Kind::Box ? "cells" : "size"),
+        run_bytes_basis(s.analysis.solver));
   if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == HierarchyKind::Meshes &&
       !remeshable)
     throw InputError("scene '" + name +

@@ -24,6 +24,8 @@ struct MeshSpec {
   Vec3 box = Vec3::Ones();     ///< Box: extents
   std::array<int, 3> cells{1, 1, 1};
   bool reorder = false;  ///< sort vertices and tets for locality (mesh/locality_order.hpp)
+  /// Box, Quadruped: the tets it will give (the memory check's); 0 where only meshing tells.
+  double estimated_tets = 0;
   /// Surface: coarsen the surface's triangles to `size` before filling it (the derived coarse
   /// levels; gmsh keeps a surface's triangles, scene/coarse_meshes.hpp).
   bool simplify_surface = false;
