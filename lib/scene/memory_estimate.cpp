@@ -17,12 +17,18 @@ constexpr double kCholmodBytes = 190e6, kCholmodFill = 115;
 double linear_bytes_per_tet(SolverKind solver) {
   switch (solver) {
     case SolverKind::Multigrid:
-    case SolverKind::Mgpcg: return 1.5e3;
-    case SolverKind::JacobiPcg: return 1.3e3;
-    case SolverKind::PetscMg: return 2.9e3;
-    case SolverKind::PetscGamg: return 3.1e3;
-    case SolverKind::HypreBoomeramg: return 3.8e3;
-    case SolverKind::Cholmod: break;
+    case SolverKind::Mgpcg:
+      return 1.5e3;
+    case SolverKind::JacobiPcg:
+      return 1.3e3;
+    case SolverKind::PetscMg:
+      return 2.9e3;
+    case SolverKind::PetscGamg:
+      return 3.1e3;
+    case SolverKind::HypreBoomeramg:
+      return 3.8e3;
+    case SolverKind::Cholmod:
+      break;
   }
   return 0;
 }
