@@ -31,6 +31,13 @@ json header(const ReportConfig& config, const char* section) {
                                             : "embedded procedural scenes"}}}};
 }
 
+/// The record: what produced it (header) and its body's fields.
+json with_header(const ReportConfig& config, const char* section, json body) {
+  json record = header(config, section);
+  for (auto& [key, value] : body.items()) record[key] = std::move(value);
+  return record;
+}
+
 fs::path write_record(const ReportConfig& config, const char* file, const json& record) {
   const fs::path path = config.out_dir / file;
   write_file_atomically(path, [&](std::ostream& o) { o << record.dump(1) << '\n'; });
@@ -41,9 +48,7 @@ fs::path write_record(const ReportConfig& config, const char* file, const json& 
 template <class F>
 fs::path write_section(const ReportConfig& config, const char* section, const char* file, F&& run) {
   const auto start = std::chrono::steady_clock::now();
-  json record = header(config, section);
-  json body = run();
-  for (auto& [key, value] : body.items()) record[key] = value;
+  json record = with_header(config, section, run());
   record["elapsed_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return write_record(config, file, record);
@@ -67,9 +72,8 @@ std::vector<fs::path> run_report(const ReportConfig& config) {
       frames = take_stability_frames(study);
       return study;
     }));
-    json record = header(config, "stability frames");
-    for (auto& [key, value] : frames.items()) record[key] = std::move(value);
-    written.push_back(write_record(config, "stability_frames.json", record));
+    written.push_back(write_record(config, "stability_frames.json",
+                                   with_header(config, "stability frames", std::move(frames))));
   }
   if (config.model_accuracy)
     written.push_back(write_section(config, "model accuracy", "model_accuracy.json",

@@ -1,7 +1,6 @@
 #include "report/stability_study.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -11,7 +10,6 @@
 
 #include "core/errors.hpp"
 #include "core/line_stream.hpp"
-#include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "report/case_record.hpp"
 #include "report/section_progress.hpp"
@@ -423,19 +421,27 @@ MethodRuns run_method_on_scene(const json& scene, const std::string& id, Rotatio
 
 namespace {
 
-/// Every (scene, method) group of the study, in that order. The groups run side by side, one
-/// thread each (a small mesh's step does not use two cores; two groups do), their progress lines
-/// whole; the results are each group's own, so the study is the same at any thread count. With
-/// --vtu one at a time (the frame writers share the partial-file registry).
-std::vector<MethodRuns> run_groups(const ReportConfig& config,
-                                   const std::vector<std::string>& scenes,
-                                   const std::vector<json>& scene_specs) {
-  std::vector<std::pair<std::size_t, RotationMethod>> plan_of;
+/// Every (scene, method) group of the study: groups[k] holds scene k's, in the extractors' order.
+/// The groups run side by side, one thread each (a small mesh's step does not use two cores; two
+/// groups do), their progress lines whole; the results are each group's own, so the study is the
+/// same at any thread count. With --vtu one at a time (the frame writers share the partial-file
+/// registry).
+std::vector<std::vector<MethodRuns>> run_groups(const ReportConfig& config,
+                                                const std::vector<std::string>& scenes,
+                                                const std::vector<json>& scene_specs) {
+  struct Group {
+    std::size_t scene, slot;
+    RotationMethod method;
+  };
+  std::vector<Group> plan_of;
+  std::vector<std::vector<MethodRuns>> groups(scenes.size());
   for (std::size_t k = 0; k < scenes.size(); ++k)
     for (const auto& entry : kRotationMethods.entries)
-      if (entry.first != RotationMethod::None) plan_of.emplace_back(k, entry.first);
+      if (entry.first != RotationMethod::None) {
+        plan_of.push_back({k, groups[k].size(), entry.first});
+        groups[k].emplace_back();
+      }
   const int total = static_cast<int>(plan_of.size());
-  std::vector<MethodRuns> groups(plan_of.size());
   std::vector<std::exception_ptr> failed(plan_of.size());
   SectionProgress progress(config.progress, "stability", total);
   std::mutex line_lock;  // progress lines of the groups side by side, each whole
@@ -443,7 +449,7 @@ std::vector<MethodRuns> run_groups(const ReportConfig& config,
   const ScopedThreadCount one_each(1);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(workers)
   for (int g = 0; g < total; ++g) {
-    const auto& [k, method] = plan_of[static_cast<std::size_t>(g)];
+    const auto& [k, slot, method] = plan_of[static_cast<std::size_t>(g)];
     const std::string& id = scenes[k];
     std::optional<LineStream> lines;
     MethodPlan plan{config.stability_ramp(), config.stability_hold()};
@@ -457,7 +463,7 @@ std::vector<MethodRuns> run_groups(const ReportConfig& config,
     }
     if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
     try {
-      groups[static_cast<std::size_t>(g)] = run_method_on_scene(scene_specs[k], id, method, plan);
+      groups[k][slot] = run_method_on_scene(scene_specs[k], id, method, plan);
     } catch (...) {
       failed[static_cast<std::size_t>(g)] = std::current_exception();  // none may leave the loop
     }
@@ -516,13 +522,11 @@ json run_stability_study(const ReportConfig& config) {
     out["scenes"][id] = scene;
     scene_specs.push_back(std::move(scene));
   }
-  std::vector<MethodRuns> groups = run_groups(config, scenes, scene_specs);
-  for (std::size_t k = 0, g = 0; k < scenes.size(); ++k) {
+  std::vector<std::vector<MethodRuns>> groups = run_groups(config, scenes, scene_specs);
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
     const std::string& id = scenes[k];
     const json& scene = scene_specs[k];
-    for (const auto& entry : kRotationMethods.entries) {
-      if (entry.first == RotationMethod::None) continue;
-      MethodRuns& m = groups[g++];
+    for (MethodRuns& m : groups[k]) {
       for (json& pose : m.poses) {
         // The rest surface is the scene's, the same for every run: stored once.
         if (!out["surfaces"].contains(id))
