@@ -14,7 +14,7 @@ import re
 import sys
 
 LAYERS = ["core", "sparse", "mesh", "element", "rotation", "fem", "linalg", "multigrid", "solver",
-          "integrate", "io", "scene", "report", "cli"]
+          "integrate", "io", "scene", "report", "tune", "cli"]
 REFERENCE_HEADERS = {"cholmod_oracle.hpp", "exact_rotation.hpp", "galerkin_oracle.hpp"}
 REFERENCE_USERS = {"report"}
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')

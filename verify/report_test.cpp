@@ -163,7 +163,9 @@ TEST(Report, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
     EXPECT_EQ(one["linear_iterations"], row["linear_iterations"]);
     EXPECT_GT(row["linear_iterations"].get<int>(), 0);
     EXPECT_TRUE(one["same_displacement_bits"].get<bool>());
-    if (t["threads"].get<int>() == 1) EXPECT_EQ(one["step"], row["phases_ms"]["step"]);
+    if (t["threads"].get<int>() == 1) {
+      EXPECT_EQ(one["step"], row["phases_ms"]["step"]);
+    }
     // Our stream against PETSc's MatPtAP on the same matrices, where PETSc is built.
     if (have_petsc()) {
       const json& g = row["galerkin_vs_matptap"];
@@ -312,7 +314,9 @@ TEST(Report, StabilityRunsHaveTheDocumentedSchema) {
     const std::string status = run["status"];
     EXPECT_TRUE(status == "stable" || status == "flutter" || status == "diverged") << status;
     EXPECT_EQ(run["diverged_step"].is_null(), status != "diverged");
-    if (status == "stable") EXPECT_TRUE(run["cause"].is_null());
+    if (status == "stable") {
+      EXPECT_TRUE(run["cause"].is_null());
+    }
     methods.insert(run["method"]);
     integrators.insert(run["integrator"]);
   }

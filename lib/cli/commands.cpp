@@ -1,17 +1,23 @@
 #include "cli/commands.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <optional>
+#include <sstream>
 
 #include "cli/export_matrices.hpp"
 #include "cli/run_scene.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "report/report_driver.hpp"
+#include "scene/scene_paths.hpp"
 #include "solver/mpi_launch.hpp"
+#include "tune/scene_tuner.hpp"
 
 namespace corofem {
 namespace {
@@ -29,6 +35,9 @@ Commands:
   report [--out DIR] [--full | --quick] [--models DIR] [--tables-only | --stability-only]
                                      the main job: paper tables, speed against accuracy,
                                      stability study (JSON), REPORT.md and charts
+  tune SCENE.json --target E [--out DIR]
+                                     the cheapest settings of a scene that meet an error
+                                     target, checked in a re-run
   help [COMMAND]                     this text, or a command's
 
 Exit status: 0 success, 1 did not converge or numerical fault, 2 bad input.
@@ -95,6 +104,39 @@ both run by ci/report, are included.
                  at one thread and at N
 Progress goes to stderr. A failing case is recorded ("completed": false) and the report goes on.
 Exit status: 0 written, 2 bad options.
+)";
+
+const char* kTuneHelp =
+    R"(Usage: corofem tune SCENE.json --target E [--quantity displacement|tip|probe]
+                    [--probe X0,Y0,Z0,X1,Y1,Z1] [--resolution free|fixed] [--budget MINUTES]
+                    [--out DIR] [--threads N] [--no-render]
+
+Finds the cheapest settings of the scene (ms per step) whose answer stays within the relative
+error E of the reference, and writes into DIR (default out/tune):
+  tuned_scene.json  the answer: the scene with the tuned settings, for `corofem run`
+  tune.json         the reference and its own error, every setting measured (error, ms per step,
+                    Pareto front), the answer and its re-run, what produced it
+  pareto.png        cost against error of every setting measured (reports/render; matplotlib)
+The reference: the finest resolution (a box or the quadruped re-meshed 1.5x finer where it stays
+under 300k tets; a surface at its own triangles), CHOLMOD (static Newton: its sparse LU at 1e-8),
+the exact rotation minimizer, the scene's time step and integrator. Its own discretization error
+is estimated by Richardson extrapolation from coarser resolutions and counted in every error.
+The search: resolution, rotation method, solver and tolerance (multigrid hierarchy, smoother and
+cycle, Jacobi-PCG), static load increments, the time step (dynamic; unstable steps are recorded
+and left out), each screened alone, then their combinations, cheapest predicted first.
+  --target E       relative error in (0, 1) of the quantity
+  --quantity Q     displacement: the whole final field (default); tip: the final displacement of
+                   the vertex farthest from the supports; probe: the mean final displacement of
+                   the vertices in the --probe box
+  --resolution R   free (default): coarser meshes are candidates and the reference's own
+                   discretization error counts; fixed: the scene's mesh only, errors against
+                   the exact solve on it
+  --budget M       minutes for the search (default 5); the reference, the scene as given and the
+                   answer's re-run always run
+Progress goes to stderr.
+Exit status: 0 the target is met in the re-run; 1 not met (the closest setting and why:
+discretization-limited, where the reference's own error is above the target; the reference not
+converging; the budget); 2 bad input.
 )";
 
 /// Options of the form --key value, plus positional arguments.
@@ -255,6 +297,112 @@ int report_command(const std::vector<std::string>& args) {
   return 0;
 }
 
+/// The whole of `text` as a finite number, else nothing.
+std::optional<double> number_from(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+double number_option(const ParsedArgs& parsed, const std::string& key, double fallback) {
+  if (!parsed.options.count(key)) return fallback;
+  const std::string& text = parsed.options.at(key);
+  const std::optional<double> value = number_from(text);
+  if (!value) throw InputError(key + " needs a number, got '" + text + "'");
+  return *value;
+}
+
+/// --probe X0,Y0,Z0,X1,Y1,Z1: the box's low and high corners.
+AxisBox probe_option(const std::string& text) {
+  std::vector<double> v;
+  std::stringstream in(text);
+  bool numbers = true;
+  for (std::string item; std::getline(in, item, ',');) {
+    const std::optional<double> value = number_from(item);
+    numbers &= value.has_value();
+    if (value) v.push_back(*value);
+  }
+  if (!numbers || v.size() != 6 || v[0] > v[3] || v[1] > v[4] || v[2] > v[5])
+    throw InputError(
+        "--probe needs 6 numbers X0,Y0,Z0,X1,Y1,Z1 with X0<=X1, Y0<=Y1, Z0<=Z1, got '" + text +
+        "'");
+  return {Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5])};
+}
+
+int tune_command(const std::vector<std::string>& args) {
+  ParsedArgs parsed = parse_args(
+      args, {"--target", "--quantity", "--probe", "--resolution", "--budget", "--out", "--threads"},
+      {"--no-render"});
+  if (parsed.help) {
+    std::cout << kTuneHelp;
+    return 0;
+  }
+  if (parsed.positional.size() != 1)
+    throw InputError("tune needs exactly one SCENE.json (see --help)");
+  if (!parsed.options.count("--target")) throw InputError("tune needs --target E (see --help)");
+  TuneOptions options;
+  options.progress = &std::cerr;
+  options.target = number_option(parsed, "--target", 0);
+  options.budget_minutes = number_option(parsed, "--budget", options.budget_minutes);
+  const std::string quantity =
+      parsed.options.count("--quantity") ? parsed.options["--quantity"] : "displacement";
+  const auto kind = kTuneQuantities.find(quantity);
+  if (!kind)
+    throw InputError("--quantity must be displacement, tip or probe, got '" + quantity + "'");
+  options.quantity.kind = *kind;
+  if ((*kind == TuneQuantity::Probe) != (parsed.options.count("--probe") > 0))
+    throw InputError("--probe BOX goes with --quantity probe, and only with it");
+  if (parsed.options.count("--probe"))
+    options.quantity.probe = probe_option(parsed.options["--probe"]);
+  const std::string resolution =
+      parsed.options.count("--resolution") ? parsed.options["--resolution"] : "free";
+  if (resolution != "free" && resolution != "fixed")
+    throw InputError("--resolution must be free or fixed, got '" + resolution + "'");
+  options.axes.resolution_free = resolution == "free";
+  apply_threads_option(parsed);
+  const std::filesystem::path out_dir =
+      parsed.options.count("--out") ? parsed.options["--out"] : "out/tune";
+  const std::filesystem::path scene_file = parsed.positional[0];
+  const Scene scene = load_scene(scene_file);  // every key checked before the long work
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec)
+    throw InputError("tune: cannot create the output folder '" + out_dir.string() +
+                     "': " + ec.message());
+  check_writable(out_dir / "tune.json");
+  const std::filesystem::path scene_dir =
+      scene_file.parent_path().empty() ? "." : scene_file.parent_path();
+  TuneOutcome outcome = tune_scene(scene.raw, scene_dir, scene_file.string(), options);
+  const nlohmann::json tuned = with_paths_moved(outcome.tuned_scene, scene_dir, out_dir);
+  write_file_atomically(out_dir / "tuned_scene.json",
+                        [&](std::ostream& o) { o << tuned.dump(2) << '\n'; });
+  outcome.record["answer"]["scene_file"] = "tuned_scene.json";
+  write_file_atomically(out_dir / "tune.json",
+                        [&](std::ostream& o) { o << outcome.record.dump(1) << '\n'; });
+  if (!parsed.options.count("--no-render") && render_report(out_dir, nullptr, "tune") != 0)
+    std::cerr << "tune: no chart drawn (reports/render --tune " << out_dir.string() << ")\n";
+  const nlohmann::json& a = outcome.record["answer"];
+  std::cerr << "tune: " << a["status"].get<std::string>() << ": " << a["changes"].get<std::string>()
+            << "; " << a["reason"].get<std::string>() << "\n";
+  if (a.contains("rerun") && a["rerun"].value("completed", false))
+    std::cerr << "tune: re-run error "
+              << general_number(a["rerun"]["error_with_reference"].get<double>()) << " (target "
+              << general_number(options.target) << "), "
+              << general_number(a["rerun"]["cost_ms"].get<double>()) << " ms per step"
+              << (a.contains("speedup_over_given")
+                      ? ", " + general_number(a["speedup_over_given"].get<double>()) +
+                            "x the scene as given"
+                      : std::string())
+              << "; written to " << (out_dir / "tuned_scene.json").string() << "\n";
+  return outcome.exit_status;
+}
+
 }  // namespace
 
 int dispatch(const std::vector<std::string>& args) {
@@ -273,6 +421,7 @@ int dispatch(const std::vector<std::string>& args) {
         " runs on one process; under mpirun only `corofem run` (see corofem help run)");
   if (command == "export-matrices") return export_command(rest);
   if (command == "report") return report_command(rest);
+  if (command == "tune") return tune_command(rest);
   throw InputError("unknown command '" + command + "' (see corofem --help)");
 }
 

@@ -81,18 +81,19 @@ std::vector<fs::path> run_report(const ReportConfig& config) {
   return written;
 }
 
-int render_report(const fs::path& dir, std::ostream* progress) {
+int render_report(const fs::path& dir, std::ostream* progress, const std::string& what) {
   fs::path script = fs::path(COROFEM_SOURCE_DIR) / "reports" / "render";
   if (const char* env = std::getenv("COROFEM_RENDERER")) script = env;
   std::error_code ec;
   if (!fs::exists(script, ec)) {
-    if (progress) *progress << "report: renderer " << script.string() << " not found; JSON only\n";
+    if (progress) *progress << "renderer " << script.string() << " not found; JSON only\n";
     return 127;
   }
   // Paths are quoted for the shell; a quote inside them is refused rather than escaped.
   const std::string d = dir.string(), s = script.string();
   if (d.find('\'') != std::string::npos || s.find('\'') != std::string::npos) return 127;
-  const int status = std::system(("'" + s + "' '" + d + "'").c_str());
+  const std::string option = what == "tune" ? " --tune" : "";
+  const int status = std::system(("'" + s + "'" + option + " '" + d + "'").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 

@@ -11,8 +11,10 @@ namespace corofem {
 std::vector<std::filesystem::path> run_report(const ReportConfig& config);
 
 /// Draws REPORT.md and the charts of `dir` from its JSON with the renderer script (found beside
-/// the sources this binary was built from, or $COROFEM_RENDERER). Returns the script's exit code
-/// (127 when no renderer is found).
-int render_report(const std::filesystem::path& dir, std::ostream* progress);
+/// the sources this binary was built from, or $COROFEM_RENDERER); with `what` "tune", the chart of
+/// `corofem tune` (pareto.png from tune.json). Returns the script's exit code (127 when no
+/// renderer is found).
+int render_report(const std::filesystem::path& dir, std::ostream* progress,
+                  const std::string& what = "report");
 
 }  // namespace corofem

@@ -6,12 +6,13 @@
 
 namespace corofem {
 
-SectionProgress::SectionProgress(std::ostream* out, std::string section, int units)
-    : out_(out), section_(std::move(section)), units_(units) {}
+SectionProgress::SectionProgress(std::ostream* out, std::string section, int units,
+                                 std::string tool)
+    : out_(out), section_(std::move(section)), tool_(std::move(tool)), units_(units) {}
 
 std::string SectionProgress::begin(const std::string& unit) {
   const std::lock_guard<std::mutex> hold(lock_);
-  std::string prefix = "report: " + section_ + " " + std::to_string(++started_) + "/" +
+  std::string prefix = tool_ + ": " + section_ + " " + std::to_string(++started_) + "/" +
                        std::to_string(units_) + ": " + unit;
   if (done_ > 0) {
     const double elapsed_min =

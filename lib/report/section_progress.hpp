@@ -13,7 +13,8 @@ namespace corofem {
 
 class SectionProgress {
  public:
-  SectionProgress(std::ostream* out, std::string section, int units);
+  /// Lines begin "<tool>: <section> k/units: ".
+  SectionProgress(std::ostream* out, std::string section, int units, std::string tool = "report");
   /// The next unit has begun: the prefix of its lines.
   std::string begin(const std::string& unit);
   void finish();  ///< the unit begun last (or any running one) has finished
@@ -21,7 +22,7 @@ class SectionProgress {
 
  private:
   std::ostream* out_;
-  std::string section_;
+  std::string section_, tool_;
   int units_, started_ = 0, done_ = 0;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::mutex lock_;

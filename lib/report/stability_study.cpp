@@ -16,6 +16,7 @@
 #include "report/stability_monitor.hpp"
 #include "report/timed_run.hpp"
 #include "rotation/rotation_extractor.hpp"
+#include "scene/time_step_scaling.hpp"
 
 namespace corofem {
 using nlohmann::json;
@@ -135,24 +136,12 @@ json pose_record(const StabilityMonitor& monitor, const TimedRun& run, const std
 
 }  // namespace
 
-json refined_scene(const json& scene, int k) {
-  json s = scene;
-  s["analysis"]["dt"] = s["analysis"]["dt"].get<double>() / k;
-  s["analysis"]["steps"] = s["analysis"]["steps"].get<int>() * k;
-  for (const char* loads : {"forces", "moves"})
-    if (s.contains(loads))
-      for (json& load : s[loads])
-        for (const char* key : {"ramp_steps", "release_step"})
-          if (load.contains(key)) load[key] = load[key].get<int>() * k;
-  return s;
-}
-
 json run_stability_case(const json& scene, const std::string& scene_id, const StabilityRun& spec,
                         int ramp_steps, int hold_steps, json* pose,
                         const std::filesystem::path& vtu_dir) {
   const std::string method = kRotationMethods.name(spec.method);
   const std::string integrator = kIntegrators.name(spec.integrator);
-  json s = refined_scene(scene, spec.refinement);
+  json s = *time_step_scaled(scene, 1, spec.refinement);  // always whole
   s["analysis"]["rotation"] = method;
   s["analysis"]["integrator"] = integrator;
   ramp_steps *= spec.refinement;

@@ -41,10 +41,6 @@ struct StabilityRun {
   int refinement = 1;  ///< dt = 0.01 / refinement, ramp and hold refinement x as many steps
 };
 
-/// `scene` run for the same physical time at dt / k: steps, and the loads' ramp and release
-/// steps, k times as many.
-nlohmann::json refined_scene(const nlohmann::json& scene, int k);
-
 /// One run of one scene; `scene` is a stability_scene() built for ramp_steps and hold_steps (at
 /// its own dt; refined here by spec.refinement). `pose`, if given, receives the final boundary
 /// positions colored by the largest rotation change per vertex.

@@ -115,6 +115,7 @@ MeshSpec read_mesh(JsonFields f, const fs::path& base, bool coarse = false) {
     if (f.has("surface")) {
       m.kind = MeshSpec::Kind::Surface;
       m.path = base / f.string("surface");
+      m.simplify_surface = f.boolean("simplify", false);
     } else {
       m.kind = MeshSpec::Kind::Quadruped;
       one_of(f, "shape", "", {"quadruped"});

@@ -1,0 +1,228 @@
+#include "tune/tune_axes.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/number_text.hpp"
+#include "scene/time_step_scaling.hpp"
+
+namespace corofem {
+using nlohmann::json;
+
+namespace {
+
+/// Resolutions step by this factor in element size (3.4x the tets): far enough apart for a
+/// Richardson estimate whose difference is not round-off, close enough to keep several.
+constexpr double kResolutionRatio = 1.5;
+constexpr int kCoarserResolutions = 3;
+
+std::string cells_label(const std::array<int, 3>& c) {
+  return "cells=" + std::to_string(c[0]) + "x" + std::to_string(c[1]) + "x" + std::to_string(c[2]);
+}
+
+/// The resolution axis: a finer reference where affordable, the scene's mesh, coarser ones.
+TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOptions& options,
+                         std::string& note) {
+  TuneAxis axis{.name = "resolution"};
+  const MeshSpec& m = scene.mesh;
+  const double given_tets = m.estimated_tets;
+  auto add = [&](AxisValue v) { axis.values.push_back(std::move(v)); };
+  switch (m.kind) {
+    case MeshSpec::Kind::File:
+      add({.label = "the scene's mesh file", .family = "resolution"});
+      note = "a mesh file cannot be re-meshed: the resolution is the scene's";
+      return axis;
+    case MeshSpec::Kind::Box: {
+      // Factors in element size: 1/1.5 (finer), 1, 1.5, 2.25, ...
+      for (int k = -1; k <= kCoarserResolutions; ++k) {
+        const double h = std::pow(kResolutionRatio, k);
+        std::array<int, 3> cells{};
+        double tets = 6;
+        for (int i = 0; i < 3; ++i) {
+          cells[i] = std::max(1, static_cast<int>(std::lround(m.cells[i] / h)));
+          tets *= cells[i];
+        }
+        if (k < 0 && (!options.resolution_free || tets > options.finest_tets)) continue;
+        if (k > 0 && (!options.resolution_free ||
+                      cells == axis.values.back().patch["mesh"]["cells"].get<std::array<int, 3>>()))
+          break;
+        if (k == 0) axis.given = static_cast<int>(axis.values.size());
+        add({.label = cells_label(cells) + (k < 0    ? " (finer)"
+                                            : k == 0 ? " (the scene's)"
+                                                     : ""),
+             .patch = {{"mesh", {{"cells", cells}}}},
+             .family = "resolution",
+             .estimated_tets = tets});
+      }
+      break;
+    }
+    case MeshSpec::Kind::Quadruped:
+    case MeshSpec::Kind::Surface: {
+      const bool surface = m.kind == MeshSpec::Kind::Surface;
+      // gmsh keeps a surface's triangles: a finer size refines only the inside, so the scene's
+      // surface is the finest; coarser sizes simplify the surface first (mesh.simplify).
+      for (int k = surface ? 0 : -1; k <= kCoarserResolutions; ++k) {
+        const double size = m.size * std::pow(kResolutionRatio, k);
+        const double tets = given_tets > 0 ? 2.6 / std::pow(size, 3) : 0;
+        if (k < 0 && (!options.resolution_free || tets > options.finest_tets)) continue;
+        if (k > 0 && !options.resolution_free) break;
+        if (k == 0) axis.given = static_cast<int>(axis.values.size());
+        json mesh = {{"size", size}};
+        // Given coarse levels finer than 1.5x the new size would not coarsen: the hierarchy
+        // derives its own.
+        if (k > 0 && raw["mesh"].contains("levels")) mesh["levels"] = nullptr;
+        if (k > 0 && surface) mesh["simplify"] = true;
+        add({.label = "size=" + general_number(size) +
+                      (k < 0    ? " (finer)"
+                       : k == 0 ? " (the scene's)"
+                                : ""),
+             .patch = {{"mesh", mesh}},
+             .family = "resolution",
+             .estimated_tets = tets});
+      }
+      if (surface)
+        note =
+            "a surface is not refined past its own triangles: the scene's resolution is the "
+            "finest";
+      break;
+    }
+  }
+  if (!options.resolution_free) note = "--resolution fixed: the scene's mesh only";
+  axis.reference = 0;
+  return axis;
+}
+
+TuneAxis rotation_axis() {
+  TuneAxis axis{.name = "rotation"};
+  axis.values.push_back({.label = kRotationMethods.name(RotationMethod::EnergyExact),
+                         .patch = {{"analysis", {{"rotation", "energy-exact"}}}},
+                         .family = "energy-exact"});
+  for (const auto& [method, name] : kRotationMethods.entries)
+    if (method != RotationMethod::None && method != RotationMethod::EnergyExact)
+      axis.values.push_back(
+          {.label = name, .patch = {{"analysis", {{"rotation", name}}}}, .family = name});
+  return axis;
+}
+
+std::string tolerance_label(double tolerance) {
+  return "tol=" + general_number(tolerance);
+}
+
+/// A linear solver's settings: CHOLMOD, then families of iterative solvers, each from its
+/// tightest tolerance to its loosest.
+TuneAxis linear_solver_axis(const Scene& scene) {
+  TuneAxis axis{.name = "solver"};
+  axis.values.push_back(
+      {.label = "cholmod", .patch = {{"analysis", {{"solver", "cholmod"}}}}, .family = "cholmod"});
+  const int levels = scene.analysis.levels >= 2 ? scene.analysis.levels : 3;
+  auto family = [&](const std::string& name, json settings, const std::vector<double>& tolerances) {
+    for (double tolerance : tolerances) {
+      json a = settings;
+      a["tolerance"] = tolerance;
+      axis.values.push_back({.label = name + " " + tolerance_label(tolerance),
+                             .patch = {{"analysis", a}},
+                             .family = name});
+    }
+  };
+  family("mgpcg", {{"solver", "mgpcg"}, {"levels", levels}}, {1e-8, 1e-6, 1e-4, 1e-3, 1e-2});
+  family("mgpcg W-cycle", {{"solver", "mgpcg"}, {"levels", levels}, {"cycle", "W"}},
+         {1e-4, 1e-3, 1e-2});
+  family("mgpcg chebyshev", {{"solver", "mgpcg"}, {"levels", levels}, {"smoother", "chebyshev"}},
+         {1e-4, 1e-3, 1e-2});
+  family("mgpcg lattice", {{"solver", "mgpcg"}, {"levels", levels}, {"hierarchy", "lattice"}},
+         {1e-4, 1e-3, 1e-2});
+  for (int vcycles : {2, 1})
+    axis.values.push_back(
+        {.label = "multigrid vcycles=" + std::to_string(vcycles),
+         .patch = {{"analysis",
+                    {{"solver", "multigrid"}, {"levels", levels}, {"vcycles", vcycles}}}},
+         .family = "multigrid"});
+  family("jacobi-pcg", {{"solver", "jacobi-pcg"}}, {1e-6, 1e-4, 1e-3, 1e-2});
+  return axis;
+}
+
+/// Static Newton (sparse LU): its convergence tolerance, from the reference's down.
+TuneAxis newton_tolerance_axis(const Scene& scene) {
+  TuneAxis axis{.name = "solver"};
+  const double reference = std::min(scene.analysis.tolerance, 1e-8);
+  std::vector<double> tolerances{reference};
+  for (double t : {1e-6, 1e-4, 1e-3, 1e-2})
+    if (t > reference) tolerances.push_back(t);
+  for (double t : tolerances)
+    axis.values.push_back({.label = "newton " + tolerance_label(t),
+                           .patch = {{"analysis", {{"tolerance", t}}}},
+                           .family = "newton"});
+  return axis;
+}
+
+/// Static corotational: load increments, the scene's first, then halved down to one.
+TuneAxis load_steps_axis(const Scene& scene) {
+  TuneAxis axis{.name = "load_steps"};
+  for (int n = scene.analysis.load_steps;; n = std::max(1, n / 2)) {
+    axis.values.push_back({.label = "load_steps=" + std::to_string(n),
+                           .patch = {{"analysis", {{"load_steps", n}}}},
+                           .family = "load_steps"});
+    if (n == 1) break;
+  }
+  return axis;
+}
+
+/// Dynamic: the time step, the scene's first, then 2x, 4x and 8x where the step counts allow.
+TuneAxis time_step_axis(const Scene& scene, const json& raw) {
+  TuneAxis axis{.name = "time_step"};
+  for (int k : {1, 2, 4, 8}) {
+    if (k > 1 && !time_step_scaled(raw, k, 1)) break;
+    axis.values.push_back({.label = "dt=" + general_number(scene.analysis.dt * k),
+                           .time_factor = k,
+                           .family = "time_step"});
+  }
+  return axis;
+}
+
+}  // namespace
+
+std::vector<TuneAxis> tune_axes(const Scene& scene, const json& raw, const TuneAxesOptions& options,
+                                std::string& note) {
+  std::vector<TuneAxis> axes;
+  axes.push_back(resolution_axis(scene, raw, options, note));
+  const bool corotational = scene.analysis.formulation == Formulation::Corotational;
+  if (corotational) axes.push_back(rotation_axis());
+  const bool dynamic = scene.analysis.type == AnalysisType::Dynamic;
+  if (!dynamic && corotational && scene.analysis.integrator == Integrator::Newton) {
+    axes.push_back(newton_tolerance_axis(scene));
+    axes.push_back(load_steps_axis(scene));
+  } else {
+    axes.push_back(linear_solver_axis(scene));
+  }
+  if (dynamic) axes.push_back(time_step_axis(scene, raw));
+  // The scene's own value where it is one of an axis's values.
+  for (TuneAxis& axis : axes) {
+    if (axis.name == "resolution") continue;
+    for (std::size_t i = 0; i < axis.values.size(); ++i) {
+      json patched = raw;
+      patched.merge_patch(axis.values[i].patch);
+      if (patched == raw && axis.values[i].time_factor == 1) axis.given = static_cast<int>(i);
+    }
+  }
+  return axes;
+}
+
+std::optional<json> apply_setting(const json& raw, const std::vector<TuneAxis>& axes,
+                                  const std::vector<int>& setting) {
+  json scene = raw;
+  int time_factor = 1;
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    const AxisValue& value = axes[i].values[setting[i]];
+    scene.merge_patch(value.patch);
+    time_factor *= value.time_factor;
+  }
+  scene.erase("output");
+  json& analysis = scene["analysis"];
+  const auto solver = kSolverKinds.find(analysis.value("solver", "cholmod"));
+  if (solver && !is_multigrid_solver(*solver))
+    for (const char* key : kMultigridAnalysisKeys) analysis.erase(key);
+  if (time_factor == 1) return scene;
+  return time_step_scaled(scene, time_factor, 1);
+}
+
+}  // namespace corofem
