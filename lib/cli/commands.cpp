@@ -118,7 +118,7 @@ error E of the reference, and writes into DIR (default out/tune):
                     Pareto front), the answer and its re-run, what produced it
   pareto.png        cost against error of every setting measured (reports/render; matplotlib)
 The reference: the finest resolution (a box or the quadruped re-meshed 1.5x finer where it stays
-under 300k tets; a surface at its own triangles), CHOLMOD (static Newton: its sparse LU at 1e-8),
+under 300k tets; a surface refined inside), CHOLMOD (static Newton: its sparse LU at 1e-8),
 the exact rotation minimizer, the scene's time step and integrator. Its own discretization error
 is estimated by Richardson extrapolation from coarser resolutions and counted in every error.
 The search: resolution, rotation method, solver and tolerance (multigrid hierarchy, smoother and

@@ -25,6 +25,9 @@ struct Measured {
   std::vector<int> setting{};
   CandidateRun run{};
   double error = kNaN;  ///< against the reference, the reference's own error not included
+  /// Against the base (the scene's resolution, the reference's other settings): what a setting
+  /// other than the resolution costs in accuracy on its own (= error where base = reference).
+  double base_error = kNaN;
   double predicted_error = kNaN, predicted_cost_ms = kNaN;  ///< combinations
 };
 
@@ -55,6 +58,12 @@ class Tuner {
 
   TuneOutcome run();
 
+  /// A screened value's own error: the resolution's against the reference, another axis's
+  /// against the base.
+  static double own_error(std::size_t axis, const Measured& m) {
+    return axis == 0 ? m.error : m.base_error;
+  }
+
  private:
   bool out_of_time() const { return std::chrono::steady_clock::now() > deadline_; }
   std::string label_of(const std::vector<int>& setting) const;
@@ -62,7 +71,11 @@ class Tuner {
   /// Runs a setting (or, with `scene`, that scene) and measures it against the reference.
   Measured& measure(const std::string& stage, const std::vector<int>& setting,
                     const std::optional<json>& scene = std::nullopt);
+  /// The run of the base (the reference for the resolution axis) with axis `axis` at `value`.
   const Measured* screened(std::size_t axis, int value) const;
+  const std::vector<int>& origin(std::size_t axis) const {
+    return axis == 0 ? reference_setting_ : base_setting_;
+  }
   void screen_axis(std::size_t a, double allowance);
   ReferenceError reference_error() const;
   void combine(double allowance);
@@ -79,6 +92,10 @@ class Tuner {
   std::vector<TuneAxis> axes_;
   std::string resolution_note_;
   std::vector<int> reference_setting_;
+  /// The other axes are screened at the scene's own resolution (a finer reference would make
+  /// every screening run cost as much as the reference): the reference's settings there.
+  std::vector<int> base_setting_;
+  int base_index_ = -1;             ///< in measured_
   std::vector<Measured> measured_;  ///< [0]: the reference
   std::optional<Measured> given_;
   std::vector<std::string> skipped_;  ///< values the search left out, and why
@@ -116,6 +133,10 @@ Measured& Tuner::measure(const std::string& stage, const std::vector<int>& setti
   if (m.run.completed && !measured_.empty())
     m.error = quantity_error(quantity_, m.run.state, measured_.front().run.state);
   if (m.run.completed && measured_.empty()) m.error = 0;
+  if (m.run.completed && base_index_ >= 0)
+    m.base_error = base_index_ == 0
+                       ? m.error
+                       : quantity_error(quantity_, m.run.state, measured_[base_index_].run.state);
   progress_->finish();
   if (options_.progress)
     *options_.progress << prefix << ": "
@@ -132,7 +153,7 @@ const Measured* Tuner::screened(std::size_t axis, int value) const {
     if (m.stage != "screening" && m.stage != "reference") continue;
     bool match = m.setting[axis] == value;
     for (std::size_t a = 0; a < axes_.size() && match; ++a)
-      if (a != axis) match = m.setting[a] == reference_setting_[a];
+      if (a != axis) match = m.setting[a] == origin(axis)[a];
     if (match) return &m;
   }
   return nullptr;
@@ -143,7 +164,7 @@ void Tuner::screen_axis(std::size_t a, double allowance) {
   const TuneAxis& axis = axes_[a];
   std::vector<std::string> stopped;
   for (int i = 0; i < static_cast<int>(axis.values.size()); ++i) {
-    if (i == axis.reference || screened(a, i)) continue;
+    if (i == origin(a)[a] || screened(a, i)) continue;
     const AxisValue& value = axis.values[i];
     if (std::find(stopped.begin(), stopped.end(), value.family) != stopped.end()) {
       skipped_.push_back(value.label + ": a more accurate value of its family missed the target");
@@ -154,10 +175,10 @@ void Tuner::screen_axis(std::size_t a, double allowance) {
       skipped_.push_back(value.label + ": the budget was spent");
       continue;
     }
-    std::vector<int> setting = reference_setting_;
+    std::vector<int> setting = origin(a);
     setting[a] = i;
     const Measured& m = measure("screening", setting);
-    if (!m.run.completed || !(m.error <= allowance)) stopped.push_back(value.family);
+    if (!m.run.completed || !(own_error(a, m) <= allowance)) stopped.push_back(value.family);
   }
 }
 
@@ -191,7 +212,9 @@ ReferenceError Tuner::reference_error() const {
   }
   // The observed order only where it is plausible for linear tets (1..2); else 1, which
   // overestimates the error of a method that converges faster.
-  if (std::isfinite(observed) && observed >= 1) order = std::min(observed, 2.0);
+  // A surface's coarser resolutions also change the body (simplified): not the same sequence.
+  const bool same_body = scene_.mesh.kind != MeshSpec::Kind::Surface;
+  if (same_body && std::isfinite(observed) && observed >= 1) order = std::min(observed, 2.0);
   e.value = d1 / (std::pow(r, order) - 1);
   e.record = {{"value", e.value},
               {"method", "Richardson over the reference and the next coarser resolution"},
@@ -208,9 +231,13 @@ void Tuner::combine(double allowance) {
   std::vector<std::vector<int>> admissible(axes_.size());
   for (std::size_t a = 0; a < axes_.size(); ++a)
     for (int i = 0; i < static_cast<int>(axes_[a].values.size()); ++i)
-      if (const Measured* m = screened(a, i); m && m->run.completed && m->error <= allowance)
+      if (const Measured* m = screened(a, i);
+          m && m->run.completed && own_error(a, *m) <= allowance)
         admissible[a].push_back(i);
+  // Costs relative to each axis's origin: the resolution's to the reference, the others' to the
+  // base; the prediction starts from the reference's cost.
   const double reference_cost = measured_.front().run.cost_ms;
+  const double base_cost = measured_[base_index_].run.cost_ms;
   struct Predicted {
     std::vector<int> setting;
     double error, cost;
@@ -219,17 +246,18 @@ void Tuner::combine(double allowance) {
   std::vector<std::size_t> index(axes_.size(), 0);
   while (true) {
     Predicted p{{}, 0, reference_cost};
-    int changed = 0;
     for (std::size_t a = 0; a < axes_.size(); ++a) {
       const int v = admissible[a][index[a]];
       p.setting.push_back(v);
-      if (v == reference_setting_[a]) continue;
-      ++changed;
       const Measured* m = screened(a, v);
-      p.error += m->error;  // errors of independent settings add at most (triangle inequality)
-      p.cost *= m->run.cost_ms / reference_cost;
+      // Errors of independent settings add at most (triangle inequality).
+      p.error += own_error(a, *m);
+      p.cost *= m->run.cost_ms / (a == 0 ? reference_cost : base_cost);
     }
-    if (changed >= 2 && p.error <= allowance) predicted.push_back(std::move(p));
+    const bool measured = std::any_of(measured_.begin(), measured_.end(), [&](const Measured& m) {
+      return m.stage != "given" && m.setting == p.setting;
+    });
+    if (!measured && p.error <= allowance) predicted.push_back(std::move(p));
     std::size_t a = 0;
     while (a < axes_.size() && ++index[a] == admissible[a].size()) index[a++] = 0;
     if (a == axes_.size()) break;
@@ -257,13 +285,17 @@ json Tuner::candidate_json(const Measured& m, double reference_error) const {
             {"changes", label_of(m.setting)},
             {"completed", m.run.completed},
             {"tets", m.run.tets}};
-  if (m.stage == "given") j["changes"] = "the scene as given";
+  if (m.stage == "given") {  // its settings need not be values of the axes
+    j.erase("setting");
+    j["changes"] = "the scene as given";
+  }
   if (!m.run.completed) {
     j["failure"] = m.run.failure;
     return j;
   }
   j["error"] = m.error;
   j["error_with_reference"] = m.error + reference_error;
+  if (std::isfinite(m.base_error) && m.stage == "screening") j["error_against_base"] = m.base_error;
   j["ms_per_step"] = m.run.ms_per_step;
   j["cost_ms"] = m.run.cost_ms;
   j["linear_iterations_per_step"] = m.run.linear_iterations_per_step;
@@ -398,6 +430,19 @@ TuneOutcome Tuner::run() {
                       "; refine the mesh, or tune against the scene's own mesh with --resolution "
                       "fixed");
   const double allowance = options_.target - e_ref.value;
+  // The base: the scene's resolution with the reference's other settings (the reference itself
+  // where the scene's resolution is the finest, or its run failed).
+  base_setting_ = reference_setting_;
+  base_setting_[resolution] = axes_[resolution].given;
+  base_index_ = 0;
+  for (std::size_t i = 0; i < measured_.size(); ++i)
+    if (measured_[i].stage != "given" && measured_[i].setting == base_setting_ &&
+        measured_[i].run.completed)
+      base_index_ = static_cast<int>(i);
+  if (base_index_ == 0) base_setting_ = reference_setting_;
+  for (Measured& m : measured_)
+    if (m.run.completed)
+      m.base_error = quantity_error(quantity_, m.run.state, measured_[base_index_].run.state);
   for (std::size_t a = 0; a < axes_.size(); ++a) screen_axis(a, allowance);
   combine(allowance);
   const Measured* choice = &measured_.front();

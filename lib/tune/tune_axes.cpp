@@ -59,9 +59,10 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
     case MeshSpec::Kind::Quadruped:
     case MeshSpec::Kind::Surface: {
       const bool surface = m.kind == MeshSpec::Kind::Surface;
-      // gmsh keeps a surface's triangles: a finer size refines only the inside, so the scene's
-      // surface is the finest; coarser sizes simplify the surface first (mesh.simplify).
-      for (int k = surface ? 0 : -1; k <= kCoarserResolutions; ++k) {
+      // gmsh keeps a surface's triangles: a finer size refines only the inside (the body stays
+      // the one the surface describes); coarser sizes simplify the surface first
+      // (mesh.simplify), which changes the body too.
+      for (int k = -1; k <= kCoarserResolutions; ++k) {
         const double size = m.size * std::pow(kResolutionRatio, k);
         const double tets = given_tets > 0 ? 2.6 / std::pow(size, 3) : 0;
         if (k < 0 && (!options.resolution_free || tets > options.finest_tets)) continue;
@@ -73,7 +74,7 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
         if (k > 0 && raw["mesh"].contains("levels")) mesh["levels"] = nullptr;
         if (k > 0 && surface) mesh["simplify"] = true;
         add({.label = "size=" + general_number(size) +
-                      (k < 0    ? " (finer)"
+                      (k < 0    ? (surface ? " (finer inside)" : " (finer)")
                        : k == 0 ? " (the scene's)"
                                 : ""),
              .patch = {{"mesh", mesh}},
@@ -82,8 +83,8 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
       }
       if (surface)
         note =
-            "a surface is not refined past its own triangles: the scene's resolution is the "
-            "finest";
+            "a surface keeps its triangles: the finer reference is refined inside only, and the "
+            "coarser resolutions simplify the surface (their errors include the body's change)";
       break;
     }
   }
@@ -92,6 +93,8 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
   return axis;
 }
 
+/// Every rotation method, the iterative ones also stopped earlier (their own families, from the
+/// default tolerance down).
 TuneAxis rotation_axis() {
   TuneAxis axis{.name = "rotation"};
   axis.values.push_back({.label = kRotationMethods.name(RotationMethod::EnergyExact),
@@ -101,6 +104,20 @@ TuneAxis rotation_axis() {
     if (method != RotationMethod::None && method != RotationMethod::EnergyExact)
       axis.values.push_back(
           {.label = name, .patch = {{"analysis", {{"rotation", name}}}}, .family = name});
+  const std::string newton = kRotationMethods.name(RotationMethod::EnergyNewton);
+  for (double tolerance : {1e-6, 1e-3})
+    axis.values.push_back({.label = newton + " newton_tolerance=" + general_number(tolerance),
+                           .patch = {{"analysis",
+                                      {{"rotation", newton},
+                                       {"rotation_params", {{"newton_tolerance", tolerance}}}}}},
+                           .family = newton});
+  const std::string mueller = kRotationMethods.name(RotationMethod::Mueller2016);
+  for (int iterations : {3, 1})
+    axis.values.push_back({.label = mueller + " mueller_iterations=" + std::to_string(iterations),
+                           .patch = {{"analysis",
+                                      {{"rotation", mueller},
+                                       {"rotation_params", {{"mueller_iterations", iterations}}}}}},
+                           .family = mueller});
   return axis;
 }
 
