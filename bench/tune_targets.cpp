@@ -48,7 +48,7 @@ json summary(const std::string& name, const std::string& resolution, const json&
             {"status", a["status"]},
             {"reason", a["reason"]},
             {"changes", a["changes"]},
-            {"reference_error", r["reference_error"]["value"]},
+            {"reference_error", r["reference_error"].value("value", json(nullptr))},
             {"runs", r["runs"]},
             {"full_grid_runs", r["full_grid_runs"]},
             {"search_fraction", r["search_fraction"]},

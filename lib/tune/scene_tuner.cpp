@@ -399,8 +399,11 @@ TuneOutcome Tuner::answer(Measured choice, const ReferenceError& e_ref, const st
 TuneOutcome Tuner::run() {
   const Measured& reference = measure("reference", reference_setting_);
   if (!reference.run.completed)
-    return answer(reference, {}, "not met",
-                  "solver-limited: the reference setting did not run: " + reference.run.failure);
+    return answer(
+        reference,
+        {.value = 0,
+         .record = {{"value", nullptr}, {"method", "not estimated: the reference did not run"}}},
+        "not met", "solver-limited: the reference setting did not run: " + reference.run.failure);
   if (quantity_.kind == TuneQuantity::Tip)
     quantity_.tip = tip_point(reference.run.state, scene_.fixed);
   if (quantity_.kind == TuneQuantity::Probe &&
