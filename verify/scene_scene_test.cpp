@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "scene/scene_paths.hpp"
 #include "scene/solver_factory.hpp"
 
 namespace corofem {
@@ -68,6 +69,32 @@ TEST(Scene, RelativePathsResolveAgainstSceneFolder) {
   const Scene s = parse_scene(j, "/base/dir", "s.json");
   EXPECT_EQ(s.mesh.path, std::filesystem::path("/base/dir/meshes/a.msh"));
   EXPECT_EQ(*s.output.vtu, std::filesystem::path("/base/dir/out/r.vtu"));
+}
+
+TEST(Scene, MovedSceneNamesTheSameFiles) {
+  // corofem tune writes its answer into another folder: its relative paths follow.
+  auto j = minimal();
+  j["mesh"] = {{"surface", "models/a.stl"},
+               {"size", 0.1},
+               {"levels", {{{"surface", "models/a_L1.stl"}, {"size", 0.2}}}}};
+  j["output"] = {{"vtu", "r.vtu"}};
+  const std::filesystem::path from = "/data/scenes", to = "/data/out/tune";
+  const nlohmann::json moved = with_paths_moved(j, from, to);
+  const Scene original = parse_scene(j, from, "s.json");
+  const Scene there = parse_scene(moved, to, "s.json");
+  EXPECT_EQ(there.mesh.path.lexically_normal(), original.mesh.path.lexically_normal());
+  EXPECT_EQ(there.mesh.levels.at(0).path.lexically_normal(),
+            original.mesh.levels.at(0).path.lexically_normal());
+  EXPECT_EQ(there.output.vtu->lexically_normal(), original.output.vtu->lexically_normal());
+  EXPECT_EQ(moved["mesh"]["surface"], "../../scenes/models/a.stl");
+}
+
+TEST(Scene, SimplifyIsASurfaceKey) {
+  auto j = minimal();
+  j["mesh"] = {{"surface", "a.stl"}, {"size", 0.1}, {"simplify", true}};
+  EXPECT_TRUE(parse_scene(j, ".", "s.json").mesh.simplify_surface);
+  j["mesh"] = {{"box", {1, 1, 1}}, {"cells", {1, 1, 1}}, {"simplify", true}};
+  EXPECT_THROW(parse_scene(j, ".", "s.json"), InputError);
 }
 
 TEST(Scene, MultigridKeysOfAnotherSolverAreIgnoredWithAWarning) {
