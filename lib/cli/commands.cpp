@@ -279,12 +279,7 @@ int report_command(const std::vector<std::string>& args) {
   config.vtu = parsed.options.count("--vtu") > 0;
   if (parsed.options.count("--only")) config.only = parsed.options["--only"];
   apply_threads_option(parsed);
-  std::error_code ec;
-  std::filesystem::create_directories(config.out_dir, ec);
-  if (ec)
-    throw InputError("report: cannot create the output folder '" + config.out_dir.string() +
-                     "': " + ec.message());
-  check_writable(config.out_dir / "tables.json");
+  prepare_output_folder(config.out_dir, "tables.json");
   std::cerr << "report: " << config.mode_name() << " run into " << config.out_dir.string() << "\n";
   run_report(config);
   if (!parsed.options.count("--no-render")) {
@@ -370,12 +365,7 @@ int tune_command(const std::vector<std::string>& args) {
       parsed.options.count("--out") ? parsed.options["--out"] : "out/tune";
   const std::filesystem::path scene_file = parsed.positional[0];
   const Scene scene = load_scene(scene_file);  // every key checked before the long work
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec)
-    throw InputError("tune: cannot create the output folder '" + out_dir.string() +
-                     "': " + ec.message());
-  check_writable(out_dir / "tune.json");
+  prepare_output_folder(out_dir, "tune.json");
   const std::filesystem::path scene_dir =
       scene_file.parent_path().empty() ? "." : scene_file.parent_path();
   TuneOutcome outcome = tune_scene(scene.raw, scene_dir, scene_file.string(), options);
@@ -385,7 +375,7 @@ int tune_command(const std::vector<std::string>& args) {
   outcome.record["answer"]["scene_file"] = "tuned_scene.json";
   write_file_atomically(out_dir / "tune.json",
                         [&](std::ostream& o) { o << outcome.record.dump(1) << '\n'; });
-  if (!parsed.options.count("--no-render") && render_report(out_dir, nullptr, "tune") != 0)
+  if (!parsed.options.count("--no-render") && render_report(out_dir, nullptr, Rendering::Tune) != 0)
     std::cerr << "tune: no chart drawn (reports/render --tune " << out_dir.string() << ")\n";
   const nlohmann::json& a = outcome.record["answer"];
   std::cerr << "tune: " << a["status"].get<std::string>() << ": " << a["changes"].get<std::string>()

@@ -100,4 +100,12 @@ void check_writable(const fs::path& path) {
   fs::remove(tmp, ignored);
 }
 
+void prepare_output_folder(const fs::path& dir, const std::string& file) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec)
+    throw InputError("cannot create the output folder '" + dir.string() + "': " + ec.message());
+  check_writable(dir / file);
+}
+
 }  // namespace corofem

@@ -21,5 +21,8 @@ void remove_partial_outputs_on_interrupt();
 /// Throws InputError if a file cannot be created in the folder of `path` (checked before long runs,
 /// so an unwritable output is reported before the work, not after).
 void check_writable(const std::filesystem::path& path);
+/// Creates the output folder `dir` (with its parents) and checks that `file` can be written in
+/// it; InputError naming the folder otherwise.
+void prepare_output_folder(const std::filesystem::path& dir, const std::string& file);
 
 }  // namespace corofem

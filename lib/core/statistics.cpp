@@ -12,4 +12,15 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+std::vector<bool> pareto_front(const std::vector<CostAndError>& points) {
+  std::vector<bool> front(points.size(), true);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (const CostAndError& q : points) {
+      const CostAndError& p = points[i];
+      if (q.cost <= p.cost && q.error <= p.error && (q.cost < p.cost || q.error < p.error))
+        front[i] = false;
+    }
+  return front;
+}
+
 }  // namespace corofem

@@ -1,10 +1,19 @@
 #pragma once
-// Order statistics for records: medians of phase times, iterations and convergence factors.
+// Order statistics for records: medians of phase times, iterations and convergence factors, and
+// the Pareto front of points of cost and error.
 #include <vector>
 
 namespace corofem {
 
 /// Median of the values (NaN for none).
 double median(std::vector<double> values);
+
+struct CostAndError {
+  double cost, error;
+};
+
+/// Per point: whether no other point is at least as good in both and better in one (the Pareto
+/// front of cost against error).
+std::vector<bool> pareto_front(const std::vector<CostAndError>& points);
 
 }  // namespace corofem

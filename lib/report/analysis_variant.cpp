@@ -31,8 +31,7 @@ std::string label_of(const AnalysisVariant& variant) {
 nlohmann::json with_analysis(nlohmann::json scene, const AnalysisVariant& variant) {
   const nlohmann::json set = to_json(variant);  // held: items() refers into it
   for (auto& [key, value] : set.items()) scene["analysis"][key] = value;
-  if (variant.solver && !is_multigrid_solver(*variant.solver))
-    for (const char* key : kMultigridAnalysisKeys) scene["analysis"].erase(key);
+  if (variant.solver) drop_unused_multigrid_keys(scene["analysis"]);
   return scene;
 }
 

@@ -81,7 +81,7 @@ std::vector<fs::path> run_report(const ReportConfig& config) {
   return written;
 }
 
-int render_report(const fs::path& dir, std::ostream* progress, const std::string& what) {
+int render_report(const fs::path& dir, std::ostream* progress, Rendering what) {
   fs::path script = fs::path(COROFEM_SOURCE_DIR) / "reports" / "render";
   if (const char* env = std::getenv("COROFEM_RENDERER")) script = env;
   std::error_code ec;
@@ -92,7 +92,7 @@ int render_report(const fs::path& dir, std::ostream* progress, const std::string
   // Paths are quoted for the shell; a quote inside them is refused rather than escaped.
   const std::string d = dir.string(), s = script.string();
   if (d.find('\'') != std::string::npos || s.find('\'') != std::string::npos) return 127;
-  const std::string option = what == "tune" ? " --tune" : "";
+  const std::string option = what == Rendering::Tune ? " --tune" : "";
   const int status = std::system(("'" + s + "'" + option + " '" + d + "'").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }

@@ -11,10 +11,11 @@ namespace corofem {
 std::vector<std::filesystem::path> run_report(const ReportConfig& config);
 
 /// Draws REPORT.md and the charts of `dir` from its JSON with the renderer script (found beside
-/// the sources this binary was built from, or $COROFEM_RENDERER); with `what` "tune", the chart of
+/// the sources this binary was built from, or $COROFEM_RENDERER); Rendering::Tune: the chart of
 /// `corofem tune` (pareto.png from tune.json). Returns the script's exit code (127 when no
 /// renderer is found).
+enum class Rendering { Report, Tune };
 int render_report(const std::filesystem::path& dir, std::ostream* progress,
-                  const std::string& what = "report");
+                  Rendering what = Rendering::Report);
 
 }  // namespace corofem

@@ -3,6 +3,7 @@
 #include <limits>
 #include <ostream>
 
+#include "core/statistics.hpp"
 #include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
 #include "report/section_progress.hpp"
@@ -70,22 +71,18 @@ void mark_pareto_front(json& points, const std::string& sweep) {
     return p.value("completed", false) && p.contains("rel_error") && p["rel_error"].is_number() &&
            !p.value("is_reference", false) && (sweep.empty() || p.value("sweep", "") == sweep);
   };
+  std::vector<json*> candidates;
+  std::vector<CostAndError> values;
   for (json& p : points) {
-    if (!candidate(p)) {
-      // A completed reference is on no front: it is what the errors are measured against.
-      if (p.value("completed", false) && (sweep.empty() || p.value("sweep", "") == sweep))
-        p["pareto"] = false;
-      continue;
+    if (candidate(p)) {
+      candidates.push_back(&p);
+      values.push_back({p["time_per_step_ms"], p["rel_error"]});
+    } else if (p.value("completed", false) && (sweep.empty() || p.value("sweep", "") == sweep)) {
+      p["pareto"] = false;  // a completed reference: what the errors are measured against
     }
-    const double t = p["time_per_step_ms"], e = p["rel_error"];
-    bool dominated = false;
-    for (const json& q : points) {
-      if (&q == &p || !candidate(q)) continue;
-      const double tq = q["time_per_step_ms"], eq = q["rel_error"];
-      dominated |= tq <= t && eq <= e && (tq < t || eq < e);
-    }
-    p["pareto"] = !dominated;
   }
+  const std::vector<bool> front = pareto_front(values);
+  for (std::size_t i = 0; i < candidates.size(); ++i) (*candidates[i])["pareto"] = bool(front[i]);
 }
 
 namespace {

@@ -35,10 +35,8 @@ StabilityMonitor::StabilityMonitor(RotationMethod method, int ramp_steps, int ho
 
 void StabilityMonitor::observe(const StepState& st, const FeProblem& problem) {
   last_step_ = st.step;
-  if (diagonal_ == 0) {
-    Vec3 lo = problem.mesh.rest[0], hi = lo;
-    for (const Vec3& x : problem.mesh.rest) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-    diagonal_ = (hi - lo).norm();
+  if (blowup_ == 0) {
+    blowup_ = thresholds_.blowup_displacement(problem.mesh.rest);
     vertex_change_.assign(problem.mesh.rest.size(), 0.0);
   }
   const int tets = problem.mesh.num_tets();
@@ -65,7 +63,7 @@ void StabilityMonitor::observe(const StepState& st, const FeProblem& problem) {
   if (st.step >= ramp_steps_) measure_energy(st, problem, kinetic);
   if (st.step == ramp_steps_ + hold_steps_) measure_asymmetry(st, problem);
   inverted_series_.push_back(count_inverted(problem, problem.positions(st.displacement)));
-  if (st.displacement.lpNorm<Eigen::Infinity>() > thresholds_.blowup_factor * diagonal_)
+  if (st.displacement.lpNorm<Eigen::Infinity>() > blowup_)
     throw BlowUp("displacement beyond " + std::to_string(thresholds_.blowup_factor) +
                  "x the body's diagonal at step " + std::to_string(st.step));
   if (!vtu_dir_.empty() && (st.step % 10 == 0)) {

@@ -57,7 +57,7 @@ class StabilityMonitor {
   int ramp_steps_, hold_steps_, settle_from_;  ///< settle_from_: the settled half of the hold
   double dt_, alpha_, beta_;
   std::filesystem::path vtu_dir_;
-  double diagonal_ = 0;
+  double blowup_ = 0;  ///< FlutterThresholds::blowup_displacement of the body
   int last_step_ = 0;
   std::vector<Mat3> previous_;
   std::vector<double> rms_series_, max_series_, kinetic_series_, vertex_change_;

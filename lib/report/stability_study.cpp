@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/line_stream.hpp"
 #include "core/threads.hpp"
+#include "mesh/tet_mesh.hpp"
 #include "report/case_record.hpp"
 #include "report/section_progress.hpp"
 #include "report/stability_monitor.hpp"
@@ -135,6 +136,11 @@ json pose_record(const StabilityMonitor& monitor, const TimedRun& run, const std
 }
 
 }  // namespace
+
+double FlutterThresholds::blowup_displacement(const std::vector<Vec3>& rest) const {
+  const auto [lo, hi] = bounding_box(rest);
+  return blowup_factor * (hi - lo).norm();
+}
 
 json run_stability_case(const json& scene, const std::string& scene_id, const StabilityRun& spec,
                         int ramp_steps, int hold_steps, json* pose,

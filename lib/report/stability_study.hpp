@@ -13,7 +13,9 @@
 // the incremental potential where the force has one, and steps cut to dt/2 where it does not
 // converge (integrate/implicit_euler.hpp).
 #include <nlohmann/json.hpp>
+#include <vector>
 
+#include "core/types.hpp"
 #include "report/report_config.hpp"
 #include "rotation/rotation_method.hpp"
 #include "scene/analysis_settings.hpp"
@@ -28,6 +30,9 @@ struct FlutterThresholds {
   double max_rad = 0.1;
   double rms_rad = 0.01;
   double blowup_factor = 100;  ///< diverged when some |u| exceeds this times the body's diagonal
+  /// The displacement beyond which a run of the body at `rest` has diverged: blowup_factor times
+  /// its bounding box's diagonal.
+  double blowup_displacement(const std::vector<Vec3>& rest) const;
   /// stuck when more than this share of the elements is still inverted at the end of the hold
   /// (issue 40: polar crumpled, 436 of 1296 inverted on block-squash, counted stable before; a
   /// stretched horse's 2 inverted slivers of 33k are not a body that failed to recover).

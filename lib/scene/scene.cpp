@@ -268,6 +268,13 @@ double LoadTiming::factor(int step) const {
   return ramp_steps > 0 ? std::min(1.0, static_cast<double>(step) / ramp_steps) : 1.0;
 }
 
+void drop_unused_multigrid_keys(nlohmann::json& analysis) {
+  const auto solver =
+      kSolverKinds.find(analysis.value("solver", kSolverKinds.name(SolverKind::Cholmod)));
+  if (solver && !is_multigrid_solver(*solver))
+    for (const char* key : kMultigridAnalysisKeys) analysis.erase(key);
+}
+
 Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const std::string& name) {
   Scene s;
   s.name = name;

@@ -134,6 +134,10 @@ struct Scene {
   nlohmann::json raw;  ///< the scene as given, copied into results
 };
 
+/// Erases the multigrid keys from a scene's `analysis` JSON unless its solver (cholmod where
+/// unset) is a multigrid one, which would warn about them: for tools that switch a scene's solver.
+void drop_unused_multigrid_keys(nlohmann::json& analysis);
+
 /// Parses and validates; relative paths resolve against `base_dir`. Throws InputError naming
 /// `name` and the key.
 Scene parse_scene(const nlohmann::json& json, const std::filesystem::path& base_dir,

@@ -17,12 +17,7 @@ CandidateRun run_candidate(const nlohmann::json& scene_json, const std::filesyst
     SceneSimulation simulation(parse_scene(scene_json, base_dir, name));
     const TetMesh& mesh = simulation.problem().mesh;
     run.tets = mesh.num_tets();
-    Vec3 lo = mesh.rest.front(), hi = mesh.rest.front();
-    for (const Vec3& x : mesh.rest) {
-      lo = lo.cwiseMin(x);
-      hi = hi.cwiseMax(x);
-    }
-    const double blowup = FlutterThresholds{}.blowup_factor * (hi - lo).norm();
+    const double blowup = FlutterThresholds{}.blowup_displacement(mesh.rest);
     std::vector<double> step_ms;
     const SimulationResult result = simulation.run([&](const StepState& s) {
       step_ms.push_back(s.phase_ms.at("step"));

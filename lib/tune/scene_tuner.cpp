@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
+#include "core/statistics.hpp"
 #include "io/run_context.hpp"
 #include "report/section_progress.hpp"
 #include "tune/candidate_run.hpp"
@@ -71,6 +72,12 @@ class Tuner {
   /// Runs a setting (or, with `scene`, that scene) and measures it against the reference.
   Measured& measure(const std::string& stage, const std::vector<int>& setting,
                     const std::optional<json>& scene = std::nullopt);
+  /// A completed run's error against the base (its error where the base is the reference).
+  double against_base(const Measured& m) const {
+    return base_index_ == 0
+               ? m.error
+               : quantity_error(quantity_, m.run.state, measured_[base_index_].run.state);
+  }
   /// The run of the base (the reference for the resolution axis) with axis `axis` at `value`.
   const Measured* screened(std::size_t axis, int value) const;
   const std::vector<int>& origin(std::size_t axis) const {
@@ -95,9 +102,9 @@ class Tuner {
   /// The other axes are screened at the scene's own resolution (a finer reference would make
   /// every screening run cost as much as the reference): the reference's settings there.
   std::vector<int> base_setting_;
-  int base_index_ = -1;             ///< in measured_
-  std::vector<Measured> measured_;  ///< [0]: the reference
-  std::optional<Measured> given_;
+  int base_index_ = -1;               ///< in measured_
+  std::vector<Measured> measured_;    ///< [0]: the reference
+  int given_index_ = -1;              ///< in measured_: the scene as the user wrote it
   std::vector<std::string> skipped_;  ///< values the search left out, and why
   bool budget_spent_ = false;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), deadline_;
@@ -125,18 +132,12 @@ Measured& Tuner::measure(const std::string& stage, const std::vector<int>& setti
       stage + ": " + (stage == "given" ? "the scene as given" : label_of(setting));
   const std::string prefix = progress_->begin(what);
   Measured m{.stage = stage, .setting = setting};
-  int time_factor = 1;
-  for (std::size_t a = 0; a < axes_.size(); ++a)
-    time_factor *= axes_[a].values[setting[a]].time_factor;
   const std::optional<json> s = scene ? scene : apply_setting(raw_, axes_, setting);
-  m.run = run_candidate(*s, base_dir_, name_, time_factor);
+  m.run = run_candidate(*s, base_dir_, name_, time_factor(axes_, setting));
   if (m.run.completed && !measured_.empty())
     m.error = quantity_error(quantity_, m.run.state, measured_.front().run.state);
   if (m.run.completed && measured_.empty()) m.error = 0;
-  if (m.run.completed && base_index_ >= 0)
-    m.base_error = base_index_ == 0
-                       ? m.error
-                       : quantity_error(quantity_, m.run.state, measured_[base_index_].run.state);
+  if (m.run.completed && base_index_ >= 0) m.base_error = against_base(m);
   progress_->finish();
   if (options_.progress)
     *options_.progress << prefix << ": "
@@ -353,20 +354,23 @@ TuneOutcome Tuner::answer(Measured choice, const ReferenceError& e_ref, const st
   r["budget_spent"] = budget_spent_;
   // The Pareto front of everything measured (error with the reference's, cost).
   json candidates = json::array();
-  for (const Measured& m : measured_) {
-    json c = candidate_json(m, e_ref.value);
-    if (m.run.completed && m.stage != "re-run") {
-      bool dominated = false;
-      for (const Measured& o : measured_)
-        if (&o != &m && o.run.completed && o.stage != "re-run")
-          dominated |= o.error <= m.error && o.run.cost_ms <= m.run.cost_ms &&
-                       (o.error < m.error || o.run.cost_ms < m.run.cost_ms);
-      c["pareto"] = !dominated;
+  std::vector<json*> on_front;
+  std::vector<CostAndError> points;
+  for (const Measured& m : measured_) candidates.push_back(candidate_json(m, e_ref.value));
+  for (std::size_t i = 0; i < measured_.size(); ++i)
+    if (measured_[i].run.completed && measured_[i].stage != "re-run") {
+      on_front.push_back(&candidates[i]);
+      points.push_back({measured_[i].run.cost_ms, measured_[i].error});
     }
-    candidates.push_back(std::move(c));
-  }
+  const std::vector<bool> front = pareto_front(points);
+  for (std::size_t i = 0; i < on_front.size(); ++i) (*on_front[i])["pareto"] = bool(front[i]);
   r["candidates"] = candidates;
-  if (given_) r["given"] = candidate_json(*given_, e_ref.value);
+  std::optional<double> given_cost;  // read now: the re-run below grows measured_
+  if (given_index_ >= 0) {
+    const Measured& given = measured_[given_index_];
+    r["given"] = candidate_json(given, e_ref.value);
+    if (given.run.completed) given_cost = given.run.cost_ms;
+  }
   out.tuned_scene = *apply_setting(raw_, axes_, choice.setting);
   json a = {{"status", status},
             {"reason", reason},
@@ -380,8 +384,7 @@ TuneOutcome Tuner::answer(Measured choice, const ReferenceError& e_ref, const st
     const bool met = rerun.run.completed && rerun.error + e_ref.value <= options_.target;
     if (rerun.run.completed) {
       a["margin"] = options_.target - (rerun.error + e_ref.value);
-      if (given_ && given_->run.completed)
-        a["speedup_over_given"] = given_->run.cost_ms / rerun.run.cost_ms;
+      if (given_cost) a["speedup_over_given"] = *given_cost / rerun.run.cost_ms;
     }
     if (status == "met" && !met) {
       a["status"] = "not met";
@@ -414,7 +417,8 @@ TuneOutcome Tuner::run() {
   for (const TuneAxis& axis : axes_) given_setting.push_back(axis.given);
   json as_given = raw_;
   as_given.erase("output");
-  given_ = measure("given", given_setting, as_given);
+  measure("given", given_setting, as_given);
+  given_index_ = static_cast<int>(measured_.size()) - 1;
   // The resolutions first: the reference's own error decides what is left for the settings.
   const std::size_t resolution = 0;
   const int richardson_points = std::min<int>(3, static_cast<int>(axes_[resolution].values.size()));
@@ -444,8 +448,7 @@ TuneOutcome Tuner::run() {
       base_index_ = static_cast<int>(i);
   if (base_index_ == 0) base_setting_ = reference_setting_;
   for (Measured& m : measured_)
-    if (m.run.completed)
-      m.base_error = quantity_error(quantity_, m.run.state, measured_[base_index_].run.state);
+    if (m.run.completed) m.base_error = against_base(m);
   for (std::size_t a = 0; a < axes_.size(); ++a) screen_axis(a, allowance);
   combine(allowance);
   const Measured* choice = &measured_.front();

@@ -1,7 +1,6 @@
 #include "tune/tune_axes.hpp"
 
 #include <cmath>
-#include <sstream>
 
 #include "core/number_text.hpp"
 #include "scene/time_step_scaling.hpp"
@@ -34,6 +33,7 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
       return axis;
     case MeshSpec::Kind::Box: {
       // Factors in element size: 1/1.5 (finer), 1, 1.5, 2.25, ...
+      std::array<int, 3> previous{};
       for (int k = -1; k <= kCoarserResolutions; ++k) {
         const double h = std::pow(kResolutionRatio, k);
         std::array<int, 3> cells{};
@@ -43,16 +43,14 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
           tets *= cells[i];
         }
         if (k < 0 && (!options.resolution_free || tets > options.finest_tets)) continue;
-        if (k > 0 && (!options.resolution_free ||
-                      cells == axis.values.back().patch["mesh"]["cells"].get<std::array<int, 3>>()))
-          break;
+        if (k > 0 && (!options.resolution_free || cells == previous)) break;
+        previous = cells;
         if (k == 0) axis.given = static_cast<int>(axis.values.size());
         add({.label = cells_label(cells) + (k < 0    ? " (finer)"
                                             : k == 0 ? " (the scene's)"
                                                      : ""),
              .patch = {{"mesh", {{"cells", cells}}}},
-             .family = "resolution",
-             .estimated_tets = tets});
+             .family = "resolution"});
       }
       break;
     }
@@ -64,7 +62,7 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
       // (mesh.simplify), which changes the body too.
       for (int k = -1; k <= kCoarserResolutions; ++k) {
         const double size = m.size * std::pow(kResolutionRatio, k);
-        const double tets = given_tets > 0 ? 2.6 / std::pow(size, 3) : 0;
+        const double tets = given_tets * std::pow(m.size / size, 3);  // 0 where unknown
         if (k < 0 && (!options.resolution_free || tets > options.finest_tets)) continue;
         if (k > 0 && !options.resolution_free) break;
         if (k == 0) axis.given = static_cast<int>(axis.values.size());
@@ -78,8 +76,7 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
                        : k == 0 ? " (the scene's)"
                                 : ""),
              .patch = {{"mesh", mesh}},
-             .family = "resolution",
-             .estimated_tets = tets});
+             .family = "resolution"});
       }
       if (surface)
         note =
@@ -226,22 +223,20 @@ std::vector<TuneAxis> tune_axes(const Scene& scene, const json& raw, const TuneA
   return axes;
 }
 
+int time_factor(const std::vector<TuneAxis>& axes, const std::vector<int>& setting) {
+  int factor = 1;
+  for (std::size_t i = 0; i < axes.size(); ++i) factor *= axes[i].values[setting[i]].time_factor;
+  return factor;
+}
+
 std::optional<json> apply_setting(const json& raw, const std::vector<TuneAxis>& axes,
                                   const std::vector<int>& setting) {
   json scene = raw;
-  int time_factor = 1;
-  for (std::size_t i = 0; i < axes.size(); ++i) {
-    const AxisValue& value = axes[i].values[setting[i]];
-    scene.merge_patch(value.patch);
-    time_factor *= value.time_factor;
-  }
+  for (std::size_t i = 0; i < axes.size(); ++i) scene.merge_patch(axes[i].values[setting[i]].patch);
   scene.erase("output");
-  json& analysis = scene["analysis"];
-  const auto solver = kSolverKinds.find(analysis.value("solver", "cholmod"));
-  if (solver && !is_multigrid_solver(*solver))
-    for (const char* key : kMultigridAnalysisKeys) analysis.erase(key);
-  if (time_factor == 1) return scene;
-  return time_step_scaled(scene, time_factor, 1);
+  drop_unused_multigrid_keys(scene["analysis"]);
+  const int factor = time_factor(axes, setting);
+  return factor == 1 ? std::optional<json>(scene) : time_step_scaled(scene, factor, 1);
 }
 
 }  // namespace corofem

@@ -21,7 +21,6 @@ struct AxisValue {
   /// Values of one family are ordered most accurate first: the search stops a family at the
   /// first value that misses the target (a looser one would miss it too).
   std::string family{};
-  double estimated_tets = 0;  ///< resolution axis: the tets this value gives (0: not known)
 };
 
 struct TuneAxis {
@@ -41,6 +40,9 @@ struct TuneAxesOptions {
 /// not do (a mesh file cannot be re-meshed; a surface is not refined past its triangles).
 std::vector<TuneAxis> tune_axes(const Scene& scene, const nlohmann::json& raw,
                                 const TuneAxesOptions& options, std::string& note);
+
+/// The product of the setting's time factors: its dt over the scene's.
+int time_factor(const std::vector<TuneAxis>& axes, const std::vector<int>& setting);
 
 /// `raw` with value setting[i] of axis i applied (merge patches, then the time step; the
 /// multigrid keys dropped for a solver that is not multigrid; output dropped). Nullopt where the
