@@ -102,11 +102,15 @@ CliResult run_cli(const std::string& args, const std::string& launcher) {
   return result;
 }
 
-std::string mpirun_two_ranks() {
+std::string mpirun_ranks(int ranks) {
   setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
   setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   setenv("OMPI_MCA_rmaps_base_oversubscribe", "1", 1);
-  return "mpirun -np 2";
+  return "mpirun -np " + std::to_string(ranks);
+}
+
+std::string mpirun_two_ranks() {
+  return mpirun_ranks(2);
 }
 
 fs::path source_dir() {

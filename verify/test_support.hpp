@@ -53,8 +53,11 @@ struct CliResult {
 /// ("mpirun -np 2").
 CliResult run_cli(const std::string& args, const std::string& launcher = "");
 
-/// "mpirun -np 2". Open MPI refuses root without two variables (CI runs as root) and one-core
-/// machines without oversubscription; all three are set for the launched processes only.
+/// "mpirun -np N". Open MPI refuses root without two variables (CI runs as root) and machines
+/// with fewer cores than ranks without oversubscription; all three are set for the launched
+/// processes only.
+std::string mpirun_ranks(int ranks);
+/// mpirun_ranks(2).
 std::string mpirun_two_ranks();
 
 void write_text(const std::filesystem::path& file, const std::string& text);

@@ -16,6 +16,7 @@
 #include "core/threads.hpp"
 #include "report/report_driver.hpp"
 #include "scene/scene_paths.hpp"
+#include "scene/scene_simulation.hpp"
 #include "solver/mpi_launch.hpp"
 #include "tune/scene_tuner.hpp"
 
@@ -206,13 +207,17 @@ int run_command(const std::vector<std::string>& args) {
   if (writer) check_writable(out);
   Scene scene = load_scene(parsed.positional[0]);
   if (mpi.size > 1) require_distributed_solver(scene, mpi.size);
-  if (!writer) scene.output.vtu.reset();
+  const bool distributed_mesh = SceneSimulation::distributes_mesh(scene, mpi.size);
+  if (!writer && !distributed_mesh) scene.output.vtu.reset();  // distributed: a piece per rank
   if (scene.output.vtu) check_writable(*scene.output.vtu);
   SceneRun run = run_scene(scene, writer ? &std::cerr : nullptr);
   run.record["mpi"] = {
       {"ranks", mpi.size},
-      {"distributed", mpi.size > 1 ? "the linear solves (PETSc); assembly replicated on every rank"
-                                   : "nothing (one rank)"}};
+      {"distributed",
+       distributed_mesh ? "the mesh, the element work (rotations, assembly, forces) and the linear "
+                          "solves: each rank holds its part"
+       : mpi.size > 1   ? "the linear solves (PETSc); mesh and assembly replicated on every rank"
+                        : "nothing (one rank)"}};
   if (writer) write_file_atomically(out, [&](std::ostream& o) { o << run.record.dump(1) << '\n'; });
   if (!run.converged && writer) {
     std::cerr << "corofem: did not converge: " << run.record.value("message", "") << "\n";

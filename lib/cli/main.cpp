@@ -16,7 +16,8 @@ int run(const std::vector<std::string>& args) {
   try {
     return corofem::dispatch(args);
   } catch (const corofem::InputError& e) {
-    std::cerr << "corofem: error: " << e.what() << "\n";
+    // Every rank reads the same scene and meets the same bad input: rank 0 says it, once.
+    if (corofem::launcher_rank() == 0) std::cerr << "corofem: error: " << e.what() << "\n";
     return 2;
   } catch (const corofem::NumericalFault& e) {
     std::cerr << "corofem: numerical fault: " << e.what() << "\n";

@@ -8,6 +8,7 @@
 #include <ostream>
 #include <string>
 
+#include "cli/rank_records.hpp"
 #include "cli/step_progress.hpp"
 #include "core/memory_usage.hpp"
 #include "core/number_text.hpp"
@@ -17,6 +18,7 @@
 #include "rotation/quaternion.hpp"
 #include "scene/scene_simulation.hpp"
 #include "scene/solver_factory.hpp"
+#include "solver/mpi_launch.hpp"
 
 namespace corofem {
 
@@ -130,21 +132,41 @@ void add_fields(SceneSimulation& simulation, const SimulationResult& result, nlo
 
 SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   if (progress) *progress << "corofem: building '" << scene.name << "'\n";
-  SceneSimulation simulation(scene);
+  const MpiLaunch mpi = mpi_launch();
+  SceneSimulation simulation = SceneSimulation::distributes_mesh(scene, mpi.size)
+                                   ? SceneSimulation(scene, mpi.rank, mpi.size)
+                                   : SceneSimulation(scene);
+  const std::optional<RankPart>& part = simulation.part();
   FeProblem& problem = simulation.problem();
-  if (progress)
-    *progress << "corofem: " << problem.mesh.num_tets() << " tets, " << problem.mesh.num_vertices()
-              << " vertices; " << kAnalysisTypes.name(scene.analysis.type) << " "
+  const int tets = part ? part->global_tets : problem.mesh.num_tets();
+  const int vertices = part ? part->global_vertices : problem.mesh.num_vertices();
+  if (progress) {
+    *progress << "corofem: " << tets << " tets, " << vertices << " vertices; "
+              << kAnalysisTypes.name(scene.analysis.type) << " "
               << kFormulations.name(scene.analysis.formulation) << " analysis\n";
+    if (part)
+      *progress << "corofem: distributed over " << mpi.size << " ranks; rank 0 holds "
+                << problem.mesh.num_tets() << " tets (" << part->owned_tets() << " its own), "
+                << part->owned_vertices << " vertices and " << part->halo_vertices
+                << " of the halo\n";
+  }
   StepProgress steps(progress, progress == &std::cerr && isatty(STDERR_FILENO),
                      scene.analysis.steps);
   SimulationResult result = simulation.run([&](const StepState& s) { steps.step_done(s.step); });
 
   nlohmann::json r = run_summary(simulation, result);
-  add_fields(simulation, result, r);
-  if (scene.output.vtu) {
-    write_vtu(*scene.output.vtu, problem.mesh, result.displacement, result.rotations);
-    r["vtu"] = scene.output.vtu->string();
+  if (part) {
+    r["mesh"]["vertices"] = vertices;
+    r["mesh"]["tets"] = tets;
+    r["ranks"] = rank_table(simulation, result);
+    add_gathered_fields(simulation, result, r);
+    if (scene.output.vtu) r["vtu"] = write_rank_pieces(simulation, result, *scene.output.vtu);
+  } else {
+    add_fields(simulation, result, r);
+    if (scene.output.vtu) {
+      write_vtu(*scene.output.vtu, problem.mesh, result.displacement, result.rotations);
+      r["vtu"] = scene.output.vtu->string();
+    }
   }
   if (progress) *progress << closing_line(scene, result);
   return {std::move(r), result.converged};

@@ -23,9 +23,10 @@ Eigen::VectorXd gravity_load(const TetMesh& mesh, const std::vector<Material>& m
   return f;
 }
 
-void add_spread_force(Eigen::VectorXd& f, const std::vector<int>& vertices, const Vec3& total) {
+void add_spread_force(Eigen::VectorXd& f, const std::vector<int>& vertices, const Vec3& total,
+                      int among) {
   if (vertices.empty()) return;
-  const Vec3 share = total / static_cast<double>(vertices.size());
+  const Vec3 share = total / static_cast<double>(among > 0 ? among : vertices.size());
   for (int v : vertices) f.segment<3>(3 * v) += share;
 }
 

@@ -14,7 +14,9 @@ Eigen::VectorXd lumped_mass(const TetMesh& mesh, const std::vector<Material>& ma
 Eigen::VectorXd gravity_load(const TetMesh& mesh, const std::vector<Material>& materials,
                              const Vec3& gravity);
 
-/// Adds `total` spread equally over `vertices` to `f`.
-void add_spread_force(Eigen::VectorXd& f, const std::vector<int>& vertices, const Vec3& total);
+/// Adds `total` spread equally over `vertices` to `f`; with `among` > 0, a share of total / among
+/// to each (`vertices` is one rank's part of a selection of `among` vertices).
+void add_spread_force(Eigen::VectorXd& f, const std::vector<int>& vertices, const Vec3& total,
+                      int among = 0);
 
 }  // namespace corofem

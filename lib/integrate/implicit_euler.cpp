@@ -127,13 +127,14 @@ SolveStats newton_step(FeProblem& problem, RotationExtractor& rotate, NewtonStep
 
 /// Counts the state's inverted elements into result.inverted_max: by the rotations' pass where it
 /// counted them, else by a pass of its own.
+/// Distributed (`ranks`), the whole body's count, over every rank's owned tets.
 void note_inverted(const FeProblem& problem, const RotationExtractor& rotate,
-                   const std::vector<Vec3>& positions, SimulationResult& result,
-                   PhaseClock& clock) {
+                   const std::vector<Vec3>& positions, SimulationResult& result, PhaseClock& clock,
+                   const RankView& ranks = {}) {
   clock.time("checks", [&] {
-    const int counted = rotate.stats().inverted;
-    result.inverted_max =
-        std::max(result.inverted_max, counted >= 0 ? counted : count_inverted(problem, positions));
+    const int counted = ranks.distributed() ? -1 : rotate.stats().inverted;
+    result.inverted_max = std::max(
+        result.inverted_max, counted >= 0 ? counted : ranks.count_inverted(problem, positions));
   });
 }
 
@@ -267,6 +268,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
                     dt * options.rayleigh_beta + dt * dt,
                     (1 + dt * options.rayleigh_alpha) * problem.mass,
                     !options.newton && !options.keep_stiffness};
+  if (options.newton && options.ranks.distributed())
+    throw InputError("fully implicit Euler (Newton) does not run on a distributed mesh");
   std::unique_ptr<NewtonStepper> newton;
   if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.method());
   for (int step = 1; step <= options.steps; ++step) {
@@ -281,7 +284,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
               linear.assemble_into_system
                   ? AssemblyTarget{&linear.system, linear.k_scale, &linear.mass_diagonal}
                   : AssemblyTarget{});
-    note_inverted(problem, rotate, p, result, clock);
+    note_inverted(problem, rotate, p, result, clock, options.ranks);
     SolveStats stats;
     if (options.newton) {
       stats = advance_by_newton(problem, rotate, *newton, options, step, problem.dirichlet.value,
@@ -313,8 +316,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   const Eigen::VectorXd r =
       problem.external_force - internal_forces(problem, result.rotations, result.displacement);
   check_finite(problem, r, "force", "the end of step " + std::to_string(options.steps));
-  const double f_norm = free_norm(problem.dirichlet, problem.external_force);
-  result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
+  const double f_norm = options.ranks.free_norm(problem.dirichlet, problem.external_force);
+  result.residual = options.ranks.free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
   result.iterations = options.steps;
   result.converged = true;
   return result;

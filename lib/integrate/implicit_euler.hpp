@@ -11,6 +11,7 @@
 #include <functional>
 
 #include "fem/fe_problem.hpp"
+#include "fem/rank_view.hpp"
 #include "fem/simulation_result.hpp"
 #include "integrate/newton_iteration.hpp"
 #include "linalg/linear_solver.hpp"
@@ -39,6 +40,9 @@ struct DynamicOptions {
   /// moving halfway in the first), at most max_step_cuts halvings deep; then NotConverged.
   NewtonSettings newton_settings{};
   int max_step_cuts = 4;
+  /// Linearly implicit only: the problem is this rank's part of a distributed mesh; the inverted
+  /// count and the final residual are the whole body's (the solver distributed to match).
+  RankView ranks{};
 };
 
 /// State after each step, for records that follow a run (flutter, energy, VTU frames, timings).

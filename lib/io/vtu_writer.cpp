@@ -43,4 +43,18 @@ void write_vtu(const std::filesystem::path& file, const TetMesh& mesh,
   });
 }
 
+void write_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces) {
+  write_file_atomically(file, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\">\n"
+        << "<PUnstructuredGrid GhostLevel=\"0\">\n"
+        << "<PPoints><PDataArray type=\"Float64\" NumberOfComponents=\"3\"/></PPoints>\n"
+        << "<PPointData Vectors=\"displacement\"><PDataArray type=\"Float64\" "
+           "Name=\"displacement\" NumberOfComponents=\"3\"/></PPointData>\n"
+        << "<PCellData Scalars=\"rotation_angle\"><PDataArray type=\"Float64\" "
+           "Name=\"rotation_angle\"/></PCellData>\n";
+    for (const std::string& piece : pieces) out << "<Piece Source=\"" << piece << "\"/>\n";
+    out << "</PUnstructuredGrid>\n</VTKFile>\n";
+  });
+}
+
 }  // namespace corofem

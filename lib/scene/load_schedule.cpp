@@ -1,5 +1,6 @@
 #include "scene/load_schedule.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -8,19 +9,33 @@
 
 namespace corofem {
 
-LoadSchedule::LoadSchedule(const Scene& scene, const FeProblem& problem)
+namespace {
+
+/// How many of `vertices` (a selection in this rank's part) the whole body has: each rank counts
+/// its owned ones.
+int whole_body_count(const std::vector<int>& vertices, const RankView& ranks) {
+  if (!ranks.distributed()) return static_cast<int>(vertices.size());
+  const auto owned = std::count_if(vertices.begin(), vertices.end(),
+                                   [&](int v) { return v < ranks.owned_vertices; });
+  return static_cast<int>(std::lround(ranks.sum(static_cast<double>(owned))));
+}
+
+}  // namespace
+
+LoadSchedule::LoadSchedule(const Scene& scene, const FeProblem& problem, const RankView& ranks)
     : gravity_(Eigen::VectorXd::Zero(problem.num_dofs())), supports_(problem.dirichlet) {
   if (scene.gravity.norm() > 0)
     gravity_ = gravity_load(problem.mesh, problem.materials, scene.gravity);
   for (const ForceSpec& force : scene.forces) {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(problem.num_dofs());
-    add_spread_force(f, vertices_in_box(problem.mesh.rest, force.box), force.total);
+    const std::vector<int> vertices = vertices_in_box(problem.mesh.rest, force.box);
+    add_spread_force(f, vertices, force.total, whole_body_count(vertices, ranks));
     forces_.push_back(std::move(f));
     force_timing_.push_back(force.timing);
   }
   for (std::size_t i = 0; i < scene.moves.size(); ++i) {
     auto vertices = vertices_in_box(problem.mesh.rest, scene.moves[i].box);
-    if (vertices.empty())
+    if (whole_body_count(vertices, ranks) == 0)
       throw InputError("scene '" + scene.name + "': moves[" + std::to_string(i) +
                        "].box selects no vertex of the mesh");
     moves_.push_back(scene.moves[i]);
@@ -49,7 +64,7 @@ void LoadSchedule::apply(int step, FeProblem& problem) const {
   }
 }
 
-DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem) {
+DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem, RankView ranks) {
   const AnalysisSpec& a = scene.analysis;
   DynamicOptions options{a.formulation == Formulation::Corotational,
                          a.dt,
@@ -61,7 +76,8 @@ DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem) {
   options.newton_settings.tolerance = a.tolerance;
   options.newton_settings.max_iterations = a.max_iterations;
   options.max_step_cuts = a.max_step_cuts;
-  auto schedule = std::make_shared<const LoadSchedule>(scene, problem);
+  auto schedule = std::make_shared<const LoadSchedule>(scene, problem, ranks);
+  options.ranks = std::move(ranks);
   schedule->apply(1, problem);
   options.before_step = [schedule](int step, FeProblem& p) { schedule->apply(step, p); };
   return options;

@@ -12,7 +12,9 @@ class LoadSchedule {
  public:
   /// Selects the vertices of every force and move (InputError naming moves[i].box if it selects
   /// none). `problem` must come from build_problem(scene): its supports are the scene's fixed.
-  LoadSchedule(const Scene& scene, const FeProblem& problem);
+  /// Distributed (`ranks`): `problem` is this rank's part; a force is spread over the vertices
+  /// its box selects in the whole body, and a box selecting none there is the error.
+  LoadSchedule(const Scene& scene, const FeProblem& problem, const RankView& ranks = {});
 
   /// Sets problem.external_force and problem.dirichlet for the end of `step` (1-based).
   void apply(int step, FeProblem& problem) const;
@@ -28,6 +30,7 @@ class LoadSchedule {
 
 /// The scene's analysis as DynamicOptions, with before_step driving a LoadSchedule. Applies step
 /// 1's loads and supports to `problem` now, so a solver built next sees the prescribed vertices.
-DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem);
+/// `ranks`: as LoadSchedule's, and the options' own.
+DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem, RankView ranks = {});
 
 }  // namespace corofem

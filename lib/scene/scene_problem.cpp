@@ -1,6 +1,7 @@
 #include "scene/scene_problem.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 
 #include "core/errors.hpp"
 #include "fem/loads.hpp"
@@ -45,13 +46,15 @@ int affine_rank(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-FeProblem build_problem(const Scene& scene, MeshValidation* validation) {
-  TetMesh mesh = load_scene_mesh(scene.mesh);
+SceneBody build_body(const Scene& scene, MeshValidation* validation) {
+  SceneBody body;
+  body.mesh = load_scene_mesh(scene.mesh);
+  TetMesh& mesh = body.mesh;
   if (scene.mesh.reorder) sort_for_locality(mesh);
   if (validation) *validation = validate_mesh(mesh);  // idempotent; reports what reading changed
-  auto materials = materials_per_element(mesh, scene.material, scene.regions);
-  FeProblem problem = make_fe_problem(std::move(mesh), std::move(materials));
-  const auto& rest = problem.mesh.rest;
+  body.materials = materials_per_element(mesh, scene.material, scene.regions);
+  const auto& rest = mesh.rest;
+  std::vector<char> fixed(mesh.num_vertices(), 0);
   std::vector<Vec3> fixed_points;
   for (std::size_t i = 0; i < scene.fixed.size(); ++i) {
     const auto vertices = vertices_in_box(rest, scene.fixed[i]);
@@ -59,24 +62,53 @@ FeProblem build_problem(const Scene& scene, MeshValidation* validation) {
       throw InputError("scene '" + scene.name + "': fixed[" + std::to_string(i) +
                        "].box selects no vertex of the mesh");
     for (int v : vertices) {
-      problem.dirichlet.fix_vertex(v);
+      fixed[v] = 1;
       fixed_points.push_back(rest[v]);
     }
   }
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (fixed[v]) body.fixed_vertices.push_back(v);
   if (scene.analysis.type == AnalysisType::Static && affine_rank(fixed_points) < 2)
     throw InputError("scene '" + scene.name + "': fixed leaves rigid motions free (" +
                      std::to_string(fixed_points.size()) +
                      " fixed vertices; a static analysis needs at least 3 non-collinear ones)");
+  body.external_force = Eigen::VectorXd::Zero(3 * mesh.num_vertices());
   if (scene.gravity.norm() > 0)
-    problem.external_force += gravity_load(problem.mesh, problem.materials, scene.gravity);
+    body.external_force += gravity_load(mesh, body.materials, scene.gravity);
   for (std::size_t i = 0; i < scene.forces.size(); ++i) {
     const auto vertices = vertices_in_box(rest, scene.forces[i].box);
     if (vertices.empty())
       throw InputError("scene '" + scene.name + "': forces[" + std::to_string(i) +
                        "].box selects no vertex of the mesh");
-    add_spread_force(problem.external_force, vertices, scene.forces[i].total);
+    add_spread_force(body.external_force, vertices, scene.forces[i].total);
   }
+  return body;
+}
+
+FeProblem make_problem(SceneBody body) {
+  FeProblem problem = make_fe_problem(std::move(body.mesh), std::move(body.materials));
+  for (int v : body.fixed_vertices) problem.dirichlet.fix_vertex(v);
+  problem.external_force = std::move(body.external_force);
   return problem;
+}
+
+SceneBody body_part(const SceneBody& whole, RankPart& part) {
+  SceneBody body;
+  body.mesh = std::move(part.mesh);
+  part.mesh = {};
+  for (int t : part.global_tet) body.materials.push_back(whole.materials[t]);
+  body.external_force.resize(3 * body.mesh.num_vertices());
+  for (int v = 0; v < body.mesh.num_vertices(); ++v) {
+    const int g = part.global_vertex[v];
+    body.external_force.segment<3>(3 * v) = whole.external_force.segment<3>(3 * g);
+    if (std::binary_search(whole.fixed_vertices.begin(), whole.fixed_vertices.end(), g))
+      body.fixed_vertices.push_back(v);
+  }
+  return body;
+}
+
+FeProblem build_problem(const Scene& scene, MeshValidation* validation) {
+  return make_problem(build_body(scene, validation));
 }
 
 }  // namespace corofem

@@ -2,12 +2,15 @@
 
 #include <chrono>
 
+#include "core/errors.hpp"
 #include "io/solver_record.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/load_schedule.hpp"
 #include "scene/scene_problem.hpp"
 #include "scene/solver_factory.hpp"
+#include "solver/mpi_launch.hpp"
+#include "solver/petsc_solver.hpp"
 
 namespace corofem {
 namespace {
@@ -30,6 +33,45 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
   const std::vector<TetMesh> coarse = coarse_meshes(scene_, problem_.mesh.num_vertices());
   coarse_meshing_ms_ = ms_since(meshing);
   solver_ = make_linear_solver(a, problem_, coarse);
+  setup_ms_ = ms_since(start);
+}
+
+bool SceneSimulation::distributes_mesh(const Scene& scene, int ranks) {
+  const AnalysisSpec& a = scene.analysis;
+  return ranks > 1 && a.type == AnalysisType::Dynamic && a.integrator != Integrator::Newton &&
+         is_petsc_solver(a.solver);
+}
+
+SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scene_(scene) {
+  if (!distributes_mesh(scene, ranks))
+    throw InputError("scene '" + scene.name + "' does not run on a distributed mesh");
+  const auto start = std::chrono::steady_clock::now();
+  const AnalysisSpec& a = scene_.analysis;
+  std::vector<Transfer> transfers;
+  {
+    const SceneBody whole = build_body(scene_, &validation_);
+    if (a.solver == SolverKind::PetscMg) {  // PETSc keeps each rank's rows of them
+      const auto meshing = std::chrono::steady_clock::now();
+      const std::vector<TetMesh> coarse = coarse_meshes(scene_, whole.mesh.num_vertices());
+      coarse_meshing_ms_ = ms_since(meshing);
+      std::vector<char> fixed(whole.mesh.num_vertices(), 0);
+      for (int v : whole.fixed_vertices) fixed[v] = 1;
+      transfers =
+          build_hierarchy(whole.mesh, fixed, multigrid_params(a).hierarchy, coarse).transfers;
+    }
+    // polar-smoothed averages over a ring of tets per pass: the part holds as many more rings.
+    const int rings = corotational() && a.rotation == RotationMethod::PolarSmoothed
+                          ? a.rotation_params.smoothing_passes
+                          : 0;
+    part_ = rank_part(whole.mesh, rank, ranks, rings);
+    problem_ = make_problem(body_part(whole, *part_));
+  }  // the whole body is freed here
+  extractor_ = make_rotation_extractor(corotational() ? a.rotation : RotationMethod::None,
+                                       problem_.mesh, a.rotation_params);
+  RankView view{part_->owned_vertices, part_->owned_tet, sum_over_ranks};
+  dynamic_ = dynamic_options(scene_, problem_, std::move(view));
+  solver_ = make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, a.tolerance, 10000,
+                              std::move(transfers), a.smoothing, a.setup_reuse, &*part_);
   setup_ms_ = ms_since(start);
 }
 

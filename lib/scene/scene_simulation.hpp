@@ -7,6 +7,7 @@
 
 #include "integrate/implicit_euler.hpp"
 #include "integrate/static_solver.hpp"
+#include "mesh/rank_part.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "multigrid/multigrid_summary.hpp"
 #include "scene/scene.hpp"
@@ -17,6 +18,16 @@ class SceneSimulation {
  public:
   /// Builds everything the scene asks for (InputError for bad input).
   explicit SceneSimulation(const Scene& scene);
+  /// Under mpirun, a dynamic linearly implicit scene on a PETSc solver (distributes_mesh): the
+  /// whole mesh, its loads and supports (and petsc-mg's transfers) are built on every rank, then
+  /// each keeps only its part (mesh/rank_part.hpp) and builds its element data, pattern and
+  /// solver on that: problem() is the part's, the element work is the part's, the solver
+  /// distributed to match (issue 37).
+  SceneSimulation(const Scene& scene, int rank, int ranks);
+  /// Whether `ranks` ranks would run `scene` on a distributed mesh (else replicated).
+  static bool distributes_mesh(const Scene& scene, int ranks);
+  /// This rank's part (its mesh is problem().mesh); none when the mesh is not distributed.
+  const std::optional<RankPart>& part() const { return part_; }
 
   const Scene& scene() const { return scene_; }
   FeProblem& problem() { return problem_; }
@@ -46,6 +57,7 @@ class SceneSimulation {
 
  private:
   Scene scene_;
+  std::optional<RankPart> part_;
   MeshValidation validation_;
   FeProblem problem_;
   std::unique_ptr<RotationExtractor> extractor_;

@@ -23,6 +23,12 @@ int launcher_size() {
 
 }  // namespace
 
+int launcher_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* value = std::getenv(name)) return std::max(0, std::atoi(value));
+  return 0;
+}
+
 MpiLaunch mpi_launch() {
   static const MpiLaunch launch = [] {
     MpiLaunch l;
@@ -59,6 +65,41 @@ void abort_all_ranks(int code) {
 #else
   (void)code;
 #endif
+}
+
+double sum_over_ranks(double value) {
+#ifdef COROFEM_HAVE_PETSC
+  if (mpi_launch().size > 1) {
+    double sum = 0;
+    if (MPI_Allreduce(&value, &sum, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD) != MPI_SUCCESS)
+      throw NumericalFault("MPI_Allreduce of a sum over the ranks failed");
+    return sum;
+  }
+#endif
+  return value;
+}
+
+std::vector<double> gather_on_rank0(const std::vector<double>& mine) {
+#ifdef COROFEM_HAVE_PETSC
+  const MpiLaunch mpi = mpi_launch();
+  if (mpi.size > 1) {
+    const int count = static_cast<int>(mine.size());
+    std::vector<int> counts(mpi.size), starts(mpi.size);
+    if (MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, PETSC_COMM_WORLD) !=
+        MPI_SUCCESS)
+      throw NumericalFault("MPI_Gather of the ranks' sizes failed");
+    std::vector<double> all;
+    if (mpi.rank == 0) {
+      for (int r = 1; r < mpi.size; ++r) starts[r] = starts[r - 1] + counts[r - 1];
+      all.resize(static_cast<std::size_t>(starts.back()) + counts.back());
+    }
+    if (MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(),
+                    MPI_DOUBLE, 0, PETSC_COMM_WORLD) != MPI_SUCCESS)
+      throw NumericalFault("MPI_Gatherv of the ranks' values failed");
+    return all;
+  }
+#endif
+  return mine;
 }
 
 }  // namespace corofem

@@ -1,8 +1,11 @@
 #pragma once
-// `mpirun -np N corofem run SCENE.json`: every rank builds the scene and assembles the whole
-// system (replicated, not distributed), the PETSc and hypre solvers distribute the solve over the
-// ranks (each owns a contiguous share of the vertices), every rank gets the whole solution back,
-// and rank 0 alone writes files and progress. Without mpirun there is one rank and no MPI call.
+// `mpirun -np N corofem run SCENE.json`: the PETSc and hypre solvers distribute the solve over the
+// ranks (each owns a contiguous share of the vertices); a dynamic linearly implicit run
+// distributes the mesh and the element work too (scene/scene_simulation.hpp), other runs build
+// and assemble the whole system on every rank. Rank 0 alone writes RESULT.json and the progress.
+// Without mpirun there is one rank and no MPI call.
+#include <vector>
+
 namespace corofem {
 
 struct MpiLaunch {
@@ -16,8 +19,19 @@ struct MpiLaunch {
 /// launched on several ranks by a build without PETSc (and so without MPI).
 MpiLaunch mpi_launch();
 
+/// This process's rank as the launcher's environment gives it (0 without a launcher); no MPI
+/// call, so it can be asked at any time, even where MPI failed to start.
+int launcher_rank();
+
 /// Ends every rank with `code` when this is one of several: a rank that stops on an error must
 /// not leave the others waiting in a collective call. Returns when there is one rank.
 void abort_all_ranks(int code);
+
+/// The sum of `value` over the ranks (on every rank); `value` itself with one rank.
+double sum_over_ranks(double value);
+
+/// Every rank's `mine`, concatenated in rank order, on rank 0; empty on the others; `mine`
+/// itself with one rank.
+std::vector<double> gather_on_rank0(const std::vector<double>& mine);
 
 }  // namespace corofem

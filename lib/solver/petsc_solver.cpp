@@ -19,7 +19,8 @@ bool have_petsc() {
 }
 
 std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind, const std::vector<Vec3>&,
-                                                double, int, std::vector<Transfer>, int, bool) {
+                                                double, int, std::vector<Transfer>, int, bool,
+                                                const RankPart*) {
   throw InputError(
       std::string("analysis.solver '") + kPetscSolverKinds.name(kind) +
       "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
@@ -39,7 +40,8 @@ using petsc::check;
 class PetscSolver : public LinearSolver {
  public:
   PetscSolver(PetscSolverKind kind, const std::vector<Vec3>& rest, double tolerance,
-              int max_iterations, std::vector<Transfer> transfers, int smoothing, bool setup_reuse)
+              int max_iterations, std::vector<Transfer> transfers, int smoothing, bool setup_reuse,
+              const RankPart* part)
       : kind_(kind),
         name_(kPetscSolverKinds.name(kind)),
         rest_(rest),
@@ -47,13 +49,16 @@ class PetscSolver : public LinearSolver {
         max_iterations_(max_iterations),
         transfers_(std::move(transfers)),
         smoothing_(smoothing),
-        setup_reuse_(setup_reuse) {
+        setup_reuse_(setup_reuse),
+        part_(part) {
     petsc::ensure_session();
     comm_ = PETSC_COMM_WORLD;
     MPI_Comm_size(comm_, &ranks_);
   }
   ~PetscSolver() override {
     if (ksp_) KSPDestroy(&ksp_);
+    if (part_b_) VecDestroy(&part_b_);
+    if (part_x_) VecDestroy(&part_x_);
   }
   std::string name() const override { return name_; }
 
@@ -69,6 +74,7 @@ class PetscSolver : public LinearSolver {
   }
 
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    if (part_) return solve_part(b, x);
     SolveStats stats;
     const double b_norm = start_iterative_solve(b, x);
     if (b_norm == 0) return stats;
@@ -86,6 +92,12 @@ class PetscSolver : public LinearSolver {
     VecDestroy(&vx);
     check(solved, "KSPSolve");
     gather(x);
+    return finish(stats, b_norm);
+  }
+
+ private:
+  /// The solve's statistics from KSP; throws where PETSc's CG failed or did not converge.
+  SolveStats finish(SolveStats stats, double b_norm) const {
     PetscInt iterations = 0;
     KSPConvergedReason reason;
     PetscReal residual = 0;
@@ -103,7 +115,47 @@ class PetscSolver : public LinearSolver {
     return stats;
   }
 
- private:
+  /// Distributed: b's and x's owned rows into PETSc's vectors (x with its halo as ghosts), the
+  /// solve, and x's owned and halo entries back.
+  SolveStats solve_part(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    const PetscInt local = 3 * part_->owned_vertices;
+    if (x.size() != b.size()) x.setZero(b.size());
+    if (!part_b_) {
+      const PetscInt n = 3 * static_cast<PetscInt>(part_->global_vertices);
+      check(VecCreateMPI(comm_, local, n, &part_b_), "VecCreateMPI");
+      check(VecSetBlockSize(part_b_, 3), "VecSetBlockSize");
+      std::vector<PetscInt> ghosts(part_->global_vertex.begin() + part_->owned_vertices,
+                                   part_->global_vertex.end());
+      check(VecCreateGhostBlock(comm_, 3, local, n, static_cast<PetscInt>(ghosts.size()),
+                                ghosts.data(), &part_x_),
+            "VecCreateGhostBlock");
+    }
+    PetscScalar* v = nullptr;
+    check(VecGetArray(part_b_, &v), "VecGetArray");
+    std::copy(b.data(), b.data() + local, v);
+    check(VecRestoreArray(part_b_, &v), "VecRestoreArray");
+    PetscReal b_norm = 0;
+    check(VecNorm(part_b_, NORM_2, &b_norm), "VecNorm");  // over the owned rows of every rank
+    if (b_norm == 0) {
+      x.setZero();
+      return {};
+    }
+    check(VecGetArray(part_x_, &v), "VecGetArray");
+    std::copy(x.data(), x.data() + local, v);
+    check(VecRestoreArray(part_x_, &v), "VecRestoreArray");
+    check(KSPSolve(ksp_, part_b_, part_x_), "KSPSolve");
+    check(VecGhostUpdateBegin(part_x_, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateBegin");
+    check(VecGhostUpdateEnd(part_x_, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateEnd");
+    Vec with_ghosts;
+    check(VecGhostGetLocalForm(part_x_, &with_ghosts), "VecGhostGetLocalForm");
+    const PetscScalar* all = nullptr;
+    check(VecGetArrayRead(with_ghosts, &all), "VecGetArrayRead");
+    std::copy(all, all + x.size(), x.data());
+    check(VecRestoreArrayRead(with_ghosts, &all), "VecRestoreArrayRead");
+    check(VecGhostRestoreLocalForm(part_x_, &with_ghosts), "VecGhostRestoreLocalForm");
+    return finish({}, b_norm);
+  }
+
   /// x (whole on every rank, this rank's share solved) made whole everywhere: the ranks' shares
   /// are contiguous and in rank order.
   void gather(Eigen::VectorXd& x) const {
@@ -121,7 +173,7 @@ class PetscSolver : public LinearSolver {
 
   /// The AIJ matrix of the BRC pattern; the near null space; CG and the AMG.
   void create(const BrcMatrix& a) {
-    a_ = std::make_unique<petsc::AijFromBrc>(a, comm_);
+    a_ = std::make_unique<petsc::AijFromBrc>(a, comm_, part_);
     const petsc::OwnedBlocks& own = a_->rows();
     check(MatSetOption(a_->mat(), MAT_SPD, PETSC_TRUE), "MatSetOption");
     // Rigid-body modes of the rest positions (three translations, three rotations).
@@ -130,8 +182,9 @@ class PetscSolver : public LinearSolver {
     check(VecSetBlockSize(coordinates, 3), "VecSetBlockSize");
     PetscScalar* x = nullptr;
     check(VecGetArray(coordinates, &x), "VecGetArray");
-    for (PetscInt v = own.begin; v < own.end; ++v)
-      for (int c = 0; c < 3; ++c) x[3 * (v - own.begin) + c] = rest_[v][c];
+    const PetscInt first = part_ ? 0 : own.begin;  // a part's owned vertices come first
+    for (PetscInt v = 0; v < own.size(); ++v)
+      for (int c = 0; c < 3; ++c) x[3 * v + c] = rest_[first + v][c];
     check(VecRestoreArray(coordinates, &x), "VecRestoreArray");
     MatNullSpace rigid;
     check(MatNullSpaceCreateRigidBody(coordinates, &rigid), "MatNullSpaceCreateRigidBody");
@@ -169,6 +222,7 @@ class PetscSolver : public LinearSolver {
         check(PCMGSetInterpolation(pc_, l, p), "PCMGSetInterpolation");
         MatDestroy(&p);  // PCMG keeps its own reference
       }
+      transfers_ = {};  // PETSc holds this rank's rows of them now
       // Level smoothers: Chebyshev (PETSc's default, eigenvalue bounds estimated at setup) on
       // point Jacobi, degree 2 per `smoothing`. With PETSc's SOR instead, as Richardson steps at
       // omega 1 or under Chebyshev, CG stopped on the gates' heterogeneous cube (indefinite
@@ -215,6 +269,8 @@ class PetscSolver : public LinearSolver {
   std::vector<Transfer> transfers_;  ///< petsc-mg: our hierarchy, finest first
   int smoothing_;
   bool setup_reuse_;
+  const RankPart* part_;                     ///< distributed: this rank's part; null: replicated
+  Vec part_b_ = nullptr, part_x_ = nullptr;  ///< distributed: b, and x with the halo as ghosts
   std::unique_ptr<petsc::AijFromBrc> a_;
   KSP ksp_ = nullptr;
   PC pc_ = nullptr;
@@ -226,9 +282,9 @@ std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind,
                                                 const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
                                                 std::vector<Transfer> transfers, int smoothing,
-                                                bool setup_reuse) {
+                                                bool setup_reuse, const RankPart* part) {
   return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations,
-                                       std::move(transfers), smoothing, setup_reuse);
+                                       std::move(transfers), smoothing, setup_reuse, part);
 }
 
 #endif

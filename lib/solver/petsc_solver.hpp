@@ -22,6 +22,7 @@
 
 #include "core/name_table.hpp"
 #include "linalg/linear_solver.hpp"
+#include "mesh/rank_part.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "multigrid/transfer.hpp"
 
@@ -38,12 +39,17 @@ inline constexpr NameTable<PetscSolverKind, 3> kPetscSolverKinds{{{
 /// Whether this build has PETSc (and with it hypre).
 bool have_petsc();
 
-/// PetscSolverKind::Mg takes the hierarchy's `transfers`, finest first. Throws InputError naming
-/// analysis.solver when this build has no PETSc.
+/// PetscSolverKind::Mg takes the hierarchy's `transfers` (of the whole mesh), finest first.
+/// Throws InputError naming analysis.solver when this build has no PETSc.
+/// Replicated (no `part`): matrices and vectors are the whole mesh's on every rank, each rank
+/// gives PETSc its owned rows and gets the whole solution back. Distributed (`part`, which must
+/// outlive the solver): they are the part's (rest_positions its mesh's), its owned rows are
+/// solved for and its halo entries of x are received from their owners (PETSc's ghost update).
 std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind,
                                                 const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
                                                 std::vector<Transfer> transfers = {},
-                                                int smoothing = 1, bool setup_reuse = false);
+                                                int smoothing = 1, bool setup_reuse = false,
+                                                const RankPart* part = nullptr);
 
 }  // namespace corofem

@@ -1,6 +1,7 @@
 #include "solver/petsc_support.hpp"
 
 #include <string>
+#include <type_traits>
 
 #include "core/errors.hpp"
 
@@ -49,7 +50,7 @@ void ensure_session() {
 }
 
 PetscInt share_start(PetscInt count, int rank, int size) {
-  return static_cast<PetscInt>(static_cast<long long>(count) * rank / size);
+  return rank_share_start(static_cast<int>(count), rank, size);
 }
 
 OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm) {
@@ -59,29 +60,46 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm) {
   return {share_start(count, rank, size), share_start(count, rank + 1, size), count};
 }
 
-AijFromBrc::AijFromBrc(const BrcMatrix& a, MPI_Comm comm) {
+AijFromBrc::AijFromBrc(const BrcMatrix& a, MPI_Comm comm, const RankPart* part) {
   ensure_session();
-  rows_ = owned_blocks(a.block_rows, comm);
+  const PetscInt vertices = part ? part->global_vertices : a.block_rows;
+  rows_ = owned_blocks(vertices, comm);
+  const PetscInt first_local = part ? 0 : rows_.begin;  // a part's owned rows come first
+  const auto global_column = [&](int c) { return part ? part->global_vertex[c] : c; };
+  // The COO entries in the BRC's own storage order (block by block, each row-major), so that
+  // this rank's values are one contiguous slice of the BRC's: no copy, no scatter.
+  first_value_ = 9 * static_cast<std::size_t>(a.row_start[first_local]);
+  value_count_ =
+      9 * static_cast<std::size_t>(a.row_start[first_local + rows_.size()]) - first_value_;
   std::vector<PetscInt> i, j;
-  for (PetscInt b = rows_.begin; b < rows_.end; ++b)
-    for (int r = 0; r < 3; ++r)
-      for (int k = a.row_start[b]; k < a.row_start[b + 1]; ++k)
+  i.reserve(value_count_);
+  j.reserve(value_count_);
+  for (PetscInt g = rows_.begin; g < rows_.end; ++g) {
+    const PetscInt b = g - rows_.begin + first_local;
+    for (int k = a.row_start[b]; k < a.row_start[b + 1]; ++k) {
+      const PetscInt column = 3 * static_cast<PetscInt>(global_column(a.col_index[k]));
+      for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) {
-          i.push_back(3 * b + r);
-          j.push_back(3 * a.col_index[k] + c);
-          scatter_.push_back(9 * static_cast<std::size_t>(k) + 3 * r + c);
+          i.push_back(3 * g + r);
+          j.push_back(column + c);
         }
-  values_.resize(scatter_.size());
-  mat_ = aij_from_coo(comm, rows_, owned_blocks(a.block_cols, comm), std::move(i), std::move(j));
+    }
+  }
+  mat_ = aij_from_coo(comm, rows_, owned_blocks(vertices, comm), std::move(i), std::move(j));
 }
 
 AijFromBrc::~AijFromBrc() {
   if (mat_) MatDestroy(&mat_);
 }
 
+// copy() hands PETSc the BRC's doubles as its scalars.
+static_assert(std::is_same_v<PetscScalar, double>, "corofem needs PETSc built with real doubles");
+
 void AijFromBrc::copy(const BrcMatrix& a) {
-  for (std::size_t k = 0; k < scatter_.size(); ++k) values_[k] = a.values[scatter_[k]];
-  check(MatSetValuesCOO(mat_, values_.data(), INSERT_VALUES), "MatSetValuesCOO");
+  if (a.values.size() < first_value_ + value_count_)
+    throw NumericalFault(
+        "PETSc: the matrix copied is not of the pattern the AIJ matrix was made of");
+  check(MatSetValuesCOO(mat_, a.values.data() + first_value_, INSERT_VALUES), "MatSetValuesCOO");
 }
 
 Mat prolongation(const Transfer& t, MPI_Comm comm) {

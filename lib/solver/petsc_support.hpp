@@ -2,13 +2,15 @@
 // PETSc plumbing shared by the PETSc solvers and the MatPtAP comparison; included only where
 // COROFEM_HAVE_PETSC is defined. Matrices live on a communicator: PETSC_COMM_SELF for the
 // one-process comparisons, PETSC_COMM_WORLD for the solvers (one rank, or the ranks of mpirun).
-// Every rank holds the whole BRC matrix (assembly is replicated); each owns a contiguous range
-// of vertices, the block rows it gives PETSc.
+// Each rank owns a contiguous range of vertices, the block rows it gives PETSc (rank_share_start).
+// Replicated: every rank holds the whole BRC matrix. Distributed (a RankPart): each holds its
+// part's matrix, its owned rows first, the columns numbered locally.
 #include <petscmat.h>
 
 #include <cstddef>
 #include <vector>
 
+#include "mesh/rank_part.hpp"
 #include "multigrid/transfer.hpp"
 #include "sparse/brc_matrix.hpp"
 
@@ -31,10 +33,12 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm);
 PetscInt share_start(PetscInt count, int rank, int size);
 
 /// An AIJ matrix of block size 3 with a BRC matrix's pattern on `comm` (this rank's rows: its
-/// owned vertices), built once; copy() moves new BRC values in through the stored scatter.
+/// owned vertices), built once; copy() hands PETSc the BRC values of those rows in place.
+/// With `part`, `pattern` is the part's matrix (rows and columns in its local numbering).
 class AijFromBrc {
  public:
-  explicit AijFromBrc(const BrcMatrix& pattern, MPI_Comm comm = PETSC_COMM_SELF);
+  explicit AijFromBrc(const BrcMatrix& pattern, MPI_Comm comm = PETSC_COMM_SELF,
+                      const RankPart* part = nullptr);
   ~AijFromBrc();
   AijFromBrc(const AijFromBrc&) = delete;
   AijFromBrc& operator=(const AijFromBrc&) = delete;
@@ -45,8 +49,7 @@ class AijFromBrc {
  private:
   Mat mat_ = nullptr;
   OwnedBlocks rows_;
-  std::vector<std::size_t> scatter_;  ///< PETSc's COO value i = BRC value scatter_[i]
-  std::vector<PetscScalar> values_;
+  std::size_t first_value_ = 0, value_count_ = 0;  ///< this rank's slice of the BRC's values
 };
 
 /// P = R^T as an AIJ matrix on `comm` (3 fine x 3 coarse, R = Rs (x) I3; rows and columns owned

@@ -1,0 +1,96 @@
+#include "mesh/rank_part.hpp"
+
+#include <algorithm>
+
+namespace corofem {
+
+int rank_share_start(int count, int rank, int ranks) {
+  return static_cast<int>(static_cast<long long>(count) * rank / ranks);
+}
+
+int RankPart::owned_tets() const {
+  return static_cast<int>(std::count(owned_tet.begin(), owned_tet.end(), 1));
+}
+
+namespace {
+
+/// The tets to hold, ascending: those touching a vertex in [begin, end), then `extra_rings` rings.
+std::vector<int> held_tets(const TetMesh& whole, int begin, int end, int extra_rings) {
+  std::vector<char> held(whole.num_tets(), 0), reached(whole.num_vertices(), 0);
+  for (int v = begin; v < end; ++v) reached[v] = 1;
+  std::vector<int> vertex_tet_start, vertex_tets;  // vertex -> tets, built only when needed
+  if (extra_rings > 0) {
+    vertex_tet_start.assign(whole.num_vertices() + 1, 0);
+    for (const Tet& t : whole.tets)
+      for (int v : t) ++vertex_tet_start[v + 1];
+    for (int v = 0; v < whole.num_vertices(); ++v) vertex_tet_start[v + 1] += vertex_tet_start[v];
+    vertex_tets.resize(vertex_tet_start.back());
+    std::vector<int> next(vertex_tet_start.begin(), vertex_tet_start.end() - 1);
+    for (int t = 0; t < whole.num_tets(); ++t)
+      for (int v : whole.tets[t]) vertex_tets[next[v]++] = t;
+  }
+  for (int t = 0; t < whole.num_tets(); ++t)
+    for (int v : whole.tets[t]) held[t] |= reached[v];
+  for (int ring = 0; ring < extra_rings; ++ring) {
+    for (int t = 0; t < whole.num_tets(); ++t)
+      if (held[t])
+        for (int v : whole.tets[t]) reached[v] = 1;
+    for (int v = 0; v < whole.num_vertices(); ++v)
+      if (reached[v])
+        for (int k = vertex_tet_start[v]; k < vertex_tet_start[v + 1]; ++k)
+          held[vertex_tets[k]] = 1;
+  }
+  std::vector<int> tets;
+  for (int t = 0; t < whole.num_tets(); ++t)
+    if (held[t]) tets.push_back(t);
+  return tets;
+}
+
+}  // namespace
+
+RankPart rank_part(const TetMesh& whole, int rank, int ranks, int extra_rings) {
+  RankPart part;
+  const int begin = rank_share_start(whole.num_vertices(), rank, ranks);
+  const int end = rank_share_start(whole.num_vertices(), rank + 1, ranks);
+  part.first_vertex = begin;
+  part.owned_vertices = end - begin;
+  part.global_vertices = whole.num_vertices();
+  part.global_tets = whole.num_tets();
+  const auto owned = [&](int v) { return v >= begin && v < end; };
+  std::vector<int> local(whole.num_vertices(), -1);
+  for (int v = begin; v < end; ++v) local[v] = v - begin;
+  std::vector<int> halo;
+  part.global_tet = held_tets(whole, begin, end, extra_rings);
+  for (int t : part.global_tet) {
+    const Tet& tet = whole.tets[t];
+    part.owned_tet.push_back(owned(*std::min_element(tet.begin(), tet.end())));
+    for (int v : tet)
+      if (local[v] == -1) {
+        local[v] = -2;  // seen: numbered below, once the halo is sorted
+        halo.push_back(v);
+      }
+  }
+  std::sort(halo.begin(), halo.end());
+  part.halo_vertices = static_cast<int>(halo.size());
+  for (std::size_t h = 0; h < halo.size(); ++h)
+    local[halo[h]] = part.owned_vertices + static_cast<int>(h);
+  part.global_vertex.resize(part.owned_vertices + halo.size());
+  for (int v = begin; v < end; ++v) part.global_vertex[v - begin] = v;
+  std::copy(halo.begin(), halo.end(), part.global_vertex.begin() + part.owned_vertices);
+
+  TetMesh& m = part.mesh;
+  m.source = whole.source;
+  for (int g : part.global_vertex) {
+    m.rest.push_back(whole.rest[g]);
+    if (!whole.node_tags.empty()) m.node_tags.push_back(whole.node_tags[g]);
+  }
+  for (int t : part.global_tet) {
+    Tet tet = whole.tets[t];
+    for (int& v : tet) v = local[v];
+    m.tets.push_back(tet);
+    if (!whole.element_tags.empty()) m.element_tags.push_back(whole.element_tags[t]);
+  }
+  return part;
+}
+
+}  // namespace corofem
