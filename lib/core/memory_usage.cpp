@@ -47,7 +47,7 @@ void require_memory(double tets, double bytes, const std::string& what, const st
   message.precision(3);
   message << what << " would give about " << tets << " tets, which need about " << need / 1e9
           << " GB (" << basis;
-  if (ranks > 1) message << "; x " << ranks << " ranks on this machine, each holding the mesh";
+  if (ranks > 1) message << "; x " << ranks << " ranks on this machine";
   message << "); this machine has " << have / 1e9 << " GB";
   throw InputError(message.str());
 }

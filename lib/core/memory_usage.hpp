@@ -15,7 +15,7 @@ long current_rss_kb();
 double physical_memory_bytes();
 
 /// Ranks of this job on this machine: mpirun's OMPI_COMM_WORLD_LOCAL_SIZE (or MPI_LOCALNRANKS),
-/// 1 outside mpirun. Each rank holds the whole mesh today, so they multiply a run's memory.
+/// 1 outside mpirun. They multiply a run's memory per rank.
 int ranks_on_this_machine();
 
 /// Throws InputError("<what> would give about N tets, which need about X GB (<basis>) ...; this

@@ -1,5 +1,6 @@
 #include "scene/memory_estimate.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/number_text.hpp"
@@ -12,6 +13,8 @@ constexpr double kLibraryBytes = 80e6;  ///< the process before its mesh: librar
 /// CHOLMOD's start (OpenBLAS's buffers, its workspace: 196 MB at 24.6k tets against MG-PCG's
 /// 109 MB) and its factor's fill, bytes x tets^(4/3).
 constexpr double kCholmodBytes = 190e6, kCholmodFill = 115;
+/// Distributed: the whole body every rank builds first, and the largest rank's tets over its share.
+constexpr double kWholeBodyBytesPerTet = 150, kHaloFactor = 1.3;
 
 /// Bytes per tet of the solvers whose memory grows with the mesh.
 double linear_bytes_per_tet(SolverKind solver) {
@@ -22,11 +25,11 @@ double linear_bytes_per_tet(SolverKind solver) {
     case SolverKind::JacobiPcg:
       return 1.3e3;
     case SolverKind::PetscMg:
-      return 2.9e3;
+      return 2.3e3;
     case SolverKind::PetscGamg:
-      return 3.1e3;
+      return 2.3e3;
     case SolverKind::HypreBoomeramg:
-      return 3.8e3;
+      return 3.5e3;
     case SolverKind::Cholmod:
       break;
   }
@@ -35,15 +38,22 @@ double linear_bytes_per_tet(SolverKind solver) {
 
 }  // namespace
 
-double run_bytes(SolverKind solver, double tets) {
+double run_bytes(SolverKind solver, double tets, int ranks) {
   if (solver == SolverKind::Cholmod) return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
+  if (ranks > 1)
+    return kLibraryBytes + std::max(kWholeBodyBytesPerTet * tets,
+                                    linear_bytes_per_tet(solver) * kHaloFactor * tets / ranks);
   return kLibraryBytes + linear_bytes_per_tet(solver) * tets;
 }
 
-std::string run_bytes_basis(SolverKind solver) {
+std::string run_bytes_basis(SolverKind solver, int ranks) {
   const std::string name = kSolverKinds.name(solver);
   if (solver == SolverKind::Cholmod) return name + ": 115 bytes x tets^4/3 (its factor's fill)";
-  return name + ": " + general_number(linear_bytes_per_tet(solver) / 1e3) + " kB per tet";
+  const std::string per_tet = general_number(linear_bytes_per_tet(solver) / 1e3) + " kB per tet";
+  if (ranks > 1)
+    return name + ": " + per_tet + " over each rank's share of " + std::to_string(ranks) +
+           " and its halo, at least 150 bytes per tet of the whole mesh each rank builds first";
+  return name + ": " + per_tet;
 }
 
 }  // namespace corofem

@@ -7,16 +7,23 @@
 
 namespace corofem {
 
-/// Peak bytes of a run of `tets` tets with `solver` (one rank; see require_memory for ranks).
-/// Measured as the peak RSS of dynamic runs of a unit box (energy-newton rotations, 3 steps, to
-/// 1e-4) at 24.6k, 197k and 664k tets, 2026-12-02: about 80 MB of libraries, then per tet
-///   mgpcg, multigrid 1.31-1.35 kB, jacobi-pcg 1.17 kB, petsc-mg 2.64 kB, petsc-gamg 2.44-2.82 kB,
-///   hypre-boomeramg 3.42 kB,
+/// Peak bytes of a run of `tets` tets with `solver` on one rank, or per rank of `ranks` on a
+/// distributed mesh (analysis_settings.hpp: distributes_mesh).
+/// Measured as the peak RSS of dynamic runs (energy-newton rotations, 3 steps, to 1e-4): about
+/// 80 MB of libraries, then per tet
+///   mgpcg, multigrid 1.31-1.35 kB, jacobi-pcg 1.17 kB (a unit box at 24.6k, 197k and 664k tets,
+///   2026-12-02); petsc-mg 1.80-2.10 kB, petsc-gamg 1.95-2.06 kB, hypre-boomeramg 3.10-3.12 kB
+///   (bars of 206k and 415k tets, 2026-12-03, since PETSc takes the matrix's values in place),
 /// each rounded up by about 10%; CHOLMOD starts at 190 MB (OpenBLAS's buffers) and its factor
 /// grows faster than the mesh (fill of a 3D mesh ~ n^4/3): 1.44 GB at 197k tets, 6.38 GB at 664k,
 /// so 115 bytes x tets^4/3 above its start (5-7% above both).
-double run_bytes(SolverKind solver, double tets);
+/// Distributed: the libraries, then the larger of the whole body every rank builds before it
+/// keeps its part (150 bytes per tet: the mesh, materials, loads; measured 92) and the solver's
+/// bytes per tet over its share of the tets, 1.3x for the halo (the largest rank of a 415k-tet bar
+/// held 1.04x its share at 2 ranks, 1.22x at 4; peak RSS per rank 579 and 368 MB for petsc-mg,
+/// against 676 and 390 MB estimated).
+double run_bytes(SolverKind solver, double tets, int ranks = 1);
 /// The rule run_bytes applies, for messages ("1.5 kB per tet for mgpcg").
-std::string run_bytes_basis(SolverKind solver);
+std::string run_bytes_basis(SolverKind solver, int ranks = 1);
 
 }  // namespace corofem

@@ -12,6 +12,7 @@
 #include "rotation/rotation_extractor.hpp"
 #include "scene/json_fields.hpp"
 #include "scene/memory_estimate.hpp"
+#include "solver/mpi_launch.hpp"
 
 namespace corofem {
 namespace fs = std::filesystem;
@@ -318,11 +319,15 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   s.analysis.hierarchy = remeshable ? HierarchyKind::Meshes : HierarchyKind::Lattice;
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
-  if (s.mesh.estimated_tets > 0)  // before anything is allocated
+  if (s.mesh.estimated_tets > 0) {  // before anything is allocated; per rank under mpirun
+    const AnalysisSpec& a = s.analysis;
+    const int ranks =
+        distributes_mesh(a.type, a.integrator, a.solver, launcher_size()) ? launcher_size() : 1;
     require_memory(
-        s.mesh.estimated_tets, run_bytes(s.analysis.solver, s.mesh.estimated_tets),
+        s.mesh.estimated_tets, run_bytes(a.solver, s.mesh.estimated_tets, ranks),
         "scene '" + name + "': mesh." + (s.mesh.kind == MeshSpec::Kind::Box ? "cells" : "size"),
-        run_bytes_basis(s.analysis.solver));
+        run_bytes_basis(a.solver, ranks));
+  }
   if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == HierarchyKind::Meshes &&
       !remeshable)
     throw InputError("scene '" + name +

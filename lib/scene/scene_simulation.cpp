@@ -38,8 +38,7 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
 
 bool SceneSimulation::distributes_mesh(const Scene& scene, int ranks) {
   const AnalysisSpec& a = scene.analysis;
-  return ranks > 1 && a.type == AnalysisType::Dynamic && a.integrator != Integrator::Newton &&
-         is_petsc_solver(a.solver);
+  return corofem::distributes_mesh(a.type, a.integrator, a.solver, ranks);
 }
 
 SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scene_(scene) {

@@ -12,16 +12,11 @@
 
 namespace corofem {
 
-namespace {
-
-/// The world size the launcher announced in the environment; 1 when there was no launcher.
 int launcher_size() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
     if (const char* value = std::getenv(name)) return std::max(1, std::atoi(value));
   return 1;
 }
-
-}  // namespace
 
 int launcher_rank() {
   for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})

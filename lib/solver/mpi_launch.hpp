@@ -19,6 +19,9 @@ struct MpiLaunch {
 /// launched on several ranks by a build without PETSc (and so without MPI).
 MpiLaunch mpi_launch();
 
+/// The number of ranks the launcher's environment announces (1 without a launcher); no MPI call.
+int launcher_size();
+
 /// This process's rank as the launcher's environment gives it (0 without a launcher); no MPI
 /// call, so it can be asked at any time, even where MPI failed to start.
 int launcher_rank();
