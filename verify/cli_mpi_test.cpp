@@ -177,6 +177,10 @@ TEST(CliMpi, TwoRanksEachHoldTheirPartOfTheMeshAndWriteItsPiece) {
   }
   EXPECT_EQ(owned_tets, tets);
   EXPECT_EQ(owned_vertices, vertices);
+  // PT-Scotch cuts the 20-cell bar across: each rank's halo is one cross-section of 5 x 5
+  // vertices, two at most (equal shares of the Morton order gave 127 vertices, five).
+  EXPECT_EQ(r["ranks"]["partitioner"], "PT-Scotch (PETSc MatPartitioning)");
+  EXPECT_LE(r["ranks"]["max"]["halo_vertices"].get<double>(), 2 * 5 * 5);
   EXPECT_EQ(r["ranks"]["max"]["held_tets"], std::max(per_rank[0]["held_tets"].get<double>(),
                                                      per_rank[1]["held_tets"].get<double>()));
   // A parallel VTU: the .pvtu names a piece per rank, whose cells are the rank's owned tets.

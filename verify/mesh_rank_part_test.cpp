@@ -82,5 +82,26 @@ TEST(RankPart, ExtraRingsHoldTheTetsSharingAVertexRingByRing) {
   }
 }
 
+TEST(RankPart, GroupingByPartMakesEachPartContiguousAndKeepsTheMesh) {
+  const TetMesh original = make_box_mesh({3, 1, 1}, {6, 2, 2});
+  TetMesh mesh = original;
+  std::vector<int> part(mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v) part[v] = (7 * v) % 3;  // scattered parts
+  std::vector<int> new_index;
+  const std::vector<int> start = group_vertices_by_part(mesh, part, 3, new_index);
+  ASSERT_EQ(start.size(), 4u);
+  EXPECT_EQ(start.front(), 0);
+  EXPECT_EQ(start.back(), mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const int n = new_index[v];
+    EXPECT_TRUE(n >= start[part[v]] && n < start[part[v] + 1]) << v;  // inside its part's range
+    EXPECT_EQ(mesh.rest[n], original.rest[v]);
+    EXPECT_EQ(mesh.node_tags[n], original.node_tags[v]);
+    if (v > 0 && part[v - 1] == part[v]) EXPECT_EQ(new_index[v - 1] + 1, n);  // order kept
+  }
+  for (int t = 0; t < mesh.num_tets(); ++t)
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(mesh.tets[t][k], new_index[original.tets[t][k]]);
+}
+
 }  // namespace
 }  // namespace corofem

@@ -58,8 +58,9 @@ void add_gathered_fields(SceneSimulation& simulation, const SimulationResult& re
                          nlohmann::json& r) {
   const RankPart& part = *simulation.part();
   const TetMesh& mesh = simulation.problem().mesh;
-  std::vector<double> mine;  // per owned vertex: tag, rest, displacement
+  std::vector<double> mine;  // per owned vertex: its number in the scene, tag, rest, displacement
   for (int v = 0; v < part.owned_vertices; ++v) {
+    mine.push_back(static_cast<double>(simulation.scene_vertex_index()[v]));
     mine.push_back(static_cast<double>(mesh.node_tags[v]));
     for (int c = 0; c < 3; ++c) mine.push_back(mesh.rest[v][c]);
     for (int c = 0; c < 3; ++c) mine.push_back(result.displacement[3 * v + c]);
@@ -80,12 +81,13 @@ void add_gathered_fields(SceneSimulation& simulation, const SimulationResult& re
   }
   const std::vector<double> rotations_all = gather_on_rank0(rotations_mine);
   if (all.empty()) return;  // not rank 0
-  nlohmann::json tags = nlohmann::json::array(), rest = nlohmann::json::array(),
-                 disp = nlohmann::json::array();
-  for (std::size_t i = 0; i + 7 <= all.size(); i += 7) {
-    tags.push_back(static_cast<std::size_t>(all[i]));
-    rest.push_back({all[i + 1], all[i + 2], all[i + 3]});
-    disp.push_back({all[i + 4], all[i + 5], all[i + 6]});
+  const std::size_t vertices = all.size() / 8;
+  nlohmann::json tags(vertices, 0), rest(vertices, nullptr), disp(vertices, nullptr);
+  for (std::size_t i = 0; i + 8 <= all.size(); i += 8) {
+    const auto v = static_cast<std::size_t>(all[i]);
+    tags[v] = static_cast<std::size_t>(all[i + 1]);
+    rest[v] = {all[i + 2], all[i + 3], all[i + 4]};
+    disp[v] = {all[i + 5], all[i + 6], all[i + 7]};
   }
   r["node_tags"] = std::move(tags);
   r["rest"] = std::move(rest);

@@ -15,8 +15,8 @@ namespace corofem {
 /// halo vertices, peak RSS and each phase's milliseconds, and `max` and `min` of each over ranks.
 nlohmann::json rank_table(SceneSimulation& simulation, const SimulationResult& result);
 
-/// The whole body's node_tags, rest and displacement on rank 0, in the mesh's vertex order (the
-/// ranks' owned vertices are contiguous and in rank order); with output.rotations the rotations
+/// The whole body's node_tags, rest and displacement on rank 0, in the scene's vertex order (as a
+/// run on one rank records them); with output.rotations the rotations
 /// of the final displacement of every rank's owned tets, with their element_tags.
 void add_gathered_fields(SceneSimulation& simulation, const SimulationResult& result,
                          nlohmann::json& record);

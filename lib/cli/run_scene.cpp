@@ -159,6 +159,7 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
     r["mesh"]["vertices"] = vertices;
     r["mesh"]["tets"] = tets;
     r["ranks"] = rank_table(simulation, result);
+    r["ranks"]["partitioner"] = simulation.partitioner();
     add_gathered_fields(simulation, result, r);
     if (scene.output.vtu) r["vtu"] = write_rank_pieces(simulation, result, *scene.output.vtu);
   } else {

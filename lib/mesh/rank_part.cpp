@@ -48,10 +48,35 @@ std::vector<int> held_tets(const TetMesh& whole, int begin, int end, int extra_r
 
 }  // namespace
 
+std::vector<int> group_vertices_by_part(TetMesh& mesh, const std::vector<int>& part_of_vertex,
+                                        int parts, std::vector<int>& new_index) {
+  const int nv = mesh.num_vertices();
+  std::vector<int> start(parts + 1, 0);
+  for (int p : part_of_vertex) ++start[p + 1];
+  for (int p = 0; p < parts; ++p) start[p + 1] += start[p];
+  new_index.assign(nv, 0);
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (int v = 0; v < nv; ++v) new_index[v] = next[part_of_vertex[v]]++;
+  std::vector<Vec3> rest(nv);
+  for (int v = 0; v < nv; ++v) rest[new_index[v]] = mesh.rest[v];
+  mesh.rest = std::move(rest);
+  if (!mesh.node_tags.empty()) {
+    std::vector<std::size_t> tags(nv);
+    for (int v = 0; v < nv; ++v) tags[new_index[v]] = mesh.node_tags[v];
+    mesh.node_tags = std::move(tags);
+  }
+  for (Tet& t : mesh.tets)
+    for (int& v : t) v = new_index[v];
+  return start;
+}
+
 RankPart rank_part(const TetMesh& whole, int rank, int ranks, int extra_rings) {
+  return rank_part_of_range(whole, rank_share_start(whole.num_vertices(), rank, ranks),
+                            rank_share_start(whole.num_vertices(), rank + 1, ranks), extra_rings);
+}
+
+RankPart rank_part_of_range(const TetMesh& whole, int begin, int end, int extra_rings) {
   RankPart part;
-  const int begin = rank_share_start(whole.num_vertices(), rank, ranks);
-  const int end = rank_share_start(whole.num_vertices(), rank + 1, ranks);
   part.first_vertex = begin;
   part.owned_vertices = end - begin;
   part.global_vertices = whole.num_vertices();

@@ -30,6 +30,16 @@ struct RankPart {
   int owned_tets() const;
 };
 
+/// Renumbers the vertices of `mesh` so that each part of `part_of_vertex` (parts 0..parts-1) is a
+/// contiguous range, in the order it had within the part (keeping its locality); the tets keep
+/// their order. Returns each part's first vertex (parts + 1 entries) and, in `new_index`, every
+/// old vertex's new number.
+std::vector<int> group_vertices_by_part(TetMesh& mesh, const std::vector<int>& part_of_vertex,
+                                        int parts, std::vector<int>& new_index);
+
+/// The part owning the vertices [begin, end) of `whole`; `extra_rings` as rank_part's.
+RankPart rank_part_of_range(const TetMesh& whole, int begin, int end, int extra_rings = 0);
+
 /// Rank `rank` of `ranks`'s part of `whole` (its vertices split by rank_share_start). With
 /// `extra_rings` > 0 the part holds that many more rings of tets (those sharing a vertex with a
 /// held one) beyond the ones touching its vertices: what a rotation smoothed over neighbouring

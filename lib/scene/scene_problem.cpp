@@ -92,6 +92,15 @@ FeProblem make_problem(SceneBody body) {
   return problem;
 }
 
+void renumber_supports_and_loads(SceneBody& body, const std::vector<int>& new_index) {
+  for (int& v : body.fixed_vertices) v = new_index[v];
+  std::sort(body.fixed_vertices.begin(), body.fixed_vertices.end());
+  Eigen::VectorXd force(body.external_force.size());
+  for (std::size_t v = 0; v < new_index.size(); ++v)
+    force.segment<3>(3 * new_index[v]) = body.external_force.segment<3>(3 * v);
+  body.external_force = std::move(force);
+}
+
 SceneBody body_part(const SceneBody& whole, RankPart& part) {
   SceneBody body;
   body.mesh = std::move(part.mesh);

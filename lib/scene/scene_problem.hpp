@@ -27,6 +27,10 @@ SceneBody build_body(const Scene& scene, MeshValidation* validation = nullptr);
 /// The body's FeProblem: element data, pattern, mass, supports and loads.
 FeProblem make_problem(SceneBody body);
 
+/// Renumbers the body's vertices: vertex v becomes new_index[v] (its mesh already renumbered so,
+/// by group_vertices_by_part), with its support and its force.
+void renumber_supports_and_loads(SceneBody& body, const std::vector<int>& new_index);
+
 /// The body of a rank's part of `whole`: the part's mesh (moved out of `part`), its tets'
 /// materials, its fixed vertices and its rows of the force.
 SceneBody body_part(const SceneBody& whole, RankPart& part);

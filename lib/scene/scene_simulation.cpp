@@ -1,6 +1,7 @@
 #include "scene/scene_simulation.hpp"
 
 #include <chrono>
+#include <numeric>
 
 #include "core/errors.hpp"
 #include "io/solver_record.hpp"
@@ -11,6 +12,7 @@
 #include "scene/solver_factory.hpp"
 #include "solver/mpi_launch.hpp"
 #include "solver/petsc_solver.hpp"
+#include "solver/vertex_partition.hpp"
 
 namespace corofem {
 namespace {
@@ -48,7 +50,24 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
   const AnalysisSpec& a = scene_.analysis;
   std::vector<Transfer> transfers;
   {
-    const SceneBody whole = build_body(scene_, &validation_);
+    SceneBody whole = build_body(scene_, &validation_);
+    // PT-Scotch's parts, each made a contiguous range of vertices (a rank's rows of PETSc's
+    // matrices); equal shares of the locality order where it cannot split a mesh this small.
+    const int vertices = whole.mesh.num_vertices();
+    std::vector<int> start(ranks + 1), new_index(vertices);
+    for (int r = 0; r <= ranks; ++r) start[r] = rank_share_start(vertices, r, ranks);
+    std::iota(new_index.begin(), new_index.end(), 0);
+    if (const std::vector<int> parts = partition_vertices(whole.mesh, ranks); !parts.empty()) {
+      start = group_vertices_by_part(whole.mesh, parts, ranks, new_index);
+      renumber_supports_and_loads(whole, new_index);
+      partitioner_ = "PT-Scotch (PETSc MatPartitioning)";
+    } else {
+      partitioner_ = "equal shares of the locality order";
+    }
+    scene_vertex_index_.resize(start[rank + 1] - start[rank]);
+    for (int v = 0; v < vertices; ++v)
+      if (new_index[v] >= start[rank] && new_index[v] < start[rank + 1])
+        scene_vertex_index_[new_index[v] - start[rank]] = v;
     if (a.solver == SolverKind::PetscMg) {  // PETSc keeps each rank's rows of them
       const auto meshing = std::chrono::steady_clock::now();
       const std::vector<TetMesh> coarse = coarse_meshes(scene_, whole.mesh.num_vertices());
@@ -62,7 +81,7 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
     const int rings = corotational() && a.rotation == RotationMethod::PolarSmoothed
                           ? a.rotation_params.smoothing_passes
                           : 0;
-    part_ = rank_part(whole.mesh, rank, ranks, rings);
+    part_ = rank_part_of_range(whole.mesh, start[rank], start[rank + 1], rings);
     problem_ = make_problem(body_part(whole, *part_));
   }  // the whole body is freed here
   extractor_ = make_rotation_extractor(corotational() ? a.rotation : RotationMethod::None,

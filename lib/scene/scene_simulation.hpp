@@ -28,6 +28,11 @@ class SceneSimulation {
   static bool distributes_mesh(const Scene& scene, int ranks);
   /// This rank's part (its mesh is problem().mesh); none when the mesh is not distributed.
   const std::optional<RankPart>& part() const { return part_; }
+  /// How the distributed mesh's vertices were split over the ranks; empty when not distributed.
+  const std::string& partitioner() const { return partitioner_; }
+  /// Distributed: each owned vertex's number in the scene's own vertex order (the one a run on
+  /// one rank numbers and records), before the partition grouped the ranks' vertices.
+  const std::vector<int>& scene_vertex_index() const { return scene_vertex_index_; }
 
   const Scene& scene() const { return scene_; }
   FeProblem& problem() { return problem_; }
@@ -58,6 +63,8 @@ class SceneSimulation {
  private:
   Scene scene_;
   std::optional<RankPart> part_;
+  std::string partitioner_;
+  std::vector<int> scene_vertex_index_;
   MeshValidation validation_;
   FeProblem problem_;
   std::unique_ptr<RotationExtractor> extractor_;

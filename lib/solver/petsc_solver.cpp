@@ -218,7 +218,9 @@ class PetscSolver : public LinearSolver {
       check(PCMGSetCycleType(pc_, PC_MG_CYCLE_V), "PCMGSetCycleType");
       check(PCMGSetGalerkin(pc_, PC_MG_GALERKIN_BOTH), "PCMGSetGalerkin");
       for (PetscInt l = 1; l < levels; ++l) {
-        Mat p = petsc::prolongation(transfers_[levels - 1 - l], comm_);
+        // The finest interpolation's rows are the matrix's (a distributed mesh's part's).
+        Mat p = petsc::prolongation(transfers_[levels - 1 - l], comm_,
+                                    l == levels - 1 ? &a_->rows() : nullptr);
         check(PCMGSetInterpolation(pc_, l, p), "PCMGSetInterpolation");
         MatDestroy(&p);  // PCMG keeps its own reference
       }

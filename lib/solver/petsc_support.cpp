@@ -63,7 +63,9 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm) {
 AijFromBrc::AijFromBrc(const BrcMatrix& a, MPI_Comm comm, const RankPart* part) {
   ensure_session();
   const PetscInt vertices = part ? part->global_vertices : a.block_rows;
-  rows_ = owned_blocks(vertices, comm);
+  rows_ = part
+              ? OwnedBlocks{part->first_vertex, part->first_vertex + part->owned_vertices, vertices}
+              : owned_blocks(vertices, comm);
   const PetscInt first_local = part ? 0 : rows_.begin;  // a part's owned rows come first
   const auto global_column = [&](int c) { return part ? part->global_vertex[c] : c; };
   // The COO entries in the BRC's own storage order (block by block, each row-major), so that
@@ -85,7 +87,7 @@ AijFromBrc::AijFromBrc(const BrcMatrix& a, MPI_Comm comm, const RankPart* part) 
         }
     }
   }
-  mat_ = aij_from_coo(comm, rows_, owned_blocks(vertices, comm), std::move(i), std::move(j));
+  mat_ = aij_from_coo(comm, rows_, rows_, std::move(i), std::move(j));
 }
 
 AijFromBrc::~AijFromBrc() {
@@ -102,9 +104,9 @@ void AijFromBrc::copy(const BrcMatrix& a) {
   check(MatSetValuesCOO(mat_, a.values.data() + first_value_, INSERT_VALUES), "MatSetValuesCOO");
 }
 
-Mat prolongation(const Transfer& t, MPI_Comm comm) {
+Mat prolongation(const Transfer& t, MPI_Comm comm, const OwnedBlocks* fine_rows) {
   ensure_session();
-  const OwnedBlocks rows = owned_blocks(t.fine, comm);
+  const OwnedBlocks rows = fine_rows ? *fine_rows : owned_blocks(t.fine, comm);
   std::vector<PetscInt> i, j;
   std::vector<PetscScalar> values;
   for (PetscInt l = rows.begin; l < rows.end; ++l)

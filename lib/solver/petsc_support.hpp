@@ -2,7 +2,8 @@
 // PETSc plumbing shared by the PETSc solvers and the MatPtAP comparison; included only where
 // COROFEM_HAVE_PETSC is defined. Matrices live on a communicator: PETSC_COMM_SELF for the
 // one-process comparisons, PETSC_COMM_WORLD for the solvers (one rank, or the ranks of mpirun).
-// Each rank owns a contiguous range of vertices, the block rows it gives PETSc (rank_share_start).
+// Each rank owns a contiguous range of vertices, the block rows it gives PETSc: equal shares
+// (rank_share_start), or a distributed mesh's part's.
 // Replicated: every rank holds the whole BRC matrix. Distributed (a RankPart): each holds its
 // part's matrix, its owned rows first, the columns numbered locally.
 #include <petscmat.h>
@@ -53,7 +54,9 @@ class AijFromBrc {
 };
 
 /// P = R^T as an AIJ matrix on `comm` (3 fine x 3 coarse, R = Rs (x) I3; rows and columns owned
-/// as owned_blocks splits the fine and the coarse vertices). The caller destroys it.
-Mat prolongation(const Transfer& t, MPI_Comm comm = PETSC_COMM_SELF);
+/// as owned_blocks splits the fine and the coarse vertices, or the rows as `fine_rows` gives them:
+/// the fine matrix's). The caller destroys it.
+Mat prolongation(const Transfer& t, MPI_Comm comm = PETSC_COMM_SELF,
+                 const OwnedBlocks* fine_rows = nullptr);
 
 }  // namespace corofem::petsc
