@@ -58,6 +58,11 @@ void add_gathered_fields(SceneSimulation& simulation, const SimulationResult& re
                          nlohmann::json& r) {
   const RankPart& part = *simulation.part();
   const TetMesh& mesh = simulation.problem().mesh;
+  if (part.global_vertices > kMaxGatheredVertices) {  // the same decision on every rank
+    r["fields"] = "not gathered: " + std::to_string(part.global_vertices) + " vertices, above " +
+                  std::to_string(kMaxGatheredVertices) + " (output.vtu writes them piece by piece)";
+    return;
+  }
   std::vector<double> mine;  // per owned vertex: its number in the scene, tag, rest, displacement
   for (int v = 0; v < part.owned_vertices; ++v) {
     mine.push_back(static_cast<double>(simulation.scene_vertex_index()[v]));

@@ -15,8 +15,12 @@ namespace corofem {
 /// halo vertices, peak RSS and each phase's milliseconds, and `max` and `min` of each over ranks.
 nlohmann::json rank_table(SceneSimulation& simulation, const SimulationResult& result);
 
+/// Above this many vertices the fields are not gathered on rank 0 (some 1 GB of JSON text).
+inline constexpr int kMaxGatheredVertices = 2'000'000;
+
 /// The whole body's node_tags, rest and displacement on rank 0, in the scene's vertex order (as a
-/// run on one rank records them); with output.rotations the rotations
+/// run on one rank records them), up to kMaxGatheredVertices (else `fields` says why they are
+/// absent); with output.rotations the rotations
 /// of the final displacement of every rank's owned tets, with their element_tags.
 void add_gathered_fields(SceneSimulation& simulation, const SimulationResult& result,
                          nlohmann::json& record);

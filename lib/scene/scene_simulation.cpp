@@ -22,6 +22,26 @@ double ms_since(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+/// The body's vertices in PT-Scotch's parts, each made a contiguous range (a rank's rows of
+/// PETSc's matrices); equal shares of the locality order where it cannot split a mesh this small.
+/// Returns each rank's first vertex (ranks + 1 entries); `new_index`: every vertex's new number.
+std::vector<int> partition_body(SceneBody& body, int ranks, std::vector<int>& new_index,
+                                std::string& partitioner) {
+  const int vertices = body.mesh.num_vertices();
+  if (const std::vector<int> parts = partition_vertices(body.mesh, ranks); !parts.empty()) {
+    const std::vector<int> first = group_vertices_by_part(body.mesh, parts, ranks, new_index);
+    renumber_supports_and_loads(body, new_index);
+    partitioner = "PT-Scotch (PETSc MatPartitioning)";
+    return first;
+  }
+  partitioner = "equal shares of the locality order";
+  new_index.resize(vertices);
+  std::iota(new_index.begin(), new_index.end(), 0);
+  std::vector<int> first(ranks + 1);
+  for (int r = 0; r <= ranks; ++r) first[r] = rank_share_start(vertices, r, ranks);
+  return first;
+}
+
 }  // namespace
 
 SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
@@ -51,23 +71,13 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
   std::vector<Transfer> transfers;
   {
     SceneBody whole = build_body(scene_, &validation_);
-    // PT-Scotch's parts, each made a contiguous range of vertices (a rank's rows of PETSc's
-    // matrices); equal shares of the locality order where it cannot split a mesh this small.
-    const int vertices = whole.mesh.num_vertices();
-    std::vector<int> start(ranks + 1), new_index(vertices);
-    for (int r = 0; r <= ranks; ++r) start[r] = rank_share_start(vertices, r, ranks);
-    std::iota(new_index.begin(), new_index.end(), 0);
-    if (const std::vector<int> parts = partition_vertices(whole.mesh, ranks); !parts.empty()) {
-      start = group_vertices_by_part(whole.mesh, parts, ranks, new_index);
-      renumber_supports_and_loads(whole, new_index);
-      partitioner_ = "PT-Scotch (PETSc MatPartitioning)";
-    } else {
-      partitioner_ = "equal shares of the locality order";
-    }
-    scene_vertex_index_.resize(start[rank + 1] - start[rank]);
-    for (int v = 0; v < vertices; ++v)
-      if (new_index[v] >= start[rank] && new_index[v] < start[rank + 1])
-        scene_vertex_index_[new_index[v] - start[rank]] = v;
+    std::vector<int> new_index;
+    const std::vector<int> first = partition_body(whole, ranks, new_index, partitioner_);
+    const int begin = first[rank], end = first[rank + 1];
+    scene_vertex_index_.resize(end - begin);
+    for (int v = 0; v < whole.mesh.num_vertices(); ++v)
+      if (new_index[v] >= begin && new_index[v] < end)
+        scene_vertex_index_[new_index[v] - begin] = v;
     if (a.solver == SolverKind::PetscMg) {  // PETSc keeps each rank's rows of them
       const auto meshing = std::chrono::steady_clock::now();
       const std::vector<TetMesh> coarse = coarse_meshes(scene_, whole.mesh.num_vertices());
@@ -81,7 +91,7 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
     const int rings = corotational() && a.rotation == RotationMethod::PolarSmoothed
                           ? a.rotation_params.smoothing_passes
                           : 0;
-    part_ = rank_part_of_range(whole.mesh, start[rank], start[rank + 1], rings);
+    part_ = rank_part_of_range(whole.mesh, begin, end, rings);
     problem_ = make_problem(body_part(whole, *part_));
   }  // the whole body is freed here
   extractor_ = make_rotation_extractor(corotational() ? a.rotation : RotationMethod::None,
