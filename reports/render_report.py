@@ -623,7 +623,7 @@ def render_mpi_scaling(scaling, md):
                     row += [f"{t(b.get('solver'))} / {t(m.get('solver'))}",
                             f"{t(base['peak_rss_kb_per_rank'] / 1024)} / {t(r['peak_rss_kb_per_rank'] / 1024)}",
                             t(ratio(r["peak_rss_kb_per_rank"], base["peak_rss_kb_per_rank"]), 2),
-                            t(r.get("element_visits_fraction"), 3)]
+                            num(r.get("element_visits_fraction"), 3)]
                 row.append(f"{num(base['linear_iterations_per_step'], 3)} / {num(r['linear_iterations_per_step'], 3)}")
                 rows.append(row)
         header = ["solver", "tets", "ranks or threads", "step ms", f"step {measure}", f"{part} ms",
