@@ -22,6 +22,17 @@ double ms_since(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+/// A number that differs, but for a coincidence, between two meshes: their sizes, coordinates and
+/// connectivity, each vertex and tet weighted by its index.
+double fingerprint(const TetMesh& mesh) {
+  double sum = mesh.num_vertices() + 1e-3 * mesh.num_tets();
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    sum += (v % 97 + 1) * (mesh.rest[v].x() + 2 * mesh.rest[v].y() + 3 * mesh.rest[v].z());
+  for (int t = 0; t < mesh.num_tets(); ++t)
+    sum += (t % 89 + 1) * 1e-6 * (mesh.tets[t][0] + 2 * mesh.tets[t][1] + 3 * mesh.tets[t][2]);
+  return sum;
+}
+
 /// The body's vertices in PT-Scotch's parts, each made a contiguous range (a rank's rows of
 /// PETSc's matrices); equal shares of the locality order where it cannot split a mesh this small.
 /// Returns each rank's first vertex (ranks + 1 entries); `new_index`: every vertex's new number.
@@ -71,6 +82,12 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
   std::vector<Transfer> transfers;
   {
     SceneBody whole = build_body(scene_, &validation_);
+    // Every rank built the body on its own (a generator, a file, gmsh): they must agree before
+    // the partition numbers one body's vertices for all.
+    if (!agrees_on_every_rank(fingerprint(whole.mesh)))
+      throw NumericalFault("scene '" + scene.name + "': the ranks built different meshes (" +
+                           whole.mesh.source +
+                           "); a distributed run needs the same mesh on every rank");
     std::vector<int> new_index;
     const std::vector<int> first = partition_body(whole, ranks, new_index, partitioner_);
     const int begin = first[rank], end = first[rank + 1];

@@ -33,6 +33,9 @@ void abort_all_ranks(int code);
 /// The sum of `value` over the ranks (on every rank); `value` itself with one rank.
 double sum_over_ranks(double value);
 
+/// Whether every rank holds the same `value` (true with one rank).
+bool agrees_on_every_rank(double value);
+
 /// Every rank's `mine`, concatenated in rank order, on rank 0; empty on the others; `mine`
 /// itself with one rank.
 std::vector<double> gather_on_rank0(const std::vector<double>& mine);
