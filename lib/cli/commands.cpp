@@ -55,12 +55,13 @@ context (commit, compiler, flags, machine); with output.rotations also element_t
                  bit-identical at every count
 Under `mpirun -np N` with analysis.solver petsc-gamg, hypre-boomeramg or petsc-mg, the linear
 solves are distributed over the N ranks (each owns a contiguous share of the vertices). A dynamic
-linearly implicit scene runs on a distributed mesh: each rank keeps only its part (the tets
+linearly implicit or a static lagged scene runs on a distributed mesh (PT-Scotch's partition):
+each rank keeps only its part (the tets
 touching its vertices and their halo), rotates and assembles that, and solves its rows; rank 0
 writes RESULT.json with the fields gathered and "ranks" (per rank: owned and held tets, owned
 and halo vertices, peak RSS, phase times; max and min), and output.vtu becomes a parallel VTU
-(.pvtu, one piece per rank). Static and Newton runs build and assemble the whole system on every
-rank (replicated). RESULT.json's "mpi" says how many ranks ran and what was distributed.
+(.pvtu, one piece per rank). Newton runs (a serial sparse LU) are refused under mpirun.
+RESULT.json's "mpi" says how many ranks ran and what was distributed.
 Exit status: 0 converged, 1 did not converge or NaN/inf, 2 bad input (nothing is written).
 )";
 

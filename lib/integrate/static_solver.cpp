@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.hpp"
 #include "core/number_text.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
@@ -60,11 +61,11 @@ bool lagged_increment(FeProblem& problem, RotationExtractor& rotate, LinearSolve
   Eigen::VectorXd elastic, du = Eigen::VectorXd::Zero(problem.num_dofs());
   for (int it = 0; it <= options.max_iterations; ++it) {
     const auto p = problem.positions(u);
-    result.inverted_max = std::max(result.inverted_max, count_inverted(problem, p));
+    result.inverted_max = std::max(result.inverted_max, options.ranks.count_inverted(problem, p));
     linearize(problem, rotate, p, u, result.rotations, elastic, clock);
     const Eigen::VectorXd r = f - elastic;
     check_finite(problem, r, "force", where + ", iteration " + std::to_string(it));
-    result.residual = free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
+    result.residual = options.ranks.free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
     // A linear solve is exact after one step; corotated steps iterate the lagged rotations.
     if (it > 0 && (!options.corotational || result.residual < options.tolerance)) return true;
     if (it == options.max_iterations) return false;
@@ -99,6 +100,8 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   std::unique_ptr<RotationTangent> tangent;
   std::unique_ptr<SparseLuSolve> lu;
   BrcMatrix jacobian_matrix;
+  if (options.newton && options.corotational && options.ranks.distributed())
+    throw InputError("static Newton (a serial sparse LU) does not run on a distributed mesh");
   if (options.newton && options.corotational) {
     tangent = std::make_unique<RotationTangent>(problem, rotate.method());
     lu = std::make_unique<SparseLuSolve>(problem.stiffness);
@@ -114,7 +117,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   while (done < denominator) {
     const double scale = static_cast<double>(done + 1) / static_cast<double>(denominator);
     const Eigen::VectorXd f = scale * problem.external_force;
-    const double f_norm = free_norm(problem.dirichlet, f);
+    const double f_norm = options.ranks.free_norm(problem.dirichlet, f);
     const std::string where =
         "load increment " + std::to_string(done + 1) + " of " + std::to_string(denominator);
     const bool converged =

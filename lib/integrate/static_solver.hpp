@@ -7,6 +7,7 @@
 // (fem/rotation_tangent.hpp, sparse LU), converging quadratically where the lagged ones crawl;
 // an increment whose full Newton steps do not converge is halved and retried.
 #include "fem/fe_problem.hpp"
+#include "fem/rank_view.hpp"
 #include "fem/simulation_result.hpp"
 #include "linalg/linear_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -19,6 +20,9 @@ struct StaticOptions {
   double tolerance = 1e-8;
   int max_iterations = 100;  ///< per increment
   bool newton = false;
+  /// Without Newton: the problem is this rank's part of a distributed mesh; the residual norms
+  /// and the inverted count are the whole body's (the solver distributed to match).
+  RankView ranks{};
 };
 
 /// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).

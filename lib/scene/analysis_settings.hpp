@@ -56,12 +56,10 @@ inline bool is_petsc_solver(SolverKind solver) {
 }
 
 /// Whether `ranks` MPI ranks run a scene of this analysis on a distributed mesh (each rank holding
-/// its part: scene/scene_simulation.hpp): a dynamic, linearly implicit run on a PETSc solver.
-/// Static and Newton runs on several ranks build and assemble the whole mesh on every rank.
-inline bool distributes_mesh(AnalysisType type, Integrator integrator, SolverKind solver,
-                             int ranks) {
-  return ranks > 1 && type == AnalysisType::Dynamic && integrator != Integrator::Newton &&
-         is_petsc_solver(solver);
+/// its part: scene/scene_simulation.hpp): a dynamic linearly implicit or a static lagged run on a
+/// PETSc solver. Newton runs (a serial sparse LU) build and assemble the whole mesh on every rank.
+inline bool distributes_mesh(Integrator integrator, SolverKind solver, int ranks) {
+  return ranks > 1 && integrator != Integrator::Newton && is_petsc_solver(solver);
 }
 
 /// The PETSc solver of a solver kind for which is_petsc_solver holds.

@@ -71,7 +71,7 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
 
 bool SceneSimulation::distributes_mesh(const Scene& scene, int ranks) {
   const AnalysisSpec& a = scene.analysis;
-  return corofem::distributes_mesh(a.type, a.integrator, a.solver, ranks);
+  return corofem::distributes_mesh(a.integrator, a.solver, ranks);
 }
 
 SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scene_(scene) {
@@ -113,8 +113,8 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
   }  // the whole body is freed here
   extractor_ = make_rotation_extractor(corotational() ? a.rotation : RotationMethod::None,
                                        problem_.mesh, a.rotation_params);
-  RankView view{part_->owned_vertices, part_->owned_tet, sum_over_ranks};
-  dynamic_ = dynamic_options(scene_, problem_, std::move(view));
+  ranks_ = RankView{part_->owned_vertices, part_->owned_tet, sum_over_ranks};
+  if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_, ranks_);
   solver_ = make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, a.tolerance, 10000,
                               std::move(transfers), a.smoothing, a.setup_reuse, &*part_);
   setup_ms_ = ms_since(start);
@@ -141,7 +141,7 @@ SimulationResult SceneSimulation::run(const std::function<void(const StepState&)
       dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
                : solve_static(problem_, *extractor_, *solver_,
                               {corotational(), a.load_steps, a.tolerance, a.max_iterations,
-                               a.integrator == Integrator::Newton});
+                               a.integrator == Integrator::Newton, ranks_});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

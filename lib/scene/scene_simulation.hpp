@@ -18,7 +18,8 @@ class SceneSimulation {
  public:
   /// Builds everything the scene asks for (InputError for bad input).
   explicit SceneSimulation(const Scene& scene);
-  /// Under mpirun, a dynamic linearly implicit scene on a PETSc solver (distributes_mesh): the
+  /// Under mpirun, a dynamic linearly implicit or static lagged scene on a PETSc solver
+  /// (distributes_mesh): the
   /// whole mesh, its loads and supports (and petsc-mg's transfers) are built on every rank, then
   /// each keeps only its part (mesh/rank_part.hpp) and builds its element data, pattern and
   /// solver on that: problem() is the part's, the element work is the part's, the solver
@@ -65,6 +66,7 @@ class SceneSimulation {
   std::optional<RankPart> part_;
   std::string partitioner_;
   std::vector<int> scene_vertex_index_;
+  RankView ranks_;  ///< this rank's view of a distributed mesh; one rank's otherwise
   MeshValidation validation_;
   FeProblem problem_;
   std::unique_ptr<RotationExtractor> extractor_;

@@ -1,8 +1,8 @@
 #pragma once
 // `mpirun -np N corofem run SCENE.json`: the PETSc and hypre solvers distribute the solve over the
-// ranks (each owns a contiguous share of the vertices); a dynamic linearly implicit run
-// distributes the mesh and the element work too (scene/scene_simulation.hpp), other runs build
-// and assemble the whole system on every rank. Rank 0 alone writes RESULT.json and the progress.
+// ranks (each owns a contiguous share of the vertices); a dynamic linearly implicit or a static
+// lagged run distributes the mesh and the element work too (scene/scene_simulation.hpp). Rank 0
+// alone writes RESULT.json and the progress.
 // Without mpirun there is one rank and no MPI call.
 #include <vector>
 
