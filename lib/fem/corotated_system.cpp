@@ -19,10 +19,12 @@ void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vect
   });
 }
 
-int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions) {
+int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions,
+                   const std::vector<char>* only) {
   int inverted = 0;
 #pragma omp parallel for schedule(static) reduction(+ : inverted) num_threads(threads_for(problem.mesh.num_tets()))
   for (int e = 0; e < problem.mesh.num_tets(); ++e) {
+    if (only && !(*only)[e]) continue;
     const Mat3 f = deformation_gradient(problem.elements[e].rest_edge_inverse(), positions,
                                         problem.mesh.tets[e]);
     if (f.determinant() <= 0) ++inverted;

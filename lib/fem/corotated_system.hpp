@@ -22,8 +22,9 @@ void linearize(FeProblem& problem, RotationExtractor& extractor, const std::vect
                const Eigen::VectorXd& displacement, std::vector<Mat3>& rotations,
                Eigen::VectorXd& force, PhaseClock& clock, const AssemblyTarget& target = {});
 
-/// Number of elements with det F <= 0 at `positions`.
-int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions);
+/// Number of elements with det F <= 0 at `positions`; with `only`, of the tets it flags.
+int count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions,
+                   const std::vector<char>* only = nullptr);
 
 /// Throws NumericalFault naming `what` (displacement, force, ...), `where` (the step) and the
 /// first element touching a non-finite DOF of v, or, where v's entries are finite but its norm

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "core/threads.hpp"
 #include "fem/corotated_system.hpp"
 
 namespace corofem {
@@ -17,14 +16,8 @@ double RankView::free_norm(const DirichletConditions& bc, const Eigen::VectorXd&
 
 int RankView::count_inverted(const FeProblem& problem, const std::vector<Vec3>& positions) const {
   if (!distributed()) return corofem::count_inverted(problem, positions);
-  int inverted = 0;
-#pragma omp parallel for schedule(static) reduction(+ : inverted) num_threads(threads_for(problem.mesh.num_tets()))
-  for (int e = 0; e < problem.mesh.num_tets(); ++e)
-    if (owned_tet[e] && deformation_gradient(problem.elements[e].rest_edge_inverse(), positions,
-                                             problem.mesh.tets[e])
-                                .determinant() <= 0)
-      ++inverted;
-  return static_cast<int>(std::lround(sum(inverted)));
+  const int mine = corofem::count_inverted(problem, positions, &owned_tet);
+  return static_cast<int>(std::lround(sum(mine)));
 }
 
 }  // namespace corofem
