@@ -214,6 +214,9 @@ TEST(CliMpi, TwoRanksEachHoldTheirPartOfTheMeshAndWriteItsPiece) {
     EXPECT_GT(rank["peak_rss_kb"].get<double>(), 0);
     EXPECT_GT(rank["rotate_ms"].get<double>(), 0);
   }
+  // Rank 0 alone built the whole body; rank 1 received its part and never held the rest.
+  EXPECT_EQ(per_rank[0]["built_whole_body"], 1.0);
+  EXPECT_EQ(per_rank[1]["built_whole_body"], 0.0);
   EXPECT_EQ(owned_tets, tets);
   EXPECT_EQ(owned_vertices, vertices);
   // PT-Scotch cuts the 20-cell bar across: each rank's halo is one cross-section of 5 x 5
@@ -237,21 +240,30 @@ TEST(CliMpi, TwoRanksEachHoldTheirPartOfTheMeshAndWriteItsPiece) {
   EXPECT_EQ(cells, tets);
 }
 
-TEST(CliMpi, BadInputOnTwoRanksExits2WithOneMessage) {
-  if (!have_petsc()) GTEST_SKIP() << "this build has no PETSc: CliMpi.TwoRanksNeedPetsc covers it";
-  ASSERT_NO_FATAL_FAILURE(require_mpirun());
+/// Runs `scene` on two ranks: exit 2, `message` said once (by rank 0, not once per rank), no
+/// record written.
+void expect_bad_input_said_once(const nlohmann::json& scene, const std::string& message) {
   TempDir dir;
-  nlohmann::json scene = dynamic_bar("petsc-gamg");
-  scene["mesh"] = {{"file", "missing.msh"}};
   write_text(dir / "bad.json", scene.dump());
   const auto r =
       run_cli("run '" + (dir / "bad.json").string() + "' --out '" + (dir / "r.json").string() + "'",
               test::mpirun_two_ranks());
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  const std::string message = "missing.msh";
   ASSERT_NE(r.err.find(message), std::string::npos) << r.err;
-  EXPECT_EQ(r.err.find(message), r.err.rfind(message)) << r.err;  // once, not once per rank
+  EXPECT_EQ(r.err.find(message), r.err.rfind(message)) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));
+}
+
+TEST(CliMpi, BadInputOnTwoRanksExits2WithOneMessage) {
+  if (!have_petsc()) GTEST_SKIP() << "this build has no PETSc: CliMpi.TwoRanksNeedPetsc covers it";
+  ASSERT_NO_FATAL_FAILURE(require_mpirun());
+  nlohmann::json scene = dynamic_bar("petsc-gamg");
+  scene["mesh"] = {{"file", "missing.msh"}};
+  expect_bad_input_said_once(scene, "missing.msh");
+  // Found while rank 0 alone builds the body: the other rank, waiting for its part, stops too.
+  scene = dynamic_bar("petsc-gamg");
+  scene["fixed"][0]["box"] = {{5, 5, 5}, {6, 6, 6}};
+  expect_bad_input_said_once(scene, "fixed[0].box selects no vertex");
 }
 
 TEST(CliMpi, SerialSolverUnderMpirunIsBadInput) {

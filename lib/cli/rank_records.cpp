@@ -21,13 +21,14 @@ const std::vector<std::string> kRankPhases = {"rotate", "assemble", "forces", "s
 
 nlohmann::json rank_table(SceneSimulation& simulation, const SimulationResult& result) {
   const RankPart& part = *simulation.part();
-  std::vector<std::string> keys = {"owned_tets", "held_tets", "owned_vertices", "halo_vertices",
-                                   "peak_rss_kb"};
+  std::vector<std::string> keys = {"owned_tets",    "held_tets",   "owned_vertices",
+                                   "halo_vertices", "peak_rss_kb", "built_whole_body"};
   std::vector<double> mine = {static_cast<double>(part.owned_tets()),
                               static_cast<double>(simulation.problem().mesh.num_tets()),
                               static_cast<double>(part.owned_vertices),
                               static_cast<double>(part.halo_vertices),
-                              static_cast<double>(peak_rss_kb())};
+                              static_cast<double>(peak_rss_kb()),
+                              simulation.built_whole_body() ? 1.0 : 0.0};
   for (const std::string& phase : kRankPhases) {
     keys.push_back(phase + "_ms");
     const auto it = result.timings_ms.find(phase);

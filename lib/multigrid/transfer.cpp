@@ -78,4 +78,17 @@ double mean_edge_length(const TetMesh& mesh) {
   return sum / (6.0 * mesh.tets.size());
 }
 
+Transfer rows_of(const Transfer& t, int begin, int end) {
+  Transfer slice;
+  slice.coarse = t.coarse;
+  slice.fine = t.fine;
+  slice.first_row = begin;
+  const int first = t.p_start[begin - t.first_row], last = t.p_start[end - t.first_row];
+  slice.p_start.reserve(end - begin + 1);
+  for (int l = begin; l <= end; ++l) slice.p_start.push_back(t.p_start[l - t.first_row] - first);
+  slice.p_col.assign(t.p_col.begin() + first, t.p_col.begin() + last);
+  slice.p_weight.assign(t.p_weight.begin() + first, t.p_weight.begin() + last);
+  return slice;
+}
+
 }  // namespace corofem

@@ -11,12 +11,15 @@ namespace corofem {
 
 struct Transfer {
   int coarse = 0, fine = 0;  ///< vertex counts
-  /// Rows of P = R^T: for fine vertex l, the coarse vertices i and weights R_il (sorted by i).
+  /// Rows of P = R^T: for fine vertex l, the coarse vertices i and weights R_il (sorted by i),
+  /// at p_start[l - first_row].
   std::vector<int> p_start, p_col;
   std::vector<double> p_weight;
   /// Rows of R: for coarse vertex i, the fine vertices l and weights R_il (sorted by l).
   std::vector<int> r_start, r_col;
   std::vector<double> r_weight;
+  /// The first fine vertex whose row of P is held: 0 but in a rows_of slice.
+  int first_row = 0;
 
   /// Builds R's rows from P's (call after filling p_*).
   void transpose_prolongation();
@@ -28,6 +31,10 @@ struct Transfer {
   void restrict_to(const Eigen::VectorXd& fine, Eigen::VectorXd& coarse) const;
   void prolongate_add(const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;
 };
+
+/// P's rows of the fine vertices [begin, end) of `t` alone (first_row = begin; R's rows left
+/// empty): what a rank of a distributed run needs of the finest transfer.
+Transfer rows_of(const Transfer& t, int begin, int end);
 
 /// R as a scalar sparse matrix of DOFs (3 coarse x 3 fine; R = Rs (x) I3), DOF 3 v + c.
 Eigen::SparseMatrix<double> restriction_matrix(const Transfer& t);

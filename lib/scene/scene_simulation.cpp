@@ -1,6 +1,7 @@
 #include "scene/scene_simulation.hpp"
 
 #include <chrono>
+#include <exception>
 #include <numeric>
 
 #include "core/errors.hpp"
@@ -8,6 +9,7 @@
 #include "multigrid/multigrid_solver.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/load_schedule.hpp"
+#include "scene/rank_share.hpp"
 #include "scene/scene_problem.hpp"
 #include "scene/solver_factory.hpp"
 #include "solver/mpi_launch.hpp"
@@ -17,20 +19,12 @@
 namespace corofem {
 namespace {
 
+/// How rank 0 tells the others that building the body failed (broadcast_status).
+constexpr int kInputFailure = 2, kOtherFailure = 1;
+
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
-}
-
-/// A number that differs, but for a coincidence, between two meshes: their sizes, coordinates and
-/// connectivity, each vertex and tet weighted by its index.
-double fingerprint(const TetMesh& mesh) {
-  double sum = mesh.num_vertices() + 1e-3 * mesh.num_tets();
-  for (int v = 0; v < mesh.num_vertices(); ++v)
-    sum += (v % 97 + 1) * (mesh.rest[v].x() + 2 * mesh.rest[v].y() + 3 * mesh.rest[v].z());
-  for (int t = 0; t < mesh.num_tets(); ++t)
-    sum += (t % 89 + 1) * 1e-6 * (mesh.tets[t][0] + 2 * mesh.tets[t][1] + 3 * mesh.tets[t][2]);
-  return sum;
 }
 
 /// The body's vertices in PT-Scotch's parts, each made a contiguous range (a rank's rows of
@@ -79,45 +73,70 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
     throw InputError("scene '" + scene.name + "' does not run on a distributed mesh");
   const auto start = std::chrono::steady_clock::now();
   const AnalysisSpec& a = scene_.analysis;
-  std::vector<Transfer> transfers;
-  {
-    SceneBody whole = build_body(scene_, &validation_);
-    // Every rank built the body on its own (a generator, a file, gmsh): they must agree before
-    // the partition numbers one body's vertices for all.
-    if (!agrees_on_every_rank(fingerprint(whole.mesh)))
-      throw NumericalFault("scene '" + scene.name + "': the ranks built different meshes (" +
-                           whole.mesh.source +
-                           "); a distributed run needs the same mesh on every rank");
-    std::vector<int> new_index;
-    const std::vector<int> first = partition_body(whole, ranks, new_index, partitioner_);
-    const int begin = first[rank], end = first[rank + 1];
-    scene_vertex_index_.resize(end - begin);
-    for (int v = 0; v < whole.mesh.num_vertices(); ++v)
-      if (new_index[v] >= begin && new_index[v] < end)
-        scene_vertex_index_[new_index[v] - begin] = v;
-    if (a.solver == SolverKind::PetscMg) {  // PETSc keeps each rank's rows of them
-      const auto meshing = std::chrono::steady_clock::now();
-      const std::vector<TetMesh> coarse = coarse_meshes(scene_, whole.mesh.num_vertices());
-      coarse_meshing_ms_ = ms_since(meshing);
-      std::vector<char> fixed(whole.mesh.num_vertices(), 0);
-      for (int v : whole.fixed_vertices) fixed[v] = 1;
-      transfers =
-          build_hierarchy(whole.mesh, fixed, multigrid_params(a).hierarchy, coarse).transfers;
-    }
-    // polar-smoothed averages over a ring of tets per pass: the part holds as many more rings.
-    const int rings = corotational() && a.rotation == RotationMethod::PolarSmoothed
-                          ? a.rotation_params.smoothing_passes
-                          : 0;
-    part_ = rank_part_of_range(whole.mesh, begin, end, rings);
-    problem_ = make_problem(body_part(whole, *part_));
-  }  // the whole body is freed here
+  RankShare share = rank == 0 ? share_out_body(ranks) : receive_share();
+  built_whole_body_ = rank == 0;
+  part_ = std::move(share.part);
+  scene_vertex_index_ = std::move(share.scene_vertex_index);
+  problem_ = make_problem(std::move(share.body));
   extractor_ = make_rotation_extractor(corotational() ? a.rotation : RotationMethod::None,
                                        problem_.mesh, a.rotation_params);
   ranks_ = RankView{part_->owned_vertices, part_->owned_tet, sum_over_ranks};
   if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_, ranks_);
   solver_ = make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, a.tolerance, 10000,
-                              std::move(transfers), a.smoothing, a.setup_reuse, &*part_);
+                              std::move(share.transfers), a.smoothing, a.setup_reuse, &*part_);
   setup_ms_ = ms_since(start);
+}
+
+RankShare SceneSimulation::share_out_body(int ranks) {
+  // Everything that can fail runs before the first share is sent, and its outcome goes to every
+  // rank: the others then stop with rank 0's error instead of waiting for a share.
+  const AnalysisSpec& a = scene_.analysis;
+  std::optional<SceneBody> whole;
+  std::vector<int> first, new_index;
+  std::vector<Transfer> transfers;
+  std::exception_ptr failure;
+  int status = 0;
+  std::string message;
+  try {
+    whole = build_body(scene_, &validation_);
+    first = partition_body(*whole, ranks, new_index, partitioner_);
+    if (a.solver == SolverKind::PetscMg) {  // each rank gets its rows of the finest one
+      const auto meshing = std::chrono::steady_clock::now();
+      const std::vector<TetMesh> coarse = coarse_meshes(scene_, whole->mesh.num_vertices());
+      coarse_meshing_ms_ = ms_since(meshing);
+      std::vector<char> fixed(whole->mesh.num_vertices(), 0);
+      for (int v : whole->fixed_vertices) fixed[v] = 1;
+      transfers =
+          build_hierarchy(whole->mesh, fixed, multigrid_params(a).hierarchy, coarse).transfers;
+    }
+  } catch (const InputError& e) {
+    failure = std::current_exception();
+    status = kInputFailure;
+    message = e.what();
+  } catch (const std::exception& e) {
+    failure = std::current_exception();
+    status = kOtherFailure;
+    message = e.what();
+  }
+  broadcast_status(status, message);
+  if (failure) std::rethrow_exception(failure);
+  // polar-smoothed averages over a ring of tets per pass: a part holds as many more rings.
+  const int rings = corotational() && a.rotation == RotationMethod::PolarSmoothed
+                        ? a.rotation_params.smoothing_passes
+                        : 0;
+  for (int r = 1; r < ranks; ++r)
+    send_bytes(r, pack_rank_share(make_rank_share(*whole, new_index, first[r], first[r + 1], rings,
+                                                  transfers)));
+  return make_rank_share(*whole, new_index, first[0], first[1], rings, transfers);
+}  // the whole body is freed here
+
+RankShare SceneSimulation::receive_share() {
+  int status = 0;
+  std::string message;
+  broadcast_status(status, message);
+  if (status == kInputFailure) throw InputError(message);  // rank 0 says it
+  if (status != 0) throw NumericalFault("rank 0: " + message);
+  return unpack_rank_share(receive_bytes(0));
 }
 
 std::optional<MultigridSummary> SceneSimulation::multigrid_summary(

@@ -14,16 +14,18 @@
 
 namespace corofem {
 
+struct RankShare;
+
 class SceneSimulation {
  public:
   /// Builds everything the scene asks for (InputError for bad input).
   explicit SceneSimulation(const Scene& scene);
   /// Under mpirun, a dynamic linearly implicit or static lagged scene on a PETSc solver
-  /// (distributes_mesh): the
-  /// whole mesh, its loads and supports (and petsc-mg's transfers) are built on every rank, then
-  /// each keeps only its part (mesh/rank_part.hpp) and builds its element data, pattern and
-  /// solver on that: problem() is the part's, the element work is the part's, the solver
-  /// distributed to match (issue 37).
+  /// (distributes_mesh): rank 0 alone builds the whole mesh, its loads and supports (and
+  /// petsc-mg's transfers), partitions it and sends every other rank its part
+  /// (scene/rank_share.hpp); no other rank ever holds the whole mesh. Each builds its element
+  /// data, pattern and solver on its part: problem() is the part's, the element work is the
+  /// part's, the solver distributed to match (issue 37).
   SceneSimulation(const Scene& scene, int rank, int ranks);
   /// Whether `ranks` ranks would run `scene` on a distributed mesh (else replicated).
   static bool distributes_mesh(const Scene& scene, int ranks);
@@ -34,6 +36,8 @@ class SceneSimulation {
   /// Distributed: each owned vertex's number in the scene's own vertex order (the one a run on
   /// one rank numbers and records), before the partition grouped the ranks' vertices.
   const std::vector<int>& scene_vertex_index() const { return scene_vertex_index_; }
+  /// Whether this process built the whole body (one rank, or rank 0 of a distributed run).
+  bool built_whole_body() const { return built_whole_body_; }
 
   const Scene& scene() const { return scene_; }
   FeProblem& problem() { return problem_; }
@@ -62,7 +66,13 @@ class SceneSimulation {
   SimulationResult run(const std::function<void(const StepState&)>& on_step = {});
 
  private:
+  /// Rank 0 of a distributed run: builds and partitions the whole body, sends each other rank
+  /// its share, returns its own.
+  RankShare share_out_body(int ranks);
+  /// The other ranks: their share from rank 0 (or rank 0's error, thrown).
+  RankShare receive_share();
   Scene scene_;
+  bool built_whole_body_ = true;
   std::optional<RankPart> part_;
   std::string partitioner_;
   std::vector<int> scene_vertex_index_;

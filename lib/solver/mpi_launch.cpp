@@ -88,6 +88,64 @@ bool agrees_on_every_rank(double value) {
   return true;
 }
 
+namespace {
+// MPI counts are ints: larger messages go in pieces of this many bytes.
+constexpr std::size_t kMessagePiece = std::size_t{1} << 30;
+}  // namespace
+
+void broadcast_status(int& status, std::string& message) {
+#ifdef COROFEM_HAVE_PETSC
+  if (mpi_launch().size > 1) {
+    unsigned long long length = message.size();
+    if (MPI_Bcast(&status, 1, MPI_INT, 0, PETSC_COMM_WORLD) != MPI_SUCCESS ||
+        MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, 0, PETSC_COMM_WORLD) != MPI_SUCCESS)
+      throw NumericalFault("MPI_Bcast of rank 0's status failed");
+    message.resize(length);
+    if (length > 0 && MPI_Bcast(message.data(), static_cast<int>(length), MPI_CHAR, 0,
+                                PETSC_COMM_WORLD) != MPI_SUCCESS)
+      throw NumericalFault("MPI_Bcast of rank 0's message failed");
+  }
+#else
+  (void)status;
+  (void)message;
+#endif
+}
+
+void send_bytes(int to, const std::vector<char>& bytes) {
+#ifdef COROFEM_HAVE_PETSC
+  unsigned long long size = bytes.size();
+  bool ok = MPI_Send(&size, 1, MPI_UNSIGNED_LONG_LONG, to, 0, PETSC_COMM_WORLD) == MPI_SUCCESS;
+  for (std::size_t at = 0; ok && at < bytes.size(); at += kMessagePiece) {
+    const int count = static_cast<int>(std::min(kMessagePiece, bytes.size() - at));
+    ok = MPI_Send(bytes.data() + at, count, MPI_BYTE, to, 0, PETSC_COMM_WORLD) == MPI_SUCCESS;
+  }
+  if (!ok) throw NumericalFault("MPI_Send to rank " + std::to_string(to) + " failed");
+#else
+  (void)to;
+  (void)bytes;
+  throw NumericalFault("send_bytes: this build has no MPI");
+#endif
+}
+
+std::vector<char> receive_bytes(int from) {
+#ifdef COROFEM_HAVE_PETSC
+  unsigned long long size = 0;
+  bool ok = MPI_Recv(&size, 1, MPI_UNSIGNED_LONG_LONG, from, 0, PETSC_COMM_WORLD,
+                     MPI_STATUS_IGNORE) == MPI_SUCCESS;
+  std::vector<char> bytes(ok ? size : 0);
+  for (std::size_t at = 0; ok && at < bytes.size(); at += kMessagePiece) {
+    const int count = static_cast<int>(std::min(kMessagePiece, bytes.size() - at));
+    ok = MPI_Recv(bytes.data() + at, count, MPI_BYTE, from, 0, PETSC_COMM_WORLD,
+                  MPI_STATUS_IGNORE) == MPI_SUCCESS;
+  }
+  if (!ok) throw NumericalFault("MPI_Recv from rank " + std::to_string(from) + " failed");
+  return bytes;
+#else
+  (void)from;
+  throw NumericalFault("receive_bytes: this build has no MPI");
+#endif
+}
+
 std::vector<double> gather_on_rank0(const std::vector<double>& mine) {
 #ifdef COROFEM_HAVE_PETSC
   const MpiLaunch mpi = mpi_launch();

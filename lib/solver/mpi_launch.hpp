@@ -4,6 +4,7 @@
 // lagged run distributes the mesh and the element work too (scene/scene_simulation.hpp). Rank 0
 // alone writes RESULT.json and the progress.
 // Without mpirun there is one rank and no MPI call.
+#include <string>
 #include <vector>
 
 namespace corofem {
@@ -35,6 +36,15 @@ double sum_over_ranks(double value);
 
 /// Whether every rank holds the same `value` (true with one rank).
 bool agrees_on_every_rank(double value);
+
+/// Rank 0's `status` and `message` on every rank (a collective call; unchanged with one rank):
+/// how rank 0, alone doing work that can fail, tells the others whether it did.
+void broadcast_status(int& status, std::string& message);
+
+/// Point to point, for what one rank hands another (any size: sent in pieces under MPI's int
+/// counts). The receiver calls receive_bytes(from) for every send_bytes(to, ...).
+void send_bytes(int to, const std::vector<char>& bytes);
+std::vector<char> receive_bytes(int from);
 
 /// Every rank's `mine`, concatenated in rank order, on rank 0; empty on the others; `mine`
 /// itself with one rank.

@@ -107,11 +107,14 @@ void AijFromBrc::copy(const BrcMatrix& a) {
 Mat prolongation(const Transfer& t, MPI_Comm comm, const OwnedBlocks* fine_rows) {
   ensure_session();
   const OwnedBlocks rows = fine_rows ? *fine_rows : owned_blocks(t.fine, comm);
+  if (rows.begin < t.first_row ||
+      rows.end - t.first_row + 1 > static_cast<PetscInt>(t.p_start.size()))
+    throw NumericalFault("PETSc: a transfer lacks rows of this rank's fine vertices");
   std::vector<PetscInt> i, j;
   std::vector<PetscScalar> values;
   for (PetscInt l = rows.begin; l < rows.end; ++l)
     for (int c = 0; c < 3; ++c)
-      for (int k = t.p_start[l]; k < t.p_start[l + 1]; ++k) {
+      for (int k = t.p_start[l - t.first_row]; k < t.p_start[l - t.first_row + 1]; ++k) {
         i.push_back(3 * l + c);
         j.push_back(3 * t.p_col[k] + c);
         values.push_back(t.p_weight[k]);

@@ -7,7 +7,6 @@
 #ifdef COROFEM_HAVE_PETSC
 #include <petscmat.h>
 
-#include "solver/mpi_launch.hpp"
 #include "solver/petsc_support.hpp"
 #endif
 
@@ -77,26 +76,13 @@ std::vector<int> scotch_partition(const TetMesh& mesh, int parts) {
 
 std::vector<int> partition_vertices(const TetMesh& mesh, int parts) {
   petsc::ensure_session();
-  const MpiLaunch mpi = mpi_launch();
-  std::vector<int> part;
-  int ok = 1;
-  if (mpi.rank == 0) {
-    part = scotch_partition(mesh, parts);
-    std::vector<int> sizes(parts, 0);
-    for (int p : part) {
-      if (p < 0 || p >= parts)
-        ok = 0;
-      else
-        ++sizes[p];
-    }
-    if (std::count(sizes.begin(), sizes.end(), 0) > 0) ok = 0;
+  std::vector<int> part = scotch_partition(mesh, parts);
+  std::vector<int> sizes(parts, 0);
+  for (int p : part) {
+    if (p < 0 || p >= parts) return {};
+    ++sizes[p];
   }
-  MPI_Bcast(&ok, 1, MPI_INT, 0, PETSC_COMM_WORLD);
-  if (!ok) return {};
-  part.resize(mesh.num_vertices());
-  if (MPI_Bcast(part.data(), static_cast<int>(part.size()), MPI_INT, 0, PETSC_COMM_WORLD) !=
-      MPI_SUCCESS)
-    throw NumericalFault("MPI_Bcast of the vertex partition failed");
+  if (std::count(sizes.begin(), sizes.end(), 0) > 0) return {};
   return part;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // The partition of a mesh's vertices over MPI ranks for a distributed run (issue 37): PETSc's
-// MatPartitioning with PT-Scotch on the vertex graph (the mesh's edges), computed on rank 0 and
-// sent to the others, so that every rank holds the same one. Rank parts then become contiguous
-// ranges of the vertex order (mesh/rank_part.hpp: group_vertices_by_part).
+// MatPartitioning with PT-Scotch on the vertex graph (the mesh's edges), computed by the calling
+// process alone (rank 0, the one that holds the whole mesh: no MPI call). Rank parts then become
+// contiguous ranges of the vertex order (mesh/rank_part.hpp: group_vertices_by_part).
 #include <vector>
 
 #include "mesh/tet_mesh.hpp"
