@@ -220,7 +220,8 @@ int run_command(const std::vector<std::string>& args) {
       {"ranks", mpi.size},
       {"distributed",
        distributed_mesh ? "the mesh, the element work (rotations, assembly, forces) and the linear "
-                          "solves: each rank holds its part"
+                          "solves: each rank holds its part (rank 0 builds the whole body and "
+                          "sends the parts)"
        : mpi.size > 1   ? "the linear solves (PETSc); mesh and assembly replicated on every rank"
                         : "nothing (one rank)"}};
   if (writer) write_file_atomically(out, [&](std::ostream& o) { o << run.record.dump(1) << '\n'; });

@@ -12,16 +12,18 @@ namespace corofem {
 /// Measured as the peak RSS of dynamic runs (energy-newton rotations, 3 steps, to 1e-4): about
 /// 80 MB of libraries, then per tet
 ///   mgpcg, multigrid 1.31-1.35 kB, jacobi-pcg 1.17 kB (a unit box at 24.6k, 197k and 664k tets,
-///   2026-12-02); petsc-mg 1.80-2.10 kB, petsc-gamg 1.95-2.06 kB, hypre-boomeramg 3.10-3.12 kB
-///   (bars of 206k and 415k tets, 2026-12-03, since PETSc takes the matrix's values in place),
-/// each rounded up by about 10%; CHOLMOD starts at 190 MB (OpenBLAS's buffers) and its factor
+///   2026-12-02); petsc-mg 1.55-1.66 kB, petsc-gamg 1.60-1.71 kB, hypre-boomeramg 2.72-2.79 kB
+///   (bars of 207k and 415k tets, 2026-12-03, since the matrix's values are written into PETSc's
+///   arrays without COO maps), each rounded up by about 10% (GAMG by 17%: at 2 ranks it needs
+///   1.48 kB per tet of its share over the libraries); CHOLMOD starts at 190 MB (OpenBLAS's
+///   buffers) and its factor
 /// grows faster than the mesh (fill of a 3D mesh ~ n^4/3): 1.44 GB at 197k tets, 6.38 GB at 664k,
 /// so 115 bytes x tets^4/3 above its start (5-7% above both).
-/// Distributed: the libraries, then the larger of the whole body every rank builds before it
-/// keeps its part (150 bytes per tet: the mesh, materials, loads; measured 92) and the solver's
+/// Distributed: the libraries, then the larger of the whole body rank 0 builds before it sends
+/// the parts (150 bytes per tet: the mesh, materials, loads; measured 92) and the solver's
 /// bytes per tet over its share of the tets, 1.3x for the halo (the largest rank of a 415k-tet bar
-/// held 1.04x its share at 2 ranks, 1.22x at 4; peak RSS per rank 579 and 368 MB for petsc-mg,
-/// against 676 and 390 MB estimated).
+/// held 1.04x its share at 2 ranks, 1.22x at 4; peak RSS per rank 504 and 321 MB for petsc-mg,
+/// against 579 and 330 MB estimated; GAMG 614 MB at 2 ranks against 619).
 double run_bytes(SolverKind solver, double tets, int ranks = 1);
 /// The rule run_bytes applies, for messages ("1.5 kB per tet for mgpcg").
 std::string run_bytes_basis(SolverKind solver, int ranks = 1);

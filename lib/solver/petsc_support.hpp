@@ -34,7 +34,9 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm);
 PetscInt share_start(PetscInt count, int rank, int size);
 
 /// An AIJ matrix of block size 3 with a BRC matrix's pattern on `comm` (this rank's rows: its
-/// owned vertices), built once; copy() hands PETSc the BRC values of those rows in place.
+/// owned vertices), built once from the pattern in CSR; copy() writes the BRC values of those
+/// rows into PETSc's value arrays directly (no COO maps: they cost 16 bytes per entry, more
+/// than the matrix, and their set-up's scratch raised the peak further on several ranks).
 /// With `part`, `pattern` is the part's matrix (rows and columns in its local numbering).
 class AijFromBrc {
  public:
@@ -48,9 +50,12 @@ class AijFromBrc {
   const OwnedBlocks& rows() const { return rows_; }
 
  private:
+  std::pair<Mat, Mat> parts() const;
+  void check_layout(const BrcMatrix& a, const std::vector<PetscInt>& row_start) const;
   Mat mat_ = nullptr;
   OwnedBlocks rows_;
-  std::size_t first_value_ = 0, value_count_ = 0;  ///< this rank's slice of the BRC's values
+  int first_row_ = 0;              ///< the BRC's first block row that is this rank's
+  std::vector<char> in_diagonal_;  ///< per BRC block: its column is owned here
 };
 
 /// P = R^T as an AIJ matrix on `comm` (3 fine x 3 coarse, R = Rs (x) I3; rows and columns owned
