@@ -74,20 +74,6 @@ double sum_over_ranks(double value) {
   return value;
 }
 
-bool agrees_on_every_rank(double value) {
-#ifdef COROFEM_HAVE_PETSC
-  if (mpi_launch().size > 1) {
-    double low = 0, high = 0;
-    if (MPI_Allreduce(&value, &low, 1, MPI_DOUBLE, MPI_MIN, PETSC_COMM_WORLD) != MPI_SUCCESS ||
-        MPI_Allreduce(&value, &high, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD) != MPI_SUCCESS)
-      throw NumericalFault("MPI_Allreduce of a value to compare over the ranks failed");
-    return low == high;
-  }
-#endif
-  (void)value;
-  return true;
-}
-
 namespace {
 // MPI counts are ints: larger messages go in pieces of this many bytes.
 constexpr std::size_t kMessagePiece = std::size_t{1} << 30;

@@ -34,9 +34,6 @@ void abort_all_ranks(int code);
 /// The sum of `value` over the ranks (on every rank); `value` itself with one rank.
 double sum_over_ranks(double value);
 
-/// Whether every rank holds the same `value` (true with one rank).
-bool agrees_on_every_rank(double value);
-
 /// Rank 0's `status` and `message` on every rank (a collective call; unchanged with one rank):
 /// how rank 0, alone doing work that can fail, tells the others whether it did.
 void broadcast_status(int& status, std::string& message);
