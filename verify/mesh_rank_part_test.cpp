@@ -103,5 +103,27 @@ TEST(RankPart, GroupingByPartMakesEachPartContiguousAndKeepsTheMesh) {
     for (int k = 0; k < 4; ++k) EXPECT_EQ(mesh.tets[t][k], new_index[original.tets[t][k]]);
 }
 
+TEST(RankPart, CutterCutsEveryPartAsRankPartOfRangeDoes) {
+  // Uneven ranges, as PT-Scotch's parts make them; with rings the cutter scans per part.
+  const TetMesh whole = make_box_mesh({3, 1, 1}, {9, 3, 3});
+  const int nv = whole.num_vertices();
+  const std::vector<int> first = {0, nv / 5, nv / 2, nv / 2 + 7, nv};
+  for (int rings : {0, 1}) {
+    SCOPED_TRACE(rings);
+    RankPartCutter cutter(whole, first, rings);
+    for (int r = 0; r + 1 < static_cast<int>(first.size()); ++r) {
+      SCOPED_TRACE(r);
+      const RankPart cut = cutter.cut(r);
+      const RankPart expected = rank_part_of_range(whole, first[r], first[r + 1], rings);
+      EXPECT_EQ(cut.global_tet, expected.global_tet);
+      EXPECT_EQ(cut.global_vertex, expected.global_vertex);
+      EXPECT_EQ(cut.owned_tet, expected.owned_tet);
+      EXPECT_EQ(cut.halo_vertices, expected.halo_vertices);
+      EXPECT_EQ(cut.mesh.tets, expected.mesh.tets);
+      EXPECT_EQ(cut.mesh.rest, expected.mesh.rest);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace corofem

@@ -61,10 +61,13 @@ TEST(RankShare, EachRankGetsItsVerticesLoadsSupportsAndMaterialsAsTheSceneHadThe
       group_vertices_by_part(whole.mesh, part_of_vertex, ranks, new_index);
   renumber_supports_and_loads(whole, new_index);
   const std::vector<Transfer> transfers = {test_transfer(nv), test_transfer(40)};
+  std::vector<int> scene_vertex(nv);
+  for (int v = 0; v < nv; ++v) scene_vertex[new_index[v]] = v;
+  RankPartCutter cutter(whole.mesh, first);
   int owned = 0;
   for (int r = 0; r < ranks; ++r) {
     SCOPED_TRACE(r);
-    const RankShare share = make_rank_share(whole, new_index, first[r], first[r + 1], 0, transfers);
+    const RankShare share = make_rank_share(whole, scene_vertex, cutter.cut(r), transfers);
     const RankPart& part = share.part;
     ASSERT_EQ(part.owned_vertices, first[r + 1] - first[r]);
     owned += part.owned_vertices;
@@ -95,11 +98,12 @@ TEST(RankShare, EachRankGetsItsVerticesLoadsSupportsAndMaterialsAsTheSceneHadThe
 
 TEST(RankShare, TravelsAsBytesUnchangedAndShortBytesAreAFault) {
   SceneBody whole = test_body();
-  std::vector<int> new_index(whole.mesh.num_vertices());
-  for (int v = 0; v < whole.mesh.num_vertices(); ++v) new_index[v] = v;
+  std::vector<int> scene_vertex(whole.mesh.num_vertices());
+  for (int v = 0; v < whole.mesh.num_vertices(); ++v) scene_vertex[v] = v;
   const int half = whole.mesh.num_vertices() / 2;
-  const RankShare share =
-      make_rank_share(whole, new_index, half, whole.mesh.num_vertices(), 1, {test_transfer(80)});
+  const RankShare share = make_rank_share(
+      whole, scene_vertex, rank_part_of_range(whole.mesh, half, scene_vertex.size(), 1),
+      {test_transfer(80)});
   const std::vector<char> bytes = pack_rank_share(share);
   const RankShare back = unpack_rank_share(bytes);
   EXPECT_EQ(back.part.global_vertex, share.part.global_vertex);

@@ -1,6 +1,7 @@
 #include "mesh/rank_part.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace corofem {
 
@@ -75,17 +76,21 @@ RankPart rank_part(const TetMesh& whole, int rank, int ranks, int extra_rings) {
                             rank_share_start(whole.num_vertices(), rank + 1, ranks), extra_rings);
 }
 
-RankPart rank_part_of_range(const TetMesh& whole, int begin, int end, int extra_rings) {
+namespace {
+
+/// The part owning the vertices [begin, end) and holding the tets `held` (ascending). `local`
+/// (one entry per vertex of `whole`) is all -1 on entry and is left so.
+RankPart part_holding(const TetMesh& whole, int begin, int end, std::vector<int> held,
+                      std::vector<int>& local) {
   RankPart part;
   part.first_vertex = begin;
   part.owned_vertices = end - begin;
   part.global_vertices = whole.num_vertices();
   part.global_tets = whole.num_tets();
   const auto owned = [&](int v) { return v >= begin && v < end; };
-  std::vector<int> local(whole.num_vertices(), -1);
   for (int v = begin; v < end; ++v) local[v] = v - begin;
   std::vector<int> halo;
-  part.global_tet = held_tets(whole, begin, end, extra_rings);
+  part.global_tet = std::move(held);
   for (int t : part.global_tet) {
     const Tet& tet = whole.tets[t];
     part.owned_tet.push_back(owned(*std::min_element(tet.begin(), tet.end())));
@@ -115,7 +120,55 @@ RankPart rank_part_of_range(const TetMesh& whole, int begin, int end, int extra_
     m.tets.push_back(tet);
     if (!whole.element_tags.empty()) m.element_tags.push_back(whole.element_tags[t]);
   }
+  for (int g : part.global_vertex) local[g] = -1;
   return part;
+}
+
+}  // namespace
+
+RankPart rank_part_of_range(const TetMesh& whole, int begin, int end, int extra_rings) {
+  std::vector<int> local(whole.num_vertices(), -1);
+  return part_holding(whole, begin, end, held_tets(whole, begin, end, extra_rings), local);
+}
+
+RankPartCutter::RankPartCutter(const TetMesh& whole, std::vector<int> first, int extra_rings)
+    : whole_(whole),
+      first_(std::move(first)),
+      extra_rings_(extra_rings),
+      local_(whole.num_vertices(), -1) {
+  if (extra_rings_ > 0) return;  // rings are found part by part (held_tets)
+  // Each tet goes to the parts of its vertices (each once, tets ascending): one pass in all.
+  const int parts = static_cast<int>(first_.size()) - 1;
+  std::vector<int> part_of(whole.num_vertices());
+  for (int p = 0; p < parts; ++p)
+    for (int v = first_[p]; v < first_[p + 1]; ++v) part_of[v] = p;
+  const auto each_part = [&](const Tet& tet, auto&& visit) {
+    std::array<int, 4> seen{};
+    int count = 0;
+    for (int v : tet) {
+      const int p = part_of[v];
+      if (std::find(seen.begin(), seen.begin() + count, p) == seen.begin() + count) {
+        seen[count++] = p;
+        visit(p);
+      }
+    }
+  };
+  held_start_.assign(parts + 1, 0);
+  for (const Tet& tet : whole.tets) each_part(tet, [&](int p) { ++held_start_[p + 1]; });
+  for (int p = 0; p < parts; ++p) held_start_[p + 1] += held_start_[p];
+  held_.resize(held_start_.back());
+  std::vector<int> next(held_start_.begin(), held_start_.end() - 1);
+  for (int t = 0; t < whole.num_tets(); ++t)
+    each_part(whole.tets[t], [&](int p) { held_[next[p]++] = t; });
+}
+
+RankPart RankPartCutter::cut(int rank) {
+  const int begin = first_[rank], end = first_[rank + 1];
+  std::vector<int> held = extra_rings_ > 0
+                              ? held_tets(whole_, begin, end, extra_rings_)
+                              : std::vector<int>(held_.begin() + held_start_[rank],
+                                                 held_.begin() + held_start_[rank + 1]);
+  return part_holding(whole_, begin, end, std::move(held), local_);
 }
 
 }  // namespace corofem

@@ -40,6 +40,25 @@ std::vector<int> group_vertices_by_part(TetMesh& mesh, const std::vector<int>& p
 /// The part owning the vertices [begin, end) of `whole`; `extra_rings` as rank_part's.
 RankPart rank_part_of_range(const TetMesh& whole, int begin, int end, int extra_rings = 0);
 
+/// Every part of `whole` in turn, for the one rank that holds the whole mesh: part r owns the
+/// vertices [first[r], first[r + 1]). Without extra rings, the tets of all parts are listed in
+/// one pass over the mesh at construction (each tet under the parts of its vertices), so cutting
+/// every part costs about one pass, not one per part; with rings, each cut scans the mesh
+/// (rank_part_of_range). cut(r) equals rank_part_of_range(whole, first[r], first[r + 1],
+/// extra_rings).
+class RankPartCutter {
+ public:
+  RankPartCutter(const TetMesh& whole, std::vector<int> first, int extra_rings = 0);
+  RankPart cut(int rank);
+
+ private:
+  const TetMesh& whole_;
+  std::vector<int> first_;
+  int extra_rings_;
+  std::vector<int> held_start_, held_;  ///< no rings: part r's tets, ascending
+  std::vector<int> local_;  ///< per vertex of `whole`: -1 between cuts (part_holding's scratch)
+};
+
 /// Rank `rank` of `ranks`'s part of `whole` (its vertices split by rank_share_start). With
 /// `extra_rings` > 0 the part holds that many more rings of tets (those sharing a vertex with a
 /// held one) beyond the ones touching its vertices: what a rotation smoothed over neighbouring

@@ -4,15 +4,13 @@
 
 namespace corofem {
 
-RankShare make_rank_share(const SceneBody& whole, const std::vector<int>& new_index, int begin,
-                          int end, int extra_rings, const std::vector<Transfer>& transfers) {
+RankShare make_rank_share(const SceneBody& whole, const std::vector<int>& scene_vertex,
+                          RankPart part, const std::vector<Transfer>& transfers) {
   RankShare share;
-  share.part = rank_part_of_range(whole.mesh, begin, end, extra_rings);
+  share.part = std::move(part);
   share.body = body_part(whole, share.part);
-  share.scene_vertex_index.resize(end - begin);
-  for (std::size_t v = 0; v < new_index.size(); ++v)
-    if (new_index[v] >= begin && new_index[v] < end)
-      share.scene_vertex_index[new_index[v] - begin] = static_cast<int>(v);
+  const int begin = share.part.first_vertex, end = begin + share.part.owned_vertices;
+  share.scene_vertex_index.assign(scene_vertex.begin() + begin, scene_vertex.begin() + end);
   for (std::size_t l = 0; l < transfers.size(); ++l)
     share.transfers.push_back(l == 0 ? rows_of(transfers[0], begin, end) : transfers[l]);
   return share;

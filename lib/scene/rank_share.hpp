@@ -19,11 +19,11 @@ struct RankShare {
   std::vector<Transfer> transfers;      ///< petsc-mg only, finest first
 };
 
-/// The share of the vertices [begin, end) of `whole` (numbered by the partition: `new_index`
-/// maps the scene's vertex v to new_index[v]); `extra_rings` as rank_part_of_range's;
-/// `transfers` the whole hierarchy's (or none).
-RankShare make_rank_share(const SceneBody& whole, const std::vector<int>& new_index, int begin,
-                          int end, int extra_rings, const std::vector<Transfer>& transfers);
+/// The share of `part`, cut from `whole` (mesh/rank_part.hpp), whose vertices the partition
+/// numbered: the whole body's vertex g is the scene's vertex scene_vertex[g]. `transfers`: the
+/// whole hierarchy's (or none).
+RankShare make_rank_share(const SceneBody& whole, const std::vector<int>& scene_vertex,
+                          RankPart part, const std::vector<Transfer>& transfers);
 
 /// The share as bytes (core/byte_stream.hpp), and back.
 std::vector<char> pack_rank_share(const RankShare& share);

@@ -124,10 +124,13 @@ RankShare SceneSimulation::share_out_body(int ranks) {
   const int rings = corotational() && a.rotation == RotationMethod::PolarSmoothed
                         ? a.rotation_params.smoothing_passes
                         : 0;
+  std::vector<int> scene_vertex(new_index.size());
+  for (std::size_t v = 0; v < new_index.size(); ++v)
+    scene_vertex[new_index[v]] = static_cast<int>(v);
+  RankPartCutter parts(whole->mesh, first, rings);
   for (int r = 1; r < ranks; ++r)
-    send_bytes(r, pack_rank_share(make_rank_share(*whole, new_index, first[r], first[r + 1], rings,
-                                                  transfers)));
-  return make_rank_share(*whole, new_index, first[0], first[1], rings, transfers);
+    send_bytes(r, pack_rank_share(make_rank_share(*whole, scene_vertex, parts.cut(r), transfers)));
+  return make_rank_share(*whole, scene_vertex, parts.cut(0), transfers);
 }  // the whole body is freed here
 
 RankShare SceneSimulation::receive_share() {
