@@ -51,7 +51,7 @@ class AijFromBrc {
 
  private:
   std::pair<Mat, Mat> parts() const;
-  void check_layout(const BrcMatrix& a, const std::vector<PetscInt>& row_start) const;
+  void check_layout(const BrcMatrix& a) const;
   Mat mat_ = nullptr;
   OwnedBlocks rows_;
   int first_row_ = 0;              ///< the BRC's first block row that is this rank's
