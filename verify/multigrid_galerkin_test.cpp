@@ -11,8 +11,10 @@
 #include "galerkin_oracle.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_mesh.hpp"
+#include "mesh/rank_part.hpp"
 #include "multigrid/galerkin.hpp"
 #include "multigrid/galerkin_gather.hpp"
+#include "multigrid/galerkin_row_share.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 #include "multigrid/lattice_level.hpp"
@@ -266,6 +268,48 @@ TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
       EXPECT_LT((p - e).norm(), 1e-12 * e.norm()) << "level " << h << ", round " << round;
     }
   }
+}
+
+/// The shares of a partition's parts sum to R A R^T, whether each part holds its rows in its own
+/// numbering (a distributed mesh's part: owned vertices, then the halo, with P's rows of both)
+/// or the whole matrix and transfer with its rows a range of them (replicated).
+TEST(GalerkinRowShare, PartsSharesSumToTheWholeProduct) {
+  const TetMesh mesh = make_box_mesh({1, 0.8, 0.6}, {6, 5, 4});
+  std::mt19937 rng(7);
+  const BrcMatrix a = random_symmetric(mesh, rng);
+  const CoarseLevel coarse = make_lattice_level(mesh.rest, {}, 0.3);
+  const Transfer& t = coarse.transfer;
+  const Eigen::MatrixXd whole = reference::dense_galerkin(Eigen::MatrixXd(restriction_matrix(t)),
+                                                          Eigen::MatrixXd(to_eigen(a)));
+  const int nv = mesh.num_vertices();
+  const std::vector<int> first = {0, nv / 4, nv / 2 + 3, nv};  // uneven ranges
+  Eigen::MatrixXd distributed = Eigen::MatrixXd::Zero(whole.rows(), whole.cols());
+  Eigen::MatrixXd replicated = distributed;
+  for (std::size_t r = 0; r + 1 < first.size(); ++r) {
+    const RankPart part = rank_part_of_range(mesh, first[r], first[r + 1]);
+    ASSERT_GT(part.halo_vertices, 0);
+    AssemblyMap map;
+    BrcMatrix local = make_stiffness_pattern(part.mesh, map);
+    for (int i = 0; i < local.block_rows; ++i)
+      for (int k = local.row_start[i]; k < local.row_start[i + 1]; ++k) {
+        const int b = a.find(part.global_vertex[i], part.global_vertex[local.col_index[k]]);
+        ASSERT_GE(b, 0);
+        std::copy_n(a.values.begin() + 9 * b, 9, local.values.begin() + 9 * k);
+      }
+    GalerkinRowShare share(local, rows_of(t, part.global_vertex), 0, part.owned_vertices);
+    share.apply(local);
+    distributed += Eigen::MatrixXd(to_eigen(share.share()));
+    GalerkinRowShare range(a, t, first[r], first[r + 1]);
+    range.apply(a);
+    replicated += Eigen::MatrixXd(to_eigen(range.share()));
+  }
+  // Sums of a few dozen products in other orders: round-off ~1e-16 relative.
+  EXPECT_LT(relative_frobenius(distributed, whole), 1e-13);
+  EXPECT_LT(relative_frobenius(replicated, whole), 1e-13);
+  // A part's share is not the whole product (the check can fail).
+  GalerkinRowShare half(a, t, 0, nv / 2);
+  half.apply(a);
+  EXPECT_GT(relative_frobenius(Eigen::MatrixXd(to_eigen(half.share())), whole), 0.1);
 }
 
 TEST(Transfer, LatticeWeightsInterpolateAffineFieldsExactly) {

@@ -38,17 +38,23 @@ Transfer test_transfer(int fine) {
   return t;
 }
 
-void expect_same_rows(const Transfer& slice, const Transfer& t, int begin, int end) {
-  EXPECT_EQ(slice.first_row, begin);
-  ASSERT_EQ(slice.p_start.size(), static_cast<std::size_t>(end - begin + 1));
-  for (int l = begin; l < end; ++l) {
-    const int length = t.p_start[l + 1] - t.p_start[l];
-    ASSERT_EQ(slice.p_start[l - begin + 1] - slice.p_start[l - begin], length);
+/// slice's row v is t's row of fine vertex vertices[v], for every v.
+void expect_same_rows(const Transfer& slice, const Transfer& t, const std::vector<int>& vertices) {
+  ASSERT_EQ(slice.p_start.size(), vertices.size() + 1);
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    const int l = vertices[v], length = t.p_start[l + 1] - t.p_start[l];
+    ASSERT_EQ(slice.p_start[v + 1] - slice.p_start[v], length);
     for (int k = 0; k < length; ++k) {
-      EXPECT_EQ(slice.p_col[slice.p_start[l - begin] + k], t.p_col[t.p_start[l] + k]);
-      EXPECT_EQ(slice.p_weight[slice.p_start[l - begin] + k], t.p_weight[t.p_start[l] + k]);
+      EXPECT_EQ(slice.p_col[slice.p_start[v] + k], t.p_col[t.p_start[l] + k]);
+      EXPECT_EQ(slice.p_weight[slice.p_start[v] + k], t.p_weight[t.p_start[l] + k]);
     }
   }
+}
+
+std::vector<int> all_vertices(int count) {
+  std::vector<int> v(count);
+  for (int l = 0; l < count; ++l) v[l] = l;
+  return v;
 }
 
 TEST(RankShare, EachRankGetsItsVerticesLoadsSupportsAndMaterialsAsTheSceneHadThem) {
@@ -70,6 +76,7 @@ TEST(RankShare, EachRankGetsItsVerticesLoadsSupportsAndMaterialsAsTheSceneHadThe
     const RankShare share = make_rank_share(whole, scene_vertex, cutter.cut(r), transfers);
     const RankPart& part = share.part;
     ASSERT_EQ(part.owned_vertices, first[r + 1] - first[r]);
+    ASSERT_GT(part.halo_vertices, 0);  // so that the transfer's halo rows are checked
     owned += part.owned_vertices;
     ASSERT_EQ(share.scene_vertex_index.size(), static_cast<std::size_t>(part.owned_vertices));
     const std::vector<int>& fixed = share.body.fixed_vertices;
@@ -90,8 +97,12 @@ TEST(RankShare, EachRankGetsItsVerticesLoadsSupportsAndMaterialsAsTheSceneHadThe
     for (int t = 0; t < share.body.mesh.num_tets(); ++t)
       EXPECT_EQ(share.body.materials[t].young, scene_order.materials[part.global_tet[t]].young);
     ASSERT_EQ(share.transfers.size(), 2u);
-    expect_same_rows(share.transfers[0], transfers[0], first[r], first[r + 1]);
-    expect_same_rows(share.transfers[1], transfers[1], 0, 40);  // coarser levels whole
+    // The finest transfer's rows of the part's vertices, owned (where a slice from first[r]
+    // has them) then halo; the coarser levels whole.
+    EXPECT_EQ(share.transfers[0].first_row, first[r]);
+    expect_same_rows(share.transfers[0], transfers[0], part.global_vertex);
+    EXPECT_EQ(share.transfers[1].first_row, 0);
+    expect_same_rows(share.transfers[1], transfers[1], all_vertices(40));
   }
   EXPECT_EQ(owned, nv);
 }

@@ -78,16 +78,20 @@ double mean_edge_length(const TetMesh& mesh) {
   return sum / (6.0 * mesh.tets.size());
 }
 
-Transfer rows_of(const Transfer& t, int begin, int end) {
+Transfer rows_of(const Transfer& t, const std::vector<int>& vertices) {
   Transfer slice;
   slice.coarse = t.coarse;
   slice.fine = t.fine;
-  slice.first_row = begin;
-  const int first = t.p_start[begin - t.first_row], last = t.p_start[end - t.first_row];
-  slice.p_start.reserve(end - begin + 1);
-  for (int l = begin; l <= end; ++l) slice.p_start.push_back(t.p_start[l - t.first_row] - first);
-  slice.p_col.assign(t.p_col.begin() + first, t.p_col.begin() + last);
-  slice.p_weight.assign(t.p_weight.begin() + first, t.p_weight.begin() + last);
+  slice.first_row = vertices.empty() ? 0 : vertices.front();
+  slice.p_start.reserve(vertices.size() + 1);
+  slice.p_start.push_back(0);
+  for (const int l : vertices) {
+    const int first = t.p_start[l - t.first_row], last = t.p_start[l - t.first_row + 1];
+    slice.p_col.insert(slice.p_col.end(), t.p_col.begin() + first, t.p_col.begin() + last);
+    slice.p_weight.insert(slice.p_weight.end(), t.p_weight.begin() + first,
+                          t.p_weight.begin() + last);
+    slice.p_start.push_back(static_cast<int>(slice.p_col.size()));
+  }
   return slice;
 }
 

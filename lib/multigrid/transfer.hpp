@@ -32,9 +32,12 @@ struct Transfer {
   void prolongate_add(const Eigen::VectorXd& coarse, Eigen::VectorXd& fine) const;
 };
 
-/// P's rows of the fine vertices [begin, end) of `t` alone (first_row = begin; R's rows left
-/// empty): what a rank of a distributed run needs of the finest transfer.
-Transfer rows_of(const Transfer& t, int begin, int end);
+/// P's rows of the fine vertices `vertices` of `t` alone, in that order (R's rows left empty):
+/// what a rank of a distributed run needs of the finest transfer, `vertices` being its part's
+/// (rank_part.hpp: its owned vertices, a contiguous range, then its halo). first_row =
+/// vertices[0], so that the owned vertices' rows are where a contiguous slice has them; the halo's
+/// follow, for the rank's Galerkin share (galerkin_row_share.hpp).
+Transfer rows_of(const Transfer& t, const std::vector<int>& vertices);
 
 /// R as a scalar sparse matrix of DOFs (3 coarse x 3 fine; R = Rs (x) I3), DOF 3 v + c.
 Eigen::SparseMatrix<double> restriction_matrix(const Transfer& t);

@@ -57,7 +57,9 @@ inline bool is_petsc_solver(SolverKind solver) {
 
 /// Whether `ranks` MPI ranks run a scene of this analysis on a distributed mesh (each rank holding
 /// its part: scene/scene_simulation.hpp): a dynamic linearly implicit or a static lagged run on a
-/// PETSc solver. Newton runs (a serial sparse LU) build and assemble the whole mesh on every rank.
+/// PETSc solver. Corotational Newton runs (a serial sparse LU) are refused under mpirun
+/// (cli/commands.cpp); other Newton runs build the whole mesh on every rank, PETSc distributing
+/// only the solve.
 inline bool distributes_mesh(Integrator integrator, SolverKind solver, int ranks) {
   return ranks > 1 && integrator != Integrator::Newton && is_petsc_solver(solver);
 }

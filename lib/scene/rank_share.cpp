@@ -12,7 +12,8 @@ RankShare make_rank_share(const SceneBody& whole, const std::vector<int>& scene_
   const int begin = share.part.first_vertex, end = begin + share.part.owned_vertices;
   share.scene_vertex_index.assign(scene_vertex.begin() + begin, scene_vertex.begin() + end);
   for (std::size_t l = 0; l < transfers.size(); ++l)
-    share.transfers.push_back(l == 0 ? rows_of(transfers[0], begin, end) : transfers[l]);
+    share.transfers.push_back(l == 0 ? rows_of(transfers[0], share.part.global_vertex)
+                                     : transfers[l]);
   return share;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "solver/petsc_coarse_operators.hpp"
 #include "solver/petsc_support.hpp"
 #endif
 
@@ -66,6 +67,16 @@ class PetscSolver : public LinearSolver {
     if (!a_) create(a);
     a_->copy(a);
     check(KSPSetOperators(ksp_, a_->mat(), a_->mat()), "KSPSetOperators");
+    if (coarse_) {  // petsc-mg: the coarse levels' operators, PETSc level l our level L - 1 - l
+      coarse_->update(a);
+      const PetscInt levels = coarse_->coarse_levels() + 1;
+      for (PetscInt l = 0; l + 1 < levels; ++l) {
+        KSP smoother = nullptr;
+        check(PCMGGetSmoother(pc_, l, &smoother), "PCMGGetSmoother");
+        const Mat m = coarse_->level(static_cast<int>(levels - 1 - l));
+        check(KSPSetOperators(smoother, m, m), "KSPSetOperators");
+      }
+    }
     check(KSPSetUp(ksp_), "KSPSetUp");
     check(PCSetUp(pc_), "PCSetUp");  // the AMG hierarchy: timed with the update, not the solve
     // BoomerAMG's reuse: the hierarchy of this first matrix preconditions every later solve.
@@ -216,15 +227,25 @@ class PetscSolver : public LinearSolver {
       check(PCMGSetLevels(pc_, levels, nullptr), "PCMGSetLevels");
       check(PCMGSetType(pc_, PC_MG_MULTIPLICATIVE), "PCMGSetType");
       check(PCMGSetCycleType(pc_, PC_MG_CYCLE_V), "PCMGSetCycleType");
-      check(PCMGSetGalerkin(pc_, PC_MG_GALERKIN_BOTH), "PCMGSetGalerkin");
-      for (PetscInt l = 1; l < levels; ++l) {
+      // The coarse operators are ours (petsc_coarse_operators.hpp): the first from each rank's
+      // Galerkin share of its rows, the coarser by MatPtAP; PCMG's Galerkin (MatPtAP from the
+      // finest level) kept too much memory on several ranks.
+      check(PCMGSetGalerkin(pc_, PC_MG_GALERKIN_NONE), "PCMGSetGalerkin");
+      std::vector<Mat> prolongations;  // finest first
+      for (PetscInt l = levels - 1; l >= 1; --l) {
         // The finest interpolation's rows are the matrix's (a distributed mesh's part's).
         Mat p = petsc::prolongation(transfers_[levels - 1 - l], comm_,
                                     l == levels - 1 ? &a_->rows() : nullptr);
         check(PCMGSetInterpolation(pc_, l, p), "PCMGSetInterpolation");
-        MatDestroy(&p);  // PCMG keeps its own reference
+        prolongations.push_back(p);
       }
-      transfers_ = {};  // PETSc holds this rank's rows of them now
+      // This rank's rows of the fine matrix: a part's owned rows come first; replicated, the
+      // matrix and the finest transfer are whole and the rank's rows its share of them.
+      const int begin = part_ ? 0 : static_cast<int>(own.begin);
+      coarse_ = std::make_unique<petsc::CoarseOperators>(
+          a, transfers_[0], begin, begin + static_cast<int>(own.size()), prolongations, comm_);
+      for (Mat& p : prolongations) MatDestroy(&p);  // PCMG and the operators keep references
+      transfers_ = {};  // PETSc and the operators hold this rank's rows of them now
       // Level smoothers: Chebyshev (PETSc's default, eigenvalue bounds estimated at setup) on
       // point Jacobi, degree 2 per `smoothing`. With PETSc's SOR instead, as Richardson steps at
       // omega 1 or under Chebyshev, CG stopped on the gates' heterogeneous cube (indefinite
@@ -234,8 +255,15 @@ class PetscSolver : public LinearSolver {
       option("-mg_levels_ksp_max_it", degree.c_str());
       option("-mg_levels_pc_type", "jacobi");
       option("-mg_coarse_ksp_type", "preonly");
+      PetscBool mumps = PETSC_FALSE;
+      check(PetscHasExternalPackage("mumps", &mumps), "PetscHasExternalPackage");
       if (ranks_ == 1) {
         option("-mg_coarse_pc_type", "lu");
+      } else if (mumps) {
+        // MUMPS's LU is distributed: on a 415k-tet bar at 2 ranks, 14 MB a rank less than
+        // PETSc's redundant LU and as many iterations.
+        option("-mg_coarse_pc_type", "lu");
+        option("-mg_coarse_pc_factor_mat_solver_type", "mumps");
       } else {  // PETSc's own LU is serial: each rank factors the whole coarsest matrix
         option("-mg_coarse_pc_type", "redundant");
         option("-mg_coarse_redundant_pc_type", "lu");
@@ -274,6 +302,7 @@ class PetscSolver : public LinearSolver {
   const RankPart* part_;                     ///< distributed: this rank's part; null: replicated
   Vec part_b_ = nullptr, part_x_ = nullptr;  ///< distributed: b, and x with the halo as ghosts
   std::unique_ptr<petsc::AijFromBrc> a_;
+  std::unique_ptr<petsc::CoarseOperators> coarse_;  ///< petsc-mg: the coarse levels' operators
   KSP ksp_ = nullptr;
   PC pc_ = nullptr;
 };

@@ -6,9 +6,10 @@
 //                    (unknown approach, 3 functions) with the 3D strong threshold 0.5 of hypre's
 //                    manual (why not nodal coarsening or rigid-body interpolation: the .cpp);
 //   petsc-mg         CG preconditioned by PETSc's PCMG V-cycle on corofem's own hierarchy: our
-//                    P = R^T as interpolation, PETSc's Galerkin coarse operators (MatPtAP),
-//                    Chebyshev on point Jacobi (degree 2 per `smoothing`) on each level, and
-//                    LU of the coarsest.
+//                    P = R^T as interpolation, Galerkin coarse operators (the first level's
+//                    from each rank's share of its rows, summed by PETSc; the coarser ones by
+//                    MatPtAP: solver/petsc_coarse_operators.hpp), Chebyshev on point Jacobi (degree
+//                    2 per `smoothing`) on each level, and LU of the coarsest.
 // Both solve to the scene's relative residual |b - A x| / |b| from the initial guess in x, like
 // mgpcg. set_matrix copies the values into a PETSc AIJ matrix of block size 3 (its pattern built
 // once from the BRC pattern) and sets the preconditioner up: the `update` phase of a step.

@@ -29,18 +29,6 @@ class Session {
   ~Session() { PetscFinalize(); }
 };
 
-/// An AIJ matrix of block size 3 on `comm` with this rank's rows of `rows` and columns split as
-/// `cols`, before its pattern.
-Mat block3_aij(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols) {
-  Mat m = nullptr;
-  check(MatCreate(comm, &m), "MatCreate");
-  check(MatSetSizes(m, 3 * rows.size(), 3 * cols.size(), 3 * rows.count, 3 * cols.count),
-        "MatSetSizes");
-  check(MatSetType(m, MATAIJ), "MatSetType");
-  check(MatSetBlockSize(m, 3), "MatSetBlockSize");
-  return m;
-}
-
 /// block3_aij with its pattern from the (global) coordinates i, j of its entries; values come
 /// later, in the same order, through MatSetValuesCOO (the transfers: small, set once).
 Mat aij_from_coo(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols,
@@ -66,6 +54,16 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm) {
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   return {share_start(count, rank, size), share_start(count, rank + 1, size), count};
+}
+
+Mat block3_aij(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols) {
+  Mat m = nullptr;
+  check(MatCreate(comm, &m), "MatCreate");
+  check(MatSetSizes(m, 3 * rows.size(), 3 * cols.size(), 3 * rows.count, 3 * cols.count),
+        "MatSetSizes");
+  check(MatSetType(m, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(m, 3), "MatSetBlockSize");
+  return m;
 }
 
 AijFromBrc::AijFromBrc(const BrcMatrix& a, MPI_Comm comm, const RankPart* part) {

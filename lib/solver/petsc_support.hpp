@@ -33,6 +33,10 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm);
 /// The first of `count` vertices rank `rank` of `size` owns (rank = size: count).
 PetscInt share_start(PetscInt count, int rank, int size);
 
+/// An AIJ matrix of block size 3 on `comm` with this rank's rows of `rows` and columns split as
+/// `cols`, before its pattern.
+Mat block3_aij(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols);
+
 /// An AIJ matrix of block size 3 with a BRC matrix's pattern on `comm` (this rank's rows: its
 /// owned vertices), built once from the pattern in CSR; copy() writes the BRC values of those
 /// rows into PETSc's value arrays directly (no COO maps: they cost 16 bytes per entry, more
