@@ -242,8 +242,9 @@ class PetscSolver : public LinearSolver {
       // This rank's rows of the fine matrix: a part's owned rows come first; replicated, the
       // matrix and the finest transfer are whole and the rank's rows its share of them.
       const int begin = part_ ? 0 : static_cast<int>(own.begin);
-      coarse_ = std::make_unique<petsc::CoarseOperators>(
-          a, transfers_[0], begin, begin + static_cast<int>(own.size()), prolongations, comm_);
+      if (!transfers_.empty())  // one level (asked for, or a mesh too small to coarsen): LU
+        coarse_ = std::make_unique<petsc::CoarseOperators>(
+            a, transfers_[0], begin, begin + static_cast<int>(own.size()), prolongations, comm_);
       for (Mat& p : prolongations) MatDestroy(&p);  // PCMG and the operators keep references
       transfers_ = {};  // PETSc and the operators hold this rank's rows of them now
       // Level smoothers: Chebyshev (PETSc's default, eigenvalue bounds estimated at setup) on
