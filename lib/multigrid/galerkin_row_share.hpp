@@ -6,8 +6,6 @@
 // PETSc adds the shares across ranks (solver/petsc_coarse_operators.hpp), in place of PETSc's
 // parallel MatPtAP, whose intermediate products (A P on each rank, kept for reuse) made a rank's
 // memory at two ranks larger than the whole problem's on one (issue 37).
-#include <vector>
-
 #include "multigrid/galerkin.hpp"
 #include "multigrid/transfer.hpp"
 #include "sparse/brc_matrix.hpp"
@@ -28,13 +26,10 @@ class GalerkinRowShare {
   /// The share: coarse x coarse in the coarse level's numbering; rows that none of the share's
   /// fine rows restricts to are empty.
   const BrcMatrix& share() const { return e_; }
-  /// The coarse rows that are not empty, ascending.
-  const std::vector<int>& rows() const { return rows_; }
 
  private:
   Transfer t_;  ///< P's rows as given; R's rows built from P's rows [begin, end) alone
   BrcMatrix e_;
-  std::vector<int> rows_;
   GalerkinReuse reuse_;
 };
 

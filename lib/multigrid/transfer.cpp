@@ -8,13 +8,17 @@
 namespace corofem {
 
 void Transfer::transpose_prolongation() {
+  transpose_prolongation(0, fine);
+}
+
+void Transfer::transpose_prolongation(int begin, int end) {
   r_start.assign(coarse + 1, 0);
-  for (int i : p_col) ++r_start[i + 1];
+  for (int k = p_start[begin]; k < p_start[end]; ++k) ++r_start[p_col[k] + 1];
   for (int i = 0; i < coarse; ++i) r_start[i + 1] += r_start[i];
-  r_col.resize(p_col.size());
-  r_weight.resize(p_col.size());
+  r_col.resize(r_start.back());
+  r_weight.resize(r_start.back());
   std::vector<int> next(r_start.begin(), r_start.end() - 1);
-  for (int l = 0; l < fine; ++l)  // increasing l, so each R row comes out sorted
+  for (int l = begin; l < end; ++l)  // increasing l, so each R row comes out sorted
     for (int k = p_start[l]; k < p_start[l + 1]; ++k) {
       const int slot = next[p_col[k]]++;
       r_col[slot] = l;

@@ -21,8 +21,10 @@ struct Transfer {
   /// The first fine vertex whose row of P is held: 0 but in a rows_of slice.
   int first_row = 0;
 
-  /// Builds R's rows from P's (call after filling p_*).
+  /// Builds R's rows from P's (call after filling p_*); from P's rows [begin, end) alone where
+  /// given (R's share of those fine vertices: multigrid/galerkin_row_share.hpp).
   void transpose_prolongation();
+  void transpose_prolongation(int begin, int end);
   /// Finishes a transfer whose p_col index `candidates` coarse vertices: drops those that support
   /// no fine vertex (their rows of E would be zero), renumbers the rest in their original order
   /// (so P's rows stay sorted), sets `coarse` and builds R. Returns the kept candidates' ids.

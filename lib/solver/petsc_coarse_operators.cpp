@@ -12,15 +12,9 @@ CoarseOperators::CoarseOperators(const BrcMatrix& a, const Transfer& finest, int
   // The first coarse level's pattern: every rank's share, added; PETSc's preallocator sums the
   // patterns across ranks (rows owned elsewhere are sent).
   const OwnedBlocks coarse = owned_blocks(share_.share().block_rows, comm);
-  Mat first = block3_aij(comm, coarse, coarse);
+  Mat first = block3_matrix(comm, coarse, coarse);
   levels_.push_back(first);
-  Mat pattern = nullptr;
-  check(MatCreate(comm, &pattern), "MatCreate");
-  check(MatSetSizes(pattern, 3 * coarse.size(), 3 * coarse.size(), 3 * coarse.count,
-                    3 * coarse.count),
-        "MatSetSizes");
-  check(MatSetType(pattern, MATPREALLOCATOR), "MatSetType");
-  check(MatSetBlockSize(pattern, 3), "MatSetBlockSize");
+  Mat pattern = block3_matrix(comm, coarse, coarse, MATPREALLOCATOR);
   check(MatSetUp(pattern), "MatSetUp");
   add_share_to(pattern);  // zeros: only the pattern counts
   check(MatAssemblyBegin(pattern, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
@@ -43,8 +37,9 @@ void CoarseOperators::add_share_to(Mat m) {
   // One call per coarse row: its blocks' 3 scalar rows laid out row after row, as
   // MatSetValuesBlocked reads them (the BRC keeps each 3x3 block's 9 values together).
   const BrcMatrix& e = share_.share();
-  for (const int i : share_.rows()) {
+  for (int i = 0; i < e.block_rows; ++i) {
     const int first = e.row_start[i], count = e.row_start[i + 1] - first;
+    if (count == 0) continue;  // a row none of this rank's fine rows restricts to
     columns_.assign(e.col_index.begin() + first, e.col_index.begin() + first + count);
     row_.resize(9 * static_cast<std::size_t>(count));
     for (int k = 0; k < count; ++k)
@@ -65,10 +60,10 @@ void CoarseOperators::update(const BrcMatrix& a) {
   add_share_to(first);
   check(MatAssemblyBegin(first, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(first, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  const MatReuse reuse = updated_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
-  for (std::size_t h = 1; h < levels_.size(); ++h)
-    check(MatPtAP(levels_[h - 1], prolongations_[h], reuse, PETSC_DEFAULT, &levels_[h]), "MatPtAP");
-  updated_ = true;
+  for (std::size_t h = 1; h < levels_.size(); ++h)  // made by the first update, reused after
+    check(MatPtAP(levels_[h - 1], prolongations_[h],
+                  levels_[h] ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &levels_[h]),
+          "MatPtAP");
 }
 
 }  // namespace corofem::petsc

@@ -7,7 +7,6 @@
 // against 18 MB on one rank, which held a rank's peak memory at two ranks to 0.70 of one rank's.
 #include <petscmat.h>
 
-#include <memory>
 #include <vector>
 
 #include "multigrid/galerkin_row_share.hpp"
@@ -28,7 +27,8 @@ class CoarseOperators {
   CoarseOperators(const CoarseOperators&) = delete;
   CoarseOperators& operator=(const CoarseOperators&) = delete;
 
-  /// Every coarse operator's values from `a` (of the pattern given).
+  /// Every coarse operator's values from `a` (of the pattern given); the first call makes the
+  /// levels below the first.
   void update(const BrcMatrix& a);
   /// Level h = 1, 2, ... below the finest (ours: finest first).
   Mat level(int h) const { return levels_[h - 1]; }
@@ -41,7 +41,6 @@ class CoarseOperators {
   std::vector<Mat> prolongations_, levels_;
   std::vector<PetscInt> columns_;  ///< scratch: one coarse row's global block columns
   std::vector<PetscScalar> row_;   ///< scratch: its 3 scalar rows, as MatSetValuesBlocked reads
-  bool updated_ = false;
 };
 
 }  // namespace corofem::petsc

@@ -64,11 +64,14 @@ class PetscSolver : public LinearSolver {
   std::string name() const override { return name_; }
 
   void set_matrix(const BrcMatrix& a) override {
-    if (!a_) create(a);
+    const bool first = !a_;
+    if (first) create(a);
     a_->copy(a);
     check(KSPSetOperators(ksp_, a_->mat(), a_->mat()), "KSPSetOperators");
-    if (coarse_) {  // petsc-mg: the coarse levels' operators, PETSc level l our level L - 1 - l
-      coarse_->update(a);
+    if (coarse_) coarse_->update(a);
+    if (coarse_ && first) {
+      // petsc-mg: the coarse levels' operators (made by the first update, the same matrices
+      // after), PETSc level l our level L - 1 - l.
       const PetscInt levels = coarse_->coarse_levels() + 1;
       for (PetscInt l = 0; l + 1 < levels; ++l) {
         KSP smoother = nullptr;

@@ -29,11 +29,11 @@ class Session {
   ~Session() { PetscFinalize(); }
 };
 
-/// block3_aij with its pattern from the (global) coordinates i, j of its entries; values come
+/// block3_matrix with its pattern from the (global) coordinates i, j of its entries; values come
 /// later, in the same order, through MatSetValuesCOO (the transfers: small, set once).
 Mat aij_from_coo(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols,
                  std::vector<PetscInt> i, std::vector<PetscInt> j) {
-  Mat m = block3_aij(comm, rows, cols);
+  Mat m = block3_matrix(comm, rows, cols);
   check(MatSetPreallocationCOO(m, static_cast<PetscCount>(i.size()), i.data(), j.data()),
         "MatSetPreallocationCOO");
   return m;
@@ -56,12 +56,12 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm) {
   return {share_start(count, rank, size), share_start(count, rank + 1, size), count};
 }
 
-Mat block3_aij(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols) {
+Mat block3_matrix(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols, MatType type) {
   Mat m = nullptr;
   check(MatCreate(comm, &m), "MatCreate");
   check(MatSetSizes(m, 3 * rows.size(), 3 * cols.size(), 3 * rows.count, 3 * cols.count),
         "MatSetSizes");
-  check(MatSetType(m, MATAIJ), "MatSetType");
+  check(MatSetType(m, type), "MatSetType");
   check(MatSetBlockSize(m, 3), "MatSetBlockSize");
   return m;
 }
@@ -92,7 +92,7 @@ AijFromBrc::AijFromBrc(const BrcMatrix& a, MPI_Comm comm, const RankPart* part) 
       row_start.push_back(static_cast<PetscInt>(columns.size()));
     }
   }
-  mat_ = block3_aij(comm, rows_, rows_);
+  mat_ = block3_matrix(comm, rows_, rows_);
   // Zeros at every entry of the pattern (PETSc keeps them): the pattern is exactly the BRC's.
   check(MatSeqAIJSetPreallocationCSR(mat_, row_start.data(), columns.data(), nullptr),
         "MatSeqAIJSetPreallocationCSR");

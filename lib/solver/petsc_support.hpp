@@ -33,9 +33,10 @@ OwnedBlocks owned_blocks(PetscInt count, MPI_Comm comm);
 /// The first of `count` vertices rank `rank` of `size` owns (rank = size: count).
 PetscInt share_start(PetscInt count, int rank, int size);
 
-/// An AIJ matrix of block size 3 on `comm` with this rank's rows of `rows` and columns split as
-/// `cols`, before its pattern.
-Mat block3_aij(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols);
+/// A matrix of block size 3 on `comm` with this rank's rows of `rows` and columns split as
+/// `cols`, before its pattern: AIJ, or `type` (MATPREALLOCATOR, to sum a pattern across ranks).
+Mat block3_matrix(MPI_Comm comm, const OwnedBlocks& rows, const OwnedBlocks& cols,
+                  MatType type = MATAIJ);
 
 /// An AIJ matrix of block size 3 with a BRC matrix's pattern on `comm` (this rank's rows: its
 /// owned vertices), built once from the pattern in CSR; copy() writes the BRC values of those
