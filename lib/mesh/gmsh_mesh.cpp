@@ -1,17 +1,17 @@
 #include "mesh/gmsh_mesh.hpp"
 
-#include <gmsh.h>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 
 #include "core/errors.hpp"
 #include "core/memory_usage.hpp"
+#include "mesh/gmsh_api.hpp"
 #include "mesh/gmsh_session.hpp"
 #include "mesh/msh_precheck.hpp"
 
 namespace corofem {
+namespace gmsh = gmsh_api;
 namespace fs = std::filesystem;
 
 namespace {

@@ -1,11 +1,12 @@
 #include "mesh/gmsh_session.hpp"
 
-#include <gmsh.h>
-
 #include <set>
 #include <unordered_map>
 
+#include "mesh/gmsh_api.hpp"
+
 namespace corofem {
+namespace gmsh = gmsh_api;
 namespace fs = std::filesystem;
 
 namespace {
@@ -20,22 +21,16 @@ std::recursive_mutex& gmsh_turn() {
 }  // namespace
 
 GmshSession::GmshSession() : turn_(gmsh_turn()) {
-  gmsh::initialize(0, nullptr, false);
+  gmsh::initialize();
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.AbortOnError", 3);  // errors become exceptions
 }
 
 GmshSession::~GmshSession() {
-  gmsh::finalize();
-}
-
-std::string last_gmsh_error() {
-  std::string error;
   try {
-    gmsh::logger::getLastError(error);
-  } catch (...) {
+    gmsh::finalize();
+  } catch (const std::exception&) {  // a destructor must not throw; the model is gone either way
   }
-  return error.empty() ? "unknown gmsh error" : error;
 }
 
 /// Collects the current gmsh model's linear tets and the nodes they use.

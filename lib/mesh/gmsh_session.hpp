@@ -23,26 +23,17 @@ class GmshSession {
   std::unique_lock<std::recursive_mutex> turn_;
 };
 
-/// gmsh's last logged error, or "unknown gmsh error".
-std::string last_gmsh_error();
-
-/// Runs a gmsh call and turns whatever gmsh throws (it throws strings and ints, not only
-/// std::exception) into an InputError naming `source`.
+/// Runs gmsh calls and turns what they throw (std::runtime_error with gmsh's message,
+/// mesh/gmsh_api.hpp) into an InputError naming `source`.
 template <class F>
 void call_gmsh(const std::filesystem::path& source, const char* what, F&& f) {
   try {
     f();
   } catch (const InputError&) {
     throw;
-  } catch (const std::string& message) {
-    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() +
-                     "': " + message);
   } catch (const std::exception& e) {
     throw InputError("gmsh could not " + std::string(what) + " '" + source.string() +
                      "': " + e.what());
-  } catch (...) {
-    throw InputError("gmsh could not " + std::string(what) + " '" + source.string() +
-                     "': " + last_gmsh_error());
   }
 }
 

@@ -1,12 +1,12 @@
 #include "mesh/quadruped_mesh.hpp"
 
-#include <gmsh.h>
-
 #include <cmath>
 
+#include "mesh/gmsh_api.hpp"
 #include "mesh/gmsh_session.hpp"
 
 namespace corofem {
+namespace gmsh = gmsh_api;
 
 TetMesh make_quadruped_mesh(double size) {
   if (!(size > 0) || !std::isfinite(size))
