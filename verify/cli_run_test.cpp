@@ -299,6 +299,34 @@ std::string msh_v2(const std::vector<std::array<double, 3>>& nodes,
   return s + "$EndElements\n";
 }
 
+// gmsh is loaded at its first call (mesh/gmsh_api.hpp): a run on a box never maps its library,
+// a run that meshes does and gets its mesh. The dynamic loader's own log (LD_DEBUG=files) lists
+// every library a process maps, linked or loaded later.
+TEST(CliRun, GmshIsLoadedOnlyByRunsThatMesh) {
+  TempDir dir;
+  const std::string loader_log = "env LD_DEBUG=files";
+  write_text(dir / "bar.json", kScene);
+  const auto box = run_cli("run '" + (dir / "bar.json").string() + "' --out '" +
+                               (dir / "bar_result.json").string() + "'",
+                           loader_log);
+  ASSERT_EQ(box.exit_code, 0) << box.err;
+  EXPECT_NE(box.err.find("libcholmod"), std::string::npos) << "no loader log to read";
+  EXPECT_EQ(box.err.find("libgmsh"), std::string::npos);
+
+  nlohmann::json quadruped = nlohmann::json::parse(kScene);
+  quadruped["mesh"] = {{"shape", "quadruped"}, {"size", 0.3}};
+  quadruped["fixed"] = {{{"box", {{-1, -1, -1}, {3, 1, 0.05}}}}};  // the hooves
+  quadruped.erase("output");
+  write_text(dir / "quadruped.json", quadruped.dump());
+  const auto meshed = run_cli("run '" + (dir / "quadruped.json").string() + "' --out '" +
+                                  (dir / "quadruped_result.json").string() + "'",
+                              loader_log);
+  ASSERT_EQ(meshed.exit_code, 0) << meshed.err;
+  EXPECT_NE(meshed.err.find("libgmsh"), std::string::npos);
+  const auto j = nlohmann::json::parse(test::read_text(dir / "quadruped_result.json"));
+  EXPECT_GT(j["node_tags"].size(), 30u);  // the quadruped gmsh meshed
+}
+
 TEST(CliRun, MultigridRecordDescribesTheHierarchy) {
   TempDir dir;
   write_text(dir / "cube.json", multigrid_cube({{"box", {1, 1, 1}}, {"cells", {2, 2, 2}}}).dump());
