@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""Where a multigrid hierarchy is weak, by a route independent of corofem's own cycle (issue 36).
+
+Usage: bench/multigrid_diagnosis.py DIR [DIR...]      (needs python3-scipy)
+
+DIR is what `corofem export-matrices SCENE.json --out DIR` writes: A<h>.mtx and R<h>.mtx (at least
+two levels). With natural-order nodal 3x3 block Gauss-Seidel (forward before the coarse
+correction, backward after) and a direct solve on the coarsest level, it prints per DIR:
+  - the asymptotic energy-norm convergence factor of the two-grid and of the full V(1,1) cycle
+    (power iteration from a random error; larger than the report's rho, which is a mean residual
+    reduction over 12 cycles from a step's own right-hand side);
+  - the two-grid factor with 1, 2 and 4 sweeps on each side (falling fast: smoother-limited;
+    slowly: the coarse space is the limit);
+  - where the slowest error lives: the share of its energy on the 1% of vertices holding most of
+    it, how many of those lie outside their coarse tet (a negative transfer weight), how many
+    clusters they form, and its Rayleigh quotient against the block diagonal (small: a smooth
+    local mode that smoothing barely reduces).
+Progress and results on stdout; nothing is written.
+"""
+import sys
+
+import numpy as np
+import scipy.io
+import scipy.sparse as sp
+import scipy.sparse.linalg as sl
+from scipy.sparse.csgraph import connected_components
+
+
+def block_triangle(a, lower):
+    """The blocks on and below (or above) the block diagonal: Gauss-Seidel's sweep matrix."""
+    c = a.tocoo()
+    keep = c.row // 3 >= c.col // 3 if lower else c.row // 3 <= c.col // 3
+    return sp.csc_matrix((c.data[keep], (c.row[keep], c.col[keep])), shape=a.shape)
+
+
+class Hierarchy:
+    def __init__(self, folder):
+        self.a, self.r = [], []
+        h = 0
+        while True:
+            try:
+                self.a.append(sp.csr_matrix(scipy.io.mmread(f"{folder}/A{h}.mtx")))
+            except FileNotFoundError:
+                break
+            h += 1
+        self.r = [sp.csr_matrix(scipy.io.mmread(f"{folder}/R{h}.mtx")) for h in range(len(self.a) - 1)]
+        if len(self.a) < 2:
+            sys.exit(f"{folder}: needs A0.mtx, A1.mtx and R0.mtx (corofem export-matrices)")
+        lu = lambda m: sl.splu(m, permc_spec="NATURAL", diag_pivot_thresh=0)
+        self.forward = [lu(block_triangle(a, True)) for a in self.a]
+        self.backward = [lu(block_triangle(a, False)) for a in self.a]
+        self.direct = [sl.splu(a.tocsc()) for a in self.a]
+
+    def cycle(self, h, b, last, sweeps):
+        """x ~ A_h^-1 b by one V-cycle down to `last` (solved directly)."""
+        a = self.a[h]
+        if h == last:
+            return self.direct[h].solve(b)
+        x = self.forward[h].solve(b)
+        for _ in range(sweeps - 1):
+            x = x + self.forward[h].solve(b - a @ x)
+        x = x + self.r[h].T @ self.cycle(h + 1, self.r[h] @ (b - a @ x), last, sweeps)
+        for _ in range(sweeps):
+            x = x + self.backward[h].solve(b - a @ x)
+        return x
+
+    def slowest(self, last, sweeps=1, iterations=30):
+        """The asymptotic factor (geometric mean of the last 8 reductions) and the error then."""
+        a = self.a[0]
+        norm = lambda v: np.sqrt(v @ (a @ v))
+        e = np.random.default_rng(1).standard_normal(a.shape[0])
+        ratios = []
+        for _ in range(iterations):
+            before = norm(e)
+            e = e - self.cycle(0, a @ e, last, sweeps)
+            ratios.append(norm(e) / before)
+            e /= norm(e)
+        return float(np.exp(np.mean(np.log(ratios[-8:])))), e
+
+
+def diagnose(folder):
+    m = Hierarchy(folder)
+    a, n = m.a[0], m.a[0].shape[0] // 3
+    levels = len(m.a)
+    two_grid, e = m.slowest(1)
+    full = m.slowest(levels - 1)[0] if levels > 2 else two_grid
+    print(f"{folder}: {levels} levels, {n} fine vertices")
+    print(f"  two-grid factor {two_grid:.3f}, V-cycle over all levels {full:.3f}")
+    print("  two-grid with 1 / 2 / 4 sweeps each side: " +
+          " / ".join(f"{m.slowest(1, s)[0]:.3f}" for s in (1, 2, 4)))
+    energy = np.abs((e * (a @ e)).reshape(n, 3).sum(axis=1))
+    top = np.argsort(-energy)[: max(10, n // 100)]
+    p = m.r[0].T.tocoo()
+    outside = np.zeros(n, bool)
+    outside[p.row[p.data < -1e-12] // 3] = True
+    c = a.tocoo()
+    graph = sp.csr_matrix((np.ones(len(c.row)), (c.row // 3, c.col // 3)), shape=(n, n))
+    clusters, label = connected_components(graph[top][:, top], directed=False)
+    shares = sorted((energy[top][label == k].sum() / energy.sum() for k in range(clusters)), reverse=True)
+    blocks = sp.block_diag([a[3 * i:3 * i + 3, 3 * i:3 * i + 3].toarray() for i in range(n)], format="csr")
+    print(f"  slowest error: {energy[top].sum() / energy.sum():.1%} of its energy on {len(top)} vertices "
+          f"(1%), {outside[top].mean():.0%} of them outside their coarse tet ({outside.mean():.0%} of all "
+          f"vertices are), in {clusters} clusters (the largest holds {shares[0]:.0%}); Rayleigh quotient "
+          f"against the block diagonal {float(e @ (a @ e)) / float(e @ (blocks @ e)):.3f}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    for folder in sys.argv[1:]:
+        diagnose(folder)
