@@ -35,7 +35,7 @@ def block_triangle(a, lower):
 
 class Hierarchy:
     def __init__(self, folder):
-        self.a, self.r = [], []
+        self.a = []
         h = 0
         while True:
             try:
@@ -86,8 +86,8 @@ def diagnose(folder):
     full = m.slowest(levels - 1)[0] if levels > 2 else two_grid
     print(f"{folder}: {levels} levels, {n} fine vertices")
     print(f"  two-grid factor {two_grid:.3f}, V-cycle over all levels {full:.3f}")
-    print("  two-grid with 1 / 2 / 4 sweeps each side: " +
-          " / ".join(f"{m.slowest(1, s)[0]:.3f}" for s in (1, 2, 4)))
+    print(f"  two-grid with 1 / 2 / 4 sweeps each side: {two_grid:.3f} / " +
+          " / ".join(f"{m.slowest(1, s)[0]:.3f}" for s in (2, 4)))
     energy = np.abs((e * (a @ e)).reshape(n, 3).sum(axis=1))
     top = np.argsort(-energy)[: max(10, n // 100)]
     p = m.r[0].T.tocoo()

@@ -23,10 +23,6 @@ namespace option {
 void setNumber(const std::string& name, double value);
 }  // namespace option
 
-namespace logger {
-void getLastError(std::string& error);
-}  // namespace logger
-
 namespace model {
 void add(const std::string& name);
 void getEntities(vectorpair& dim_tags, int dim);
