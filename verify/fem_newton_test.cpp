@@ -17,6 +17,7 @@
 #include "integrate/static_solver.hpp"
 #include "linalg/linear_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
+#include "solver/petsc_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
@@ -145,36 +146,54 @@ TEST(NewtonEuler, EveryMethodAndIntegratorDampsTheFreeVibrationAlike) {
   }
 }
 
+/// A step's Newton matrix M + dt^2 K_t with the energy rotations' tangent at a bent state (not
+/// symmetric: the rotations' derivative; its symmetric part positive definite), supports
+/// eliminated, and a right-hand side.
+struct BentNewtonSystem {
+  FeProblem p = soft_cantilever().build(1);
+  BrcMatrix a;
+  Eigen::VectorXd b;
+  BentNewtonSystem() {
+    Eigen::VectorXd u(p.num_dofs());
+    for (int v = 0; v < p.mesh.num_vertices(); ++v) {  // bent down along the bar, 0.3 m at the tip
+      const double x = p.mesh.rest[v].x();
+      u.segment<3>(3 * v) = Vec3(0, 0, -0.3 * x * x);
+    }
+    const std::vector<Vec3> positions = p.positions(u);
+    std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
+    auto rotation = make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh);
+    rotation->extract(positions, rotations);
+    a = p.stiffness;
+    RotationTangent(p, RotationMethod::EnergyNewton).assemble(positions, rotations, a);
+    euler_newton_matrix(p, 0.01, 0, 1, a);  // M + dt^2 K_t at dt = 0.01
+    b = Eigen::VectorXd::LinSpaced(p.num_dofs(), -1, 1);
+    apply_dirichlet(p.dirichlet, a, b);
+  }
+};
+
+/// d^-1 b by Eigen's dense LU. Row-major: libgmsh carries its own PartialPivLU<MatrixXd>, and one
+/// instantiation of it in this binary would be bound into gmsh's calls too (ASan: bad-free inside
+/// gmsh's Eigen).
+Eigen::VectorXd dense_solution(const Eigen::MatrixXd& d, const Eigen::VectorXd& b) {
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  return Eigen::PartialPivLU<RowMajorMatrix>(RowMajorMatrix(d)).solve(b);
+}
+
 TEST(SparseLuSolve, EveryPathEqualsTheDenseSolution) {
   // A step's Newton matrix M + dt^2 K_t with the energy rotations' tangent at a bent state: not
   // symmetric (the rotations' derivative), its symmetric part positive definite: GMRES on that
   // part's Cholesky factor. Negated, neither part is positive definite: the LU. Its symmetric
   // part alone: the Cholesky. Each against Eigen's dense LU of the same matrix, to 1e-9 (GMRES
   // stops at 1e-12 of the residual; these matrices' condition numbers are below 1e3).
-  FeProblem p = soft_cantilever().build(1);
-  Eigen::VectorXd u(p.num_dofs());
-  for (int v = 0; v < p.mesh.num_vertices(); ++v) {  // bent down along the bar, 0.3 m at the tip
-    const double x = p.mesh.rest[v].x();
-    u.segment<3>(3 * v) = Vec3(0, 0, -0.3 * x * x);
-  }
-  const std::vector<Vec3> positions = p.positions(u);
-  std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
-  auto rotation = make_rotation_extractor(RotationMethod::EnergyNewton, p.mesh);
-  rotation->extract(positions, rotations);
-  BrcMatrix a = p.stiffness;
-  RotationTangent(p, RotationMethod::EnergyNewton).assemble(positions, rotations, a);
-  euler_newton_matrix(p, 0.01, 0, 1, a);  // M + dt^2 K_t at dt = 0.01
-  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(p.num_dofs(), -1, 1);
-  apply_dirichlet(p.dirichlet, a, b);
+  const BentNewtonSystem system;
+  const BrcMatrix& a = system.a;
+  const Eigen::VectorXd& b = system.b;
   const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));
   ASSERT_GT((dense - dense.transpose()).norm(), 1e-6 * dense.norm()) << "a symmetric tangent";
   SparseLuSolve solve(a);
-  // Row-major LU: libgmsh carries its own PartialPivLU<MatrixXd>, and one instantiation of it in
-  // this binary would be bound into gmsh's calls too (ASan: bad-free inside gmsh's Eigen).
-  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const auto expect_dense = [&](const BrcMatrix& m, const Eigen::MatrixXd& d, bool symmetric) {
     const Eigen::VectorXd x = solve.solve(m, b, symmetric);
-    const Eigen::VectorXd ref = Eigen::PartialPivLU<RowMajorMatrix>(RowMajorMatrix(d)).solve(b);
+    const Eigen::VectorXd ref = dense_solution(d, b);
     EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm()) << (symmetric ? "symmetric" : "general");
   };
   expect_dense(a, dense, false);
@@ -190,6 +209,28 @@ TEST(SparseLuSolve, EveryPathEqualsTheDenseSolution) {
   expect_dense(symmetric_part, 0.5 * (dense + dense.transpose()), true);
   EXPECT_EQ(solve.cholesky_solves(), 1);
   EXPECT_EQ(solve.krylov_solves(), 1);
+}
+
+TEST(KrylovNewtonSolve, PetscGmresAndItsLuFallbackEqualTheDenseSolution) {
+  // A distributed Newton's linear solve (here on one rank): PETSc's GMRES, right-preconditioned
+  // by GAMG, to 1e-12 of the residual; capped at one iteration it misses, and MUMPS's LU takes
+  // the matrix. Both against Eigen's dense LU of the same non-symmetric matrix, to 1e-9 (its
+  // condition number is below 1e3).
+  if (!have_petsc()) GTEST_SKIP() << "this build has no PETSc";
+  const BentNewtonSystem system;
+  const Eigen::VectorXd ref = dense_solution(Eigen::MatrixXd(to_eigen(system.a)), system.b);
+  for (const int cap : {200, 1}) {
+    SCOPED_TRACE(cap);
+    auto gmres = make_petsc_solver(PetscSolverKind::Gamg, system.p.mesh.rest, 1e-12, cap, {}, 1,
+                                   false, nullptr, true);
+    KrylovNewtonSolve solve(*gmres);
+    const Eigen::VectorXd x = solve.solve(system.a, system.b, false);
+    EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm());
+    if (cap == 1)
+      EXPECT_EQ(solve.iterations(), 2);  // one GMRES iteration, then the LU
+    else
+      EXPECT_GT(solve.iterations(), 2);  // GMRES alone
+  }
 }
 
 TEST(NewtonLineSearch, LowersThePolarPotentialOnEveryAcceptedStep) {

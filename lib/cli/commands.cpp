@@ -55,12 +55,13 @@ context (commit, compiler, flags, machine); with output.rotations also element_t
                  bit-identical at every count
 Under `mpirun -np N` with analysis.solver petsc-gamg, hypre-boomeramg or petsc-mg, the linear
 solves are distributed over the N ranks (each owns a contiguous share of the vertices). A dynamic
-linearly implicit or a static lagged scene runs on a distributed mesh (PT-Scotch's partition):
-each rank keeps only its part (the tets
+linearly implicit or a static scene (lagged or Newton: the corotated tangent by PETSc's GMRES)
+runs on a distributed mesh (PT-Scotch's partition): each rank keeps only its part (the tets
 touching its vertices and their halo), rotates and assembles that, and solves its rows; rank 0
 writes RESULT.json with the fields gathered and "ranks" (per rank: owned and held tets, owned
 and halo vertices, peak RSS, phase times; max and min), and output.vtu becomes a parallel VTU
-(.pvtu, one piece per rank). Newton runs (a serial sparse LU) are refused under mpirun.
+(.pvtu, one piece per rank). Dynamic Newton runs (a serial sparse factorization) are refused
+under mpirun.
 RESULT.json's "mpi" says how many ranks ran and what was distributed.
 Exit status: 0 converged, 1 did not converge or NaN/inf, 2 bad input (nothing is written).
 )";
@@ -178,13 +179,19 @@ ParsedArgs parse_args(const std::vector<std::string>& args, const std::vector<st
 void require_distributed_solver(const Scene& scene, int ranks) {
   const SolverKind solver = scene.analysis.solver;
   const bool distributed = is_petsc_solver(solver);
-  if (!distributed || (scene.analysis.integrator == Integrator::Newton &&
-                       scene.analysis.formulation == Formulation::Corotational))
+  const AnalysisSpec& a = scene.analysis;
+  if (!distributed)
     throw InputError(
-        scene.name + ": analysis.solver '" + kSolverKinds.name(solver) + "'" +
-        (distributed ? " with integrator 'newton' (a serial sparse LU)" : "") +
-        " under mpirun -np " + std::to_string(ranks) +
+        scene.name + ": analysis.solver '" + kSolverKinds.name(solver) + "' under mpirun -np " +
+        std::to_string(ranks) +
         ": only petsc-gamg, hypre-boomeramg and petsc-mg distribute their solves over ranks");
+  if (a.type == AnalysisType::Dynamic && a.integrator == Integrator::Newton &&
+      a.formulation == Formulation::Corotational)
+    throw InputError(
+        scene.name + ": a dynamic scene with analysis.integrator 'newton' (a serial " +
+        "sparse factorization) under mpirun -np " + std::to_string(ranks) +
+        ": use 'linear-implicit', the paper's linearly implicit Euler, which runs on " +
+        "a distributed mesh");
 }
 
 /// --threads N (or "all"): the count every parallel kernel uses from here on.

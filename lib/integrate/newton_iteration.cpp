@@ -187,17 +187,25 @@ constexpr double kPotentialResolution = 1e-10;
 
 }  // namespace
 
-NewtonReport newton_iterate(Eigen::VectorXd& z,
-                            const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
-                            const std::function<void(BrcMatrix&)>& jacobian,
-                            const DirichletConditions& fixed, double scale,
-                            const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
-                            PhaseClock& clock, const std::function<PotentialValue()>& potential) {
+Eigen::VectorXd KrylovNewtonSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool) {
+  solver_.set_matrix(a);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  iterations_ += solver_.solve(b, x).iterations;
+  return x;
+}
+
+NewtonReport newton_iterate(
+    Eigen::VectorXd& z, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
+    const std::function<void(BrcMatrix&)>& jacobian, const DirichletConditions& fixed, double scale,
+    const NewtonSettings& settings, NewtonLinearSolve& linear, BrcMatrix& work, PhaseClock& clock,
+    const std::function<PotentialValue()>& potential, const RankView& ranks) {
+  if (potential && ranks.distributed())
+    throw NumericalFault("Newton: a potential's line search does not run on a distributed mesh");
   NewtonReport report;
   const DirichletConditions step_bc{fixed.fixed,
                                     Eigen::VectorXd::Zero(z.size())};  // dz = 0 where fixed
   Eigen::VectorXd g = residual(z);
-  double norm = free_norm(fixed, g);
+  double norm = ranks.free_norm(fixed, g);
   PotentialValue phi = potential ? potential() : PotentialValue{};
   double previous_norm = std::numeric_limits<double>::infinity();
   for (;; ++report.iterations) {
@@ -218,7 +226,7 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
     apply_dirichlet(step_bc, work, rhs);
     // The Jacobian of a potential's gradient is its Hessian: symmetric.
     const Eigen::VectorXd dz =
-        clock.time("solve", [&] { return lu.solve(work, rhs, static_cast<bool>(potential)); });
+        clock.time("solve", [&] { return linear.solve(work, rhs, static_cast<bool>(potential)); });
     // The potential's slope along dz (dz is zero on the fixed DOFs): the line search on the
     // potential where dz descends it; the safeguarded full step where it does not (an indefinite
     // J), where the search finds no decrease (the potential has kinks where elements invert), or
@@ -230,7 +238,7 @@ NewtonReport newton_iterate(Eigen::VectorXd& z,
     const auto evaluate = [&](double alpha) {
       trial = z + alpha * dz;
       g_trial = residual(trial);
-      trial_norm = free_norm(fixed, g_trial);
+      trial_norm = ranks.free_norm(fixed, g_trial);
       trial_phi = potential ? potential() : PotentialValue{};
     };
     int halvings = 0;

@@ -1,10 +1,11 @@
 #pragma once
 // Damped Newton for the nonlinear systems of the corotated model, g(z) = 0 over the free DOFs:
 // static equilibrium f_ext - f_int(u) = 0 and the fully implicit Euler step. Each iteration solves
-// J dz = -g (SparseLuSolve): J is non-symmetric for the non-conservative rotation methods and
-// indefinite past a buckling point, so neither CG nor Cholesky applies in general; where g is a
-// potential's gradient J is its Hessian, factored by Cholesky while it is positive definite; a
-// non-symmetric J by GMRES on its symmetric part's Cholesky factor, or a sparse LU (UMFPACK).
+// J dz = -g (a NewtonLinearSolve): J is non-symmetric for the non-conservative rotation methods and
+// indefinite past a buckling point, so neither CG nor Cholesky applies in general. On one process
+// (SparseLuSolve) where g is a potential's gradient J is its Hessian, factored by Cholesky while it
+// is positive definite; a non-symmetric J by GMRES on its symmetric part's Cholesky factor, or a
+// sparse LU (UMFPACK). On a distributed mesh (KrylovNewtonSolve) PETSc's GMRES on the ranks' rows.
 // Step lengths:
 //  - where g is the gradient of a potential (the caller passes it: implicit Euler with polar
 //    rotations, whose force is conservative, is then the minimization of the incremental
@@ -20,7 +21,9 @@
 #include <memory>
 
 #include "fem/dirichlet.hpp"
+#include "fem/rank_view.hpp"
 #include "fem/simulation_result.hpp"
+#include "linalg/linear_solver.hpp"
 #include "sparse/brc_matrix.hpp"
 
 namespace corofem {
@@ -53,39 +56,66 @@ struct PotentialValue {
   double magnitude = 0;
 };
 
+/// How a Newton iteration solves its linear system J dz = rhs (fixed DOFs already eliminated).
+class NewtonLinearSolve {
+ public:
+  virtual ~NewtonLinearSolve() = default;
+  /// x = A^{-1} b; `symmetric`: A is a potential's Hessian. Throws NumericalFault on failure.
+  virtual Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                bool symmetric = false) = 0;
+  /// The linear iterations of every call so far (a factorization's solve counts one).
+  virtual int iterations() const = 0;
+};
+
 /// The factorizations of the iteration matrices, analyzed once per pattern and refactored each
 /// iteration: CHOLMOD's Cholesky for a symmetric matrix (a time step's M + dt^2 K, the Hessian of
 /// a potential); a non-symmetric one (a corotated tangent) by GMRES to 1e-12 preconditioned by
 /// the Cholesky factor of its symmetric part; UMFPACK's LU where either part is not positive
 /// definite (a buckled body) or GMRES misses.
-class SparseLuSolve {
+class SparseLuSolve : public NewtonLinearSolve {
  public:
   explicit SparseLuSolve(const BrcMatrix& pattern);
-  ~SparseLuSolve();
+  ~SparseLuSolve() override;
   /// x = A^{-1} b; throws NumericalFault when A is singular.
-  Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric = false);
+  Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b,
+                        bool symmetric = false) override;
   /// false: every non-symmetric matrix by the LU (the baseline BM_NewtonTangentSolve measures).
   void set_krylov(bool enabled);
   /// How many solves each way went: Cholesky, GMRES on the symmetric part's factor, LU.
   int cholesky_solves() const;
   int krylov_solves() const;
   int lu_solves() const;
+  int iterations() const override { return cholesky_solves() + krylov_solves() + lu_solves(); }
 
  private:
   struct State;
   std::unique_ptr<State> state_;
 };
 
+/// J dz = rhs by an iterative LinearSolver set up for J at every call, from dz = 0: on a
+/// distributed mesh, PETSc's GMRES over the ranks' owned rows (solver/petsc_solver.hpp,
+/// `nonsymmetric`), the halo entries of dz received from their owners.
+class KrylovNewtonSolve : public NewtonLinearSolve {
+ public:
+  explicit KrylovNewtonSolve(LinearSolver& solver) : solver_(solver) {}
+  Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric) override;
+  int iterations() const override { return iterations_; }
+
+ private:
+  LinearSolver& solver_;
+  int iterations_ = 0;
+};
+
 /// Solves g(z) = 0 from `z` (fixed DOFs of `fixed` keep their values in z). `residual(z)` returns
 /// g at z (and may update state such as rotations); `jacobian(z, J)` fills J at the z of the last
 /// residual call; `potential`, if given, the potential whose gradient g is, at the z of the last
-/// residual call. Phases "rotate"/"assemble" are the callers'; the LU solve is timed as "solve".
-NewtonReport newton_iterate(Eigen::VectorXd& z,
-                            const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
-                            const std::function<void(BrcMatrix&)>& jacobian,
-                            const DirichletConditions& fixed, double scale,
-                            const NewtonSettings& settings, SparseLuSolve& lu, BrcMatrix& work,
-                            PhaseClock& clock,
-                            const std::function<PotentialValue()>& potential = {});
+/// residual call. Phases "rotate"/"assemble" are the callers'; the linear solve is timed as
+/// "solve". On a distributed mesh (`ranks`) |g| sums the ranks' owned rows; a potential is not
+/// supported there (its value and slope would be sums over the ranks too).
+NewtonReport newton_iterate(
+    Eigen::VectorXd& z, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
+    const std::function<void(BrcMatrix&)>& jacobian, const DirichletConditions& fixed, double scale,
+    const NewtonSettings& settings, NewtonLinearSolve& linear, BrcMatrix& work, PhaseClock& clock,
+    const std::function<PotentialValue()>& potential = {}, const RankView& ranks = {});
 
 }  // namespace corofem

@@ -23,16 +23,18 @@ constexpr int kMaxIncrementCuts = 8;
 /// from `u` (its fixed DOFs set to the scaled prescribed values first). Returns whether it
 /// converged; counts into `result`.
 bool newton_increment(FeProblem& problem, RotationExtractor& rotate, const RotationTangent& tangent,
-                      SparseLuSolve& lu, BrcMatrix& jacobian_matrix, double scale,
+                      NewtonLinearSolve& linear, BrcMatrix& jacobian_matrix, double scale,
                       const Eigen::VectorXd& f, double f_norm, const StaticOptions& options,
                       const std::string& where, Eigen::VectorXd& u, SimulationResult& result,
                       PhaseClock& clock) {
   for (int i = 0; i < u.size(); ++i)
     if (problem.dirichlet.fixed[i]) u[i] = scale * problem.dirichlet.value[i];
+  const int linear_before = linear.iterations();
   std::vector<Vec3> positions;
   const auto residual = [&](const Eigen::VectorXd& z) {
     positions = problem.positions(z);
-    result.inverted_max = std::max(result.inverted_max, count_inverted(problem, positions));
+    result.inverted_max =
+        std::max(result.inverted_max, options.ranks.count_inverted(problem, positions));
     clock.time("rotate", [&] { rotate.extract(positions, result.rotations); });
     return Eigen::VectorXd(internal_forces(problem, result.rotations, z) - f);
   };
@@ -43,10 +45,10 @@ bool newton_increment(FeProblem& problem, RotationExtractor& rotate, const Rotat
       u, residual, jacobian, problem.dirichlet, f_norm > 0 ? f_norm : 1.0,
       // The static residual is the user's criterion: no floor rule.
       {.tolerance = options.tolerance, .max_iterations = options.max_iterations, .floor_factor = 1},
-      lu, jacobian_matrix, clock);
+      linear, jacobian_matrix, clock, {}, options.ranks);
   check_finite(problem, u, "displacement", where);
   result.iterations += report.iterations;
-  result.linear_iterations += report.iterations;
+  result.linear_iterations += linear.iterations() - linear_before;
   result.residual = report.residual;
   return report.converged;
 }
@@ -98,13 +100,16 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
   result.converged = true;
   std::unique_ptr<RotationTangent> tangent;
-  std::unique_ptr<SparseLuSolve> lu;
+  std::unique_ptr<NewtonLinearSolve> linear;
   BrcMatrix jacobian_matrix;
-  if (options.newton && options.corotational && options.ranks.distributed())
-    throw InputError("static Newton (a serial sparse LU) does not run on a distributed mesh");
   if (options.newton && options.corotational) {
     tangent = std::make_unique<RotationTangent>(problem, rotate.method());
-    lu = std::make_unique<SparseLuSolve>(problem.stiffness);
+    // On a distributed mesh the tangent goes to the run's PETSc solver (GMRES: `solver` was made
+    // for a non-symmetric matrix); on one process to the sparse factorizations.
+    if (options.ranks.distributed())
+      linear = std::make_unique<KrylovNewtonSolve>(solver);
+    else
+      linear = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;
   }
   // The load fraction reached is done / denominator, in integers, so that uncut the k-th
@@ -121,7 +126,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
     const std::string where =
         "load increment " + std::to_string(done + 1) + " of " + std::to_string(denominator);
     const bool converged =
-        tangent ? newton_increment(problem, rotate, *tangent, *lu, jacobian_matrix, scale, f,
+        tangent ? newton_increment(problem, rotate, *tangent, *linear, jacobian_matrix, scale, f,
                                    f_norm, options, where, u, result, clock)
                 : lagged_increment(problem, rotate, solver, scale, f, f_norm, options, where, u,
                                    result, clock);

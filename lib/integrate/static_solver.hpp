@@ -20,8 +20,9 @@ struct StaticOptions {
   double tolerance = 1e-8;
   int max_iterations = 100;  ///< per increment
   bool newton = false;
-  /// Without Newton: the problem is this rank's part of a distributed mesh; the residual norms
-  /// and the inverted count are the whole body's (the solver distributed to match).
+  /// The problem is this rank's part of a distributed mesh; the residual norms and the inverted
+  /// count are the whole body's (the solver distributed to match; with Newton, a solver made for
+  /// non-symmetric matrices: its GMRES solves the corotated tangent).
   RankView ranks{};
 };
 

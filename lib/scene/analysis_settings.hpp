@@ -56,12 +56,14 @@ inline bool is_petsc_solver(SolverKind solver) {
 }
 
 /// Whether `ranks` MPI ranks run a scene of this analysis on a distributed mesh (each rank holding
-/// its part: scene/scene_simulation.hpp): a dynamic linearly implicit or a static lagged run on a
-/// PETSc solver. Corotational Newton runs (a serial sparse LU) are refused under mpirun
-/// (cli/commands.cpp); other Newton runs build the whole mesh on every rank, PETSc distributing
-/// only the solve.
-inline bool distributes_mesh(Integrator integrator, SolverKind solver, int ranks) {
-  return ranks > 1 && integrator != Integrator::Newton && is_petsc_solver(solver);
+/// its part: scene/scene_simulation.hpp): a dynamic linearly implicit run or a static one (lagged
+/// or Newton, its tangent by the PETSc solver's GMRES) on a PETSc solver. Dynamic Newton runs (a
+/// serial sparse factorization) are refused under mpirun when corotational (cli/commands.cpp);
+/// linear ones build the whole mesh on every rank, PETSc distributing only the solve.
+inline bool distributes_mesh(AnalysisType type, Integrator integrator, SolverKind solver,
+                             int ranks) {
+  return ranks > 1 && (type == AnalysisType::Static || integrator != Integrator::Newton) &&
+         is_petsc_solver(solver);
 }
 
 /// The PETSc solver of a solver kind for which is_petsc_solver holds.

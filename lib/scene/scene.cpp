@@ -322,7 +322,7 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   if (s.mesh.estimated_tets > 0) {  // before anything is allocated; per rank under mpirun
     const AnalysisSpec& a = s.analysis;
     const int ranks =
-        distributes_mesh(a.integrator, a.solver, launcher_size()) ? launcher_size() : 1;
+        distributes_mesh(a.type, a.integrator, a.solver, launcher_size()) ? launcher_size() : 1;
     require_memory(
         s.mesh.estimated_tets, run_bytes(a.solver, s.mesh.estimated_tets, ranks),
         "scene '" + name + "': mesh." + (s.mesh.kind == MeshSpec::Kind::Box ? "cells" : "size"),

@@ -20,7 +20,7 @@ class SceneSimulation {
  public:
   /// Builds everything the scene asks for (InputError for bad input).
   explicit SceneSimulation(const Scene& scene);
-  /// Under mpirun, a dynamic linearly implicit or static lagged scene on a PETSc solver
+  /// Under mpirun, a dynamic linearly implicit or a static scene on a PETSc solver
   /// (distributes_mesh): rank 0 alone builds the whole mesh, its loads and supports (and
   /// petsc-mg's transfers), partitions it and sends every other rank its part
   /// (scene/rank_share.hpp); no other rank ever holds the whole mesh. Each builds its element

@@ -21,7 +21,7 @@ bool have_petsc() {
 
 std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind, const std::vector<Vec3>&,
                                                 double, int, std::vector<Transfer>, int, bool,
-                                                const RankPart*) {
+                                                const RankPart*, bool) {
   throw InputError(
       std::string("analysis.solver '") + kPetscSolverKinds.name(kind) +
       "' needs PETSc, which this build of corofem does not have (install petsc-dev and "
@@ -38,11 +38,18 @@ namespace {
 
 using petsc::check;
 
+/// GMRES's restart length for a non-symmetric matrix: an AMG-preconditioned corotated tangent
+/// converges to 1e-10 in well under this many iterations.
+constexpr PetscInt kGmresRestart = 50;
+
+/// The largest relative residual accepted from the LU fallback (a singular matrix gives more).
+constexpr double kDirectResidual = 1e-6;
+
 class PetscSolver : public LinearSolver {
  public:
   PetscSolver(PetscSolverKind kind, const std::vector<Vec3>& rest, double tolerance,
               int max_iterations, std::vector<Transfer> transfers, int smoothing, bool setup_reuse,
-              const RankPart* part)
+              const RankPart* part, bool nonsymmetric)
       : kind_(kind),
         name_(kPetscSolverKinds.name(kind)),
         rest_(rest),
@@ -51,13 +58,16 @@ class PetscSolver : public LinearSolver {
         transfers_(std::move(transfers)),
         smoothing_(smoothing),
         setup_reuse_(setup_reuse),
-        part_(part) {
+        part_(part),
+        nonsymmetric_(nonsymmetric),
+        krylov_(nonsymmetric ? "GMRES" : "CG") {
     petsc::ensure_session();
     comm_ = PETSC_COMM_WORLD;
     MPI_Comm_size(comm_, &ranks_);
   }
   ~PetscSolver() override {
     if (ksp_) KSPDestroy(&ksp_);
+    if (direct_) KSPDestroy(&direct_);
     if (part_b_) VecDestroy(&part_b_);
     if (part_x_) VecDestroy(&part_x_);
   }
@@ -102,15 +112,17 @@ class PetscSolver : public LinearSolver {
     check(VecCreateMPIWithArray(comm_, 3, local, n, x.data() + 3 * own.begin, &vx),
           "VecCreateMPIWithArray");
     const PetscErrorCode solved = KSPSolve(ksp_, vb, vx);
+    const SolveStats direct = solved == 0 ? solve_directly_if_missed(vb, vx, b_norm) : SolveStats{};
     VecDestroy(&vb);
     VecDestroy(&vx);
     check(solved, "KSPSolve");
     gather(x);
-    return finish(stats, b_norm);
+    return direct.iterations > 0 ? direct : finish(stats, b_norm);
   }
 
  private:
-  /// The solve's statistics from KSP; throws where PETSc's CG failed or did not converge.
+  /// The solve's statistics from KSP; throws where PETSc's Krylov method failed or did not
+  /// converge.
   SolveStats finish(SolveStats stats, double b_norm) const {
     PetscInt iterations = 0;
     KSPConvergedReason reason;
@@ -123,9 +135,57 @@ class PetscSolver : public LinearSolver {
     if (!std::isfinite(stats.residual))
       throw NumericalFault(name_ + ": residual became non-finite");
     if (reason < 0 && reason != KSP_DIVERGED_ITS)
-      throw NumericalFault(name_ + ": PETSc's CG stopped (KSPConvergedReason " +
+      throw NumericalFault(name_ + ": PETSc's " + krylov_ + " stopped (KSPConvergedReason " +
                            std::to_string(reason) + ")");
-    require_converged(stats, tolerance_, name_, "CG iterations");
+    require_converged(stats, tolerance_, name_, krylov_ + " iterations");
+    return stats;
+  }
+
+  /// Whether the last Krylov solve reached the tolerance.
+  bool krylov_converged(double b_norm) const {
+    KSPConvergedReason reason;
+    PetscReal residual = 0;
+    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    check(KSPGetResidualNorm(ksp_, &residual), "KSPGetResidualNorm");
+    return reason > 0 && residual <= tolerance_ * b_norm;
+  }
+
+  /// A non-symmetric matrix that GMRES did not solve (a tangent past a buckling point is
+  /// indefinite, and AMG then preconditions it badly) by MUMPS's distributed LU from x = 0, as one
+  /// process falls back from GMRES to UMFPACK (integrate/newton_iteration.hpp). Returns the
+  /// solve's statistics (iterations: GMRES's plus one), or none (iterations 0) where GMRES had
+  /// converged or this solver is CG's.
+  SolveStats solve_directly_if_missed(Vec b, Vec x, double b_norm) {
+    if (!nonsymmetric_ || krylov_converged(b_norm)) return {};
+    PetscBool mumps = PETSC_FALSE;
+    check(PetscHasExternalPackage("mumps", &mumps), "PetscHasExternalPackage");
+    if (!mumps) return {};  // finish() then says that GMRES missed
+    if (!direct_) {
+      check(KSPCreate(comm_, &direct_), "KSPCreate");
+      check(KSPSetType(direct_, KSPPREONLY), "KSPSetType");
+      PC lu = nullptr;
+      check(KSPGetPC(direct_, &lu), "KSPGetPC");
+      check(PCSetType(lu, PCLU), "PCSetType");
+      check(PCFactorSetMatSolverType(lu, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    }
+    check(KSPSetOperators(direct_, a_->mat(), a_->mat()), "KSPSetOperators");
+    PetscInt krylov_iterations = 0;
+    check(KSPGetIterationNumber(ksp_, &krylov_iterations), "KSPGetIterationNumber");
+    check(VecSet(x, 0.0), "VecSet");
+    check(KSPSolve(direct_, b, x), "KSPSolve");
+    Vec r;  // |b - A x|: preonly reports no residual of its own
+    check(VecDuplicate(b, &r), "VecDuplicate");
+    check(MatMult(a_->mat(), x, r), "MatMult");
+    check(VecAYPX(r, -1.0, b), "VecAYPX");
+    PetscReal residual = 0;
+    check(VecNorm(r, NORM_2, &residual), "VecNorm");
+    VecDestroy(&r);
+    SolveStats stats{static_cast<int>(krylov_iterations) + 1, residual / b_norm, 0.0};
+    if (!std::isfinite(stats.residual) || stats.residual > kDirectResidual)
+      throw NumericalFault(name_ +
+                           ": neither GMRES nor MUMPS's LU solved the matrix (relative "
+                           "residual " +
+                           std::to_string(stats.residual) + ")");
     return stats;
   }
 
@@ -158,6 +218,7 @@ class PetscSolver : public LinearSolver {
     std::copy(x.data(), x.data() + local, v);
     check(VecRestoreArray(part_x_, &v), "VecRestoreArray");
     check(KSPSolve(ksp_, part_b_, part_x_), "KSPSolve");
+    const SolveStats direct = solve_directly_if_missed(part_b_, part_x_, b_norm);
     check(VecGhostUpdateBegin(part_x_, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateBegin");
     check(VecGhostUpdateEnd(part_x_, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateEnd");
     Vec with_ghosts;
@@ -167,7 +228,7 @@ class PetscSolver : public LinearSolver {
     std::copy(all, all + x.size(), x.data());
     check(VecRestoreArrayRead(with_ghosts, &all), "VecRestoreArrayRead");
     check(VecGhostRestoreLocalForm(part_x_, &with_ghosts), "VecGhostRestoreLocalForm");
-    return finish({}, b_norm);
+    return direct.iterations > 0 ? direct : finish({}, b_norm);
   }
 
   /// x (whole on every rank, this rank's share solved) made whole everywhere: the ranks' shares
@@ -185,11 +246,11 @@ class PetscSolver : public LinearSolver {
       throw NumericalFault(name_ + ": MPI_Allgatherv of the solution failed");
   }
 
-  /// The AIJ matrix of the BRC pattern; the near null space; CG and the AMG.
+  /// The AIJ matrix of the BRC pattern; the near null space; the Krylov method and the AMG.
   void create(const BrcMatrix& a) {
     a_ = std::make_unique<petsc::AijFromBrc>(a, comm_, part_);
     const petsc::OwnedBlocks& own = a_->rows();
-    check(MatSetOption(a_->mat(), MAT_SPD, PETSC_TRUE), "MatSetOption");
+    if (!nonsymmetric_) check(MatSetOption(a_->mat(), MAT_SPD, PETSC_TRUE), "MatSetOption");
     // Rigid-body modes of the rest positions (three translations, three rotations).
     Vec coordinates;
     check(VecCreateMPI(comm_, 3 * own.size(), PETSC_DETERMINE, &coordinates), "VecCreateMPI");
@@ -207,7 +268,15 @@ class PetscSolver : public LinearSolver {
     VecDestroy(&coordinates);
 
     check(KSPCreate(comm_, &ksp_), "KSPCreate");
-    check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+    if (nonsymmetric_) {
+      // GMRES preconditioned from the right, so that its norm is |b - A x| too; restarted after
+      // kGmresRestart vectors (a rank's memory: that many vectors of its rows).
+      check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
+      check(KSPGMRESSetRestart(ksp_, kGmresRestart), "KSPGMRESSetRestart");
+      check(KSPSetPCSide(ksp_, PC_RIGHT), "KSPSetPCSide");
+    } else {
+      check(KSPSetType(ksp_, KSPCG), "KSPSetType");
+    }
     check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");  // |b - A x|, as ours
     check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
     check(KSPSetTolerances(ksp_, tolerance_, 0.0, 1e10, max_iterations_), "KSPSetTolerances");
@@ -304,11 +373,14 @@ class PetscSolver : public LinearSolver {
   int smoothing_;
   bool setup_reuse_;
   const RankPart* part_;                     ///< distributed: this rank's part; null: replicated
+  bool nonsymmetric_;                        ///< GMRES instead of CG (a corotated tangent)
+  std::string krylov_;                       ///< "CG" or "GMRES", for messages
   Vec part_b_ = nullptr, part_x_ = nullptr;  ///< distributed: b, and x with the halo as ghosts
   std::unique_ptr<petsc::AijFromBrc> a_;
   std::unique_ptr<petsc::CoarseOperators> coarse_;  ///< petsc-mg: the coarse levels' operators
   KSP ksp_ = nullptr;
   PC pc_ = nullptr;
+  KSP direct_ = nullptr;  ///< non-symmetric: MUMPS's LU where GMRES misses, made at first need
 };
 
 }  // namespace
@@ -317,9 +389,11 @@ std::unique_ptr<LinearSolver> make_petsc_solver(PetscSolverKind kind,
                                                 const std::vector<Vec3>& rest_positions,
                                                 double tolerance, int max_iterations,
                                                 std::vector<Transfer> transfers, int smoothing,
-                                                bool setup_reuse, const RankPart* part) {
+                                                bool setup_reuse, const RankPart* part,
+                                                bool nonsymmetric) {
   return std::make_unique<PetscSolver>(kind, rest_positions, tolerance, max_iterations,
-                                       std::move(transfers), smoothing, setup_reuse, part);
+                                       std::move(transfers), smoothing, setup_reuse, part,
+                                       nonsymmetric);
 }
 
 #endif
