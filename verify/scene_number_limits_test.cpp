@@ -225,6 +225,18 @@ TEST(SceneNumberLimits, MemoryEstimateBoundsARunAndDependsOnTheSolver) {
     }
     EXPECT_EQ(refused, std::string(solver) == "cholmod") << solver;
   }
+  // Static corotated Newton factors its tangent on one process whatever the scene's solver.
+  write_scene_with(dir / "scene.json", "/mesh/cells", "[100, 100, 100]");
+  nlohmann::json newton = nlohmann::json::parse(test::read_text(dir / "scene.json"));
+  newton["analysis"]["type"] = "static";
+  newton["analysis"]["integrator"] = "newton";
+  try {
+    parse_scene(newton, dir.path(), "scene.json");
+    ADD_FAILURE() << "a static Newton scene of 6 million tets on one process was let through";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Newton's sparse factorizations"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SceneNumberLimits, CliExitsTwoNamingTheKey) {

@@ -17,6 +17,8 @@ constexpr double kLibraryBytes = 80e6;
 constexpr double kCholmodBytes = 190e6, kCholmodFill = 115;
 /// Distributed: the whole body rank 0 builds first, and the largest rank's tets over its share.
 constexpr double kWholeBodyBytesPerTet = 150, kHaloFactor = 1.3;
+/// Distributed Newton: GMRES's basis (50 vectors of 3 DOFs on about 0.2 vertices per tet).
+constexpr double kGmresBytesPerTet = 300;
 
 /// Bytes per tet of the solvers whose memory grows with the mesh.
 double linear_bytes_per_tet(SolverKind solver) {
@@ -40,18 +42,25 @@ double linear_bytes_per_tet(SolverKind solver) {
 
 }  // namespace
 
-double run_bytes(SolverKind solver, double tets, int ranks) {
-  if (solver == SolverKind::Cholmod) return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
+double run_bytes(SolverKind solver, double tets, int ranks, bool newton) {
+  if (solver == SolverKind::Cholmod || (newton && ranks == 1))
+    return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
+  const double per_tet = linear_bytes_per_tet(solver) + (newton ? kGmresBytesPerTet : 0);
   if (ranks > 1)
-    return kLibraryBytes + std::max(kWholeBodyBytesPerTet * tets,
-                                    linear_bytes_per_tet(solver) * kHaloFactor * tets / ranks);
-  return kLibraryBytes + linear_bytes_per_tet(solver) * tets;
+    return kLibraryBytes +
+           std::max(kWholeBodyBytesPerTet * tets, per_tet * kHaloFactor * tets / ranks);
+  return kLibraryBytes + per_tet * tets;
 }
 
-std::string run_bytes_basis(SolverKind solver, int ranks) {
-  const std::string name = kSolverKinds.name(solver);
-  if (solver == SolverKind::Cholmod) return name + ": 115 bytes x tets^4/3 (its factor's fill)";
-  const std::string per_tet = general_number(linear_bytes_per_tet(solver) / 1e3) + " kB per tet";
+std::string run_bytes_basis(SolverKind solver, int ranks, bool newton) {
+  if (solver == SolverKind::Cholmod || (newton && ranks == 1))
+    return (newton ? std::string("Newton's sparse factorizations") : kSolverKinds.name(solver)) +
+           ": 115 bytes x tets^4/3 (a factor's fill)";
+  const std::string name =
+      std::string(kSolverKinds.name(solver)) + (newton ? " with Newton's GMRES" : "");
+  const std::string per_tet =
+      general_number((linear_bytes_per_tet(solver) + (newton ? kGmresBytesPerTet : 0)) / 1e3) +
+      " kB per tet";
   if (ranks > 1)
     return name + ": " + per_tet + " over each rank's share of " + std::to_string(ranks) +
            " and its halo, at least 150 bytes per tet of the whole mesh rank 0 builds first";

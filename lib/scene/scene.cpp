@@ -323,10 +323,12 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
     const AnalysisSpec& a = s.analysis;
     const int ranks =
         distributes_mesh(a.type, a.integrator, a.solver, launcher_size()) ? launcher_size() : 1;
+    const bool newton =
+        a.integrator == Integrator::Newton && a.formulation == Formulation::Corotational;
     require_memory(
-        s.mesh.estimated_tets, run_bytes(a.solver, s.mesh.estimated_tets, ranks),
+        s.mesh.estimated_tets, run_bytes(a.solver, s.mesh.estimated_tets, ranks, newton),
         "scene '" + name + "': mesh." + (s.mesh.kind == MeshSpec::Kind::Box ? "cells" : "size"),
-        run_bytes_basis(a.solver, ranks));
+        run_bytes_basis(a.solver, ranks, newton));
   }
   if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == HierarchyKind::Meshes &&
       !remeshable)
