@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Where a multigrid hierarchy is weak, by a route independent of corofem's own cycle (issue 36).
 
-Usage: bench/multigrid_diagnosis.py DIR [DIR...]      (needs python3-scipy)
+Usage: bench/multigrid_diagnosis.py [--spectrum K] DIR [DIR...]      (needs python3-scipy)
 
 DIR is what `corofem export-matrices SCENE.json --out DIR` writes: A<h>.mtx and R<h>.mtx (at least
 two levels). With natural-order nodal 3x3 block Gauss-Seidel (forward before the coarse
@@ -14,9 +14,13 @@ correction, backward after) and a direct solve on the coarsest level, it prints 
   - where the slowest error lives: the share of its energy on the 1% of vertices holding most of
     it, how many of those lie outside their coarse tet (a negative transfer weight), how many
     clusters they form, and its Rayleigh quotient against the block diagonal (small: a smooth
-    local mode that smoothing barely reduces).
+    local mode that smoothing barely reduces);
+  - with --spectrum K, the K largest eigenvalues of the V-cycle's error propagation E = I - B A
+    (Arnoldi, scipy's eigs): a few isolated ones would be what CG (or a deflation of a few
+    vectors) removes in a few iterations; a cluster of many is what bounds MG-PCG's iterations.
 Progress and results on stdout; nothing is written.
 """
+import argparse
 import sys
 
 import numpy as np
@@ -104,8 +108,27 @@ def diagnose(folder):
           f"against the block diagonal {float(e @ (a @ e)) / float(e @ (blocks @ e)):.3f}")
 
 
+def spectrum(folder, k):
+    """The k largest eigenvalues of the full V-cycle's error propagation on the fine level."""
+    m = Hierarchy(folder)
+    a, last = m.a[0], len(m.a) - 1
+    propagate = sl.LinearOperator(a.shape, matvec=lambda v: v - m.cycle(0, a @ v, last, 1), dtype=float)
+    mu = np.sort(np.real(sl.eigs(propagate, k=k, which="LM", ncv=max(2 * k + 1, 100), tol=1e-6,
+                                 return_eigenvectors=False)))[::-1]
+    print(f"{folder}: the {k} largest eigenvalues of E = I - B A (the V-cycle's error propagation): "
+          f"{mu[0]:.3f} ... {mu[-1]:.3f}")
+    print("  how many lie above 0.3 / 0.5 / 0.6 / 0.7 / 0.8: " +
+          " / ".join(str(int(np.sum(mu > t))) for t in (0.3, 0.5, 0.6, 0.7, 0.8)) +
+          (f" (all {k} computed lie above {mu[-1]:.3f}: more lie beyond)" if mu[-1] > 0.3 else ""))
+
+
 if __name__ == "__main__":
-    if len(sys.argv) < 2:
-        sys.exit(__doc__)
-    for folder in sys.argv[1:]:
-        diagnose(folder)
+    parser = argparse.ArgumentParser(usage=__doc__)
+    parser.add_argument("--spectrum", type=int, default=0, metavar="K")
+    parser.add_argument("folders", nargs="+", metavar="DIR")
+    args = parser.parse_args()
+    for folder in args.folders:
+        if args.spectrum:
+            spectrum(folder, args.spectrum)
+        else:
+            diagnose(folder)
