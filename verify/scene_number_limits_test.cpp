@@ -225,7 +225,8 @@ TEST(SceneNumberLimits, MemoryEstimateBoundsARunAndDependsOnTheSolver) {
     }
     EXPECT_EQ(refused, std::string(solver) == "cholmod") << solver;
   }
-  // Static corotated Newton factors its tangent on one process whatever the scene's solver.
+  // Static corotated Newton on one of corofem's own solvers factors its tangent (CG cannot take
+  // it).
   write_scene_with(dir / "scene.json", "/mesh/cells", "[100, 100, 100]");
   nlohmann::json newton = nlohmann::json::parse(test::read_text(dir / "scene.json"));
   newton["analysis"]["type"] = "static";

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -91,15 +92,31 @@ std::string read_text(const fs::path& file) {
 
 CliResult run_cli(const std::string& args, const std::string& launcher) {
   TempDir dir;
-  const std::string command = launcher + (launcher.empty() ? "" : " ") + "'" + COROFEM_CLI + "' " +
-                              args + " > '" + (dir / "out").string() + "' 2> '" +
-                              (dir / "err").string() + "'";
+  const std::string command = without_mpi_singleton() + launcher + (launcher.empty() ? "" : " ") +
+                              "'" + COROFEM_CLI + "' " + args + " > '" + (dir / "out").string() +
+                              "' 2> '" + (dir / "err").string() + "'";
   const int status = std::system(command.c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   result.out = read_text(dir / "out");
   result.err = read_text(dir / "err");
   return result;
+}
+
+std::string without_mpi_singleton() {
+  // A test that ran PETSc in this process made it an MPI singleton, whose Open MPI and PMIx
+  // variables (OMPI_MCA_ess=singleton, PMIX_SERVER_URI...) would tell a child corofem or mpirun
+  // that it runs inside that job.
+  std::string unset;
+  for (char** e = environ; *e; ++e) {
+    const char* equals = std::strchr(*e, '=');
+    const std::string name(*e, equals ? static_cast<std::size_t>(equals - *e) : 0);
+    const bool mpi = name.rfind("OMPI_", 0) == 0 || name.rfind("PMIX_", 0) == 0;
+    if (mpi && name != "OMPI_ALLOW_RUN_AS_ROOT" && name != "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM" &&
+        name != "OMPI_MCA_rmaps_base_oversubscribe")
+      unset += " -u " + name;
+  }
+  return unset.empty() ? "" : "env" + unset + " ";
 }
 
 std::string mpirun_ranks(int ranks) {

@@ -57,6 +57,10 @@ CliResult run_cli(const std::string& args, const std::string& launcher = "");
 /// with fewer cores than ranks without oversubscription; all three are set for the launched
 /// processes only.
 std::string mpirun_ranks(int ranks);
+/// "env -u VAR ... " for Open MPI's and PMIx's variables in this process (an MPI singleton's,
+/// where a test ran PETSc in it), but the three mpirun_ranks sets; "" when there are none. Put
+/// before a command that launches corofem or mpirun; run_cli does.
+std::string without_mpi_singleton();
 /// mpirun_ranks(2).
 std::string mpirun_two_ranks();
 

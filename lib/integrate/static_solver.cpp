@@ -1,6 +1,7 @@
 #include "integrate/static_solver.hpp"
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -104,10 +105,10 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   BrcMatrix jacobian_matrix;
   if (options.newton && options.corotational) {
     tangent = std::make_unique<RotationTangent>(problem, rotate.method());
-    // On a distributed mesh the tangent goes to the run's PETSc solver (GMRES: `solver` was made
-    // for a non-symmetric matrix); on one process to the sparse factorizations.
-    if (options.ranks.distributed())
+    if (options.tangent_by_solver)
       linear = std::make_unique<KrylovNewtonSolve>(solver);
+    else if (options.ranks.distributed())  // a part's sparse LU would solve the part alone
+      throw std::logic_error("static Newton on a distributed mesh without tangent_by_solver");
     else
       linear = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;

@@ -24,6 +24,9 @@ struct StaticOptions {
   /// count are the whole body's (the solver distributed to match; with Newton, a solver made for
   /// non-symmetric matrices: its GMRES solves the corotated tangent).
   RankView ranks{};
+  /// Newton: the tangent goes to `solver` (made for non-symmetric matrices: PETSc's GMRES), on one
+  /// process or a distributed mesh; otherwise to the serial sparse factorizations.
+  bool tangent_by_solver = false;
 };
 
 /// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).

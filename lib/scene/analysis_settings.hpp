@@ -66,6 +66,16 @@ inline bool distributes_mesh(AnalysisType type, Integrator integrator, SolverKin
          is_petsc_solver(solver);
 }
 
+/// Whether a run's Newton tangent goes to its solver (PETSc's GMRES, on one process or over ranks)
+/// instead of the serial sparse factorizations: static corotated Newton on a PETSc solver. The
+/// corotated tangent is not symmetric, so none of corofem's own CG-based solvers takes it, and
+/// dynamic Newton's line search on a potential needs its Cholesky.
+inline bool newton_tangent_by_solver(AnalysisType type, Integrator integrator,
+                                     Formulation formulation, SolverKind solver) {
+  return type == AnalysisType::Static && integrator == Integrator::Newton &&
+         formulation == Formulation::Corotational && is_petsc_solver(solver);
+}
+
 /// The PETSc solver of a solver kind for which is_petsc_solver holds.
 inline PetscSolverKind petsc_solver_kind(SolverKind solver) {
   return solver == SolverKind::PetscGamg        ? PetscSolverKind::Gamg

@@ -43,7 +43,7 @@ double linear_bytes_per_tet(SolverKind solver) {
 }  // namespace
 
 double run_bytes(SolverKind solver, double tets, int ranks, bool newton) {
-  if (solver == SolverKind::Cholmod || (newton && ranks == 1))
+  if (solver == SolverKind::Cholmod || (newton && !is_petsc_solver(solver)))
     return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
   const double per_tet = linear_bytes_per_tet(solver) + (newton ? kGmresBytesPerTet : 0);
   if (ranks > 1)
@@ -53,7 +53,7 @@ double run_bytes(SolverKind solver, double tets, int ranks, bool newton) {
 }
 
 std::string run_bytes_basis(SolverKind solver, int ranks, bool newton) {
-  if (solver == SolverKind::Cholmod || (newton && ranks == 1))
+  if (solver == SolverKind::Cholmod || (newton && !is_petsc_solver(solver)))
     return (newton ? std::string("Newton's sparse factorizations") : kSolverKinds.name(solver)) +
            ": 115 bytes x tets^4/3 (a factor's fill)";
   const std::string name =

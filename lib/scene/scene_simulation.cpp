@@ -1,6 +1,5 @@
 #include "scene/scene_simulation.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <numeric>
@@ -22,13 +21,6 @@ namespace {
 
 /// How rank 0 tells the others that building the body failed (broadcast_status).
 constexpr int kInputFailure = 2, kOtherFailure = 1;
-
-/// The tightest relative residual asked of GMRES on a Newton tangent: near rounding for the
-/// tangents of the gates' tight tolerances, where 1e-2 x the Newton tolerance would be below it.
-constexpr double kTangentFloor = 1e-13;
-/// GMRES's iterations on a Newton tangent before MUMPS's LU takes it (an indefinite tangent,
-/// past a buckling point, stalls AMG-preconditioned GMRES; a definite one converges in 20-60).
-constexpr int kTangentIterations = 200;
 
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -90,14 +82,10 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
                                        problem_.mesh, a.rotation_params);
   ranks_ = RankView{part_->owned_vertices, part_->owned_tet, sum_over_ranks};
   if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_, ranks_);
-  // Static corotated Newton: the solver takes the tangent (not symmetric), by GMRES to well below
-  // Newton's own tolerance (an inexact step's residual is that fraction of the last |g|).
-  const bool tangent = a.integrator == Integrator::Newton && corotational();
-  const double tolerance = tangent ? std::max(1e-2 * a.tolerance, kTangentFloor) : a.tolerance;
-  const int max_iterations = tangent ? kTangentIterations : 10000;
-  solver_ =
-      make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, tolerance, max_iterations,
-                        std::move(share.transfers), a.smoothing, a.setup_reuse, &*part_, tangent);
+  const PetscSolveSettings s = petsc_solve_settings(a);  // static Newton: the tangent by GMRES
+  solver_ = make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, s.tolerance,
+                              s.max_iterations, std::move(share.transfers), a.smoothing,
+                              a.setup_reuse, &*part_, s.nonsymmetric);
   setup_ms_ = ms_since(start);
 }
 
@@ -174,10 +162,12 @@ SimulationResult SceneSimulation::run(const std::function<void(const StepState&)
   const auto start = std::chrono::steady_clock::now();
   const AnalysisSpec& a = scene_.analysis;
   SimulationResult result =
-      dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
-               : solve_static(problem_, *extractor_, *solver_,
-                              {corotational(), a.load_steps, a.tolerance, a.max_iterations,
-                               a.integrator == Integrator::Newton, ranks_});
+      dynamic_
+          ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
+          : solve_static(problem_, *extractor_, *solver_,
+                         {corotational(), a.load_steps, a.tolerance, a.max_iterations,
+                          a.integrator == Integrator::Newton, ranks_,
+                          newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver)});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

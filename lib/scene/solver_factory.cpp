@@ -1,5 +1,7 @@
 #include "scene/solver_factory.hpp"
 
+#include <algorithm>
+
 #include "linalg/preconditioned_cg.hpp"
 #include "solver/petsc_solver.hpp"
 
@@ -40,22 +42,30 @@ std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a,
       params, as_preconditioner);
 }
 
+PetscSolveSettings petsc_solve_settings(const AnalysisSpec& a) {
+  if (newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver))
+    return {std::max(1e-2 * a.tolerance, 1e-13), 200, true};
+  return {a.tolerance, 10000, false};
+}
+
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem,
                                                  const std::vector<TetMesh>& coarse_meshes) {
   if (a.solver == SolverKind::Cholmod) return make_cholmod_solver();
   if (a.solver == SolverKind::JacobiPcg) return make_jacobi_pcg_solver(a.tolerance, 100000);
   const PetscSolverKind petsc = petsc_solver_kind(a.solver);
+  const PetscSolveSettings s = petsc_solve_settings(a);
   if (is_library_amg(a.solver))
-    return make_petsc_solver(petsc, problem.mesh.rest, a.tolerance, 10000, {}, 1, a.setup_reuse);
+    return make_petsc_solver(petsc, problem.mesh.rest, s.tolerance, s.max_iterations, {}, 1,
+                             a.setup_reuse, nullptr, s.nonsymmetric);
   if (a.solver == SolverKind::PetscMg) {  // PETSc's own multigrid on our hierarchy's transfers
     if (!have_petsc())
       return make_petsc_solver(petsc, problem.mesh.rest, a.tolerance, 10000);  // says why
     const MultigridParams params = multigrid_params(a);
-    return make_petsc_solver(petsc, problem.mesh.rest, a.tolerance, 10000,
+    return make_petsc_solver(petsc, problem.mesh.rest, s.tolerance, s.max_iterations,
                              build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet),
                                              params.hierarchy, coarse_meshes)
                                  .transfers,
-                             a.smoothing);
+                             a.smoothing, false, nullptr, s.nonsymmetric);
   }
   return make_multigrid_solver(a, problem, coarse_meshes, a.solver == SolverKind::Mgpcg);
 }

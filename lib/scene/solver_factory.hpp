@@ -9,6 +9,18 @@ namespace corofem {
 /// Multigrid parameters from the scene's analysis keys.
 MultigridParams multigrid_params(const AnalysisSpec& analysis);
 
+/// How a PETSc solver of the analysis solves: for a Newton tangent (newton_tangent_by_solver) by
+/// GMRES to 1e-2 x the Newton tolerance (an inexact step leaves that fraction of the last
+/// residual; at least 1e-13, near rounding), at most 200 iterations before MUMPS's LU takes it
+/// (past a buckling point the tangent is indefinite and AMG-preconditioned GMRES stalls; a
+/// definite one converges in 20-60); otherwise CG to the scene's tolerance.
+struct PetscSolveSettings {
+  double tolerance;
+  int max_iterations;
+  bool nonsymmetric;
+};
+PetscSolveSettings petsc_solve_settings(const AnalysisSpec& analysis);
+
 /// The analysis's solver for the problem's pattern, rest positions and supports. Multigrid on the
 /// meshes hierarchy takes its levels from `coarse_meshes` (scene/coarse_meshes.hpp).
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& analysis,
