@@ -5,7 +5,8 @@
 // indefinite past a buckling point, so neither CG nor Cholesky applies in general. On one process
 // (SparseLuSolve) where g is a potential's gradient J is its Hessian, factored by Cholesky while it
 // is positive definite; a non-symmetric J by GMRES on its symmetric part's Cholesky factor, or a
-// sparse LU (UMFPACK). On a distributed mesh (KrylovNewtonSolve) PETSc's GMRES on the ranks' rows.
+// sparse LU (UMFPACK). With a PETSc solver (KrylovNewtonSolve) its GMRES, on one process or over
+// the ranks' rows of a distributed mesh.
 // Step lengths:
 //  - where g is the gradient of a potential (the caller passes it: implicit Euler with polar
 //    rotations, whose force is conservative, is then the minimization of the incremental
@@ -92,9 +93,9 @@ class SparseLuSolve : public NewtonLinearSolve {
   std::unique_ptr<State> state_;
 };
 
-/// J dz = rhs by an iterative LinearSolver set up for J at every call, from dz = 0: on a
-/// distributed mesh, PETSc's GMRES over the ranks' owned rows (solver/petsc_solver.hpp,
-/// `nonsymmetric`), the halo entries of dz received from their owners.
+/// J dz = rhs by an iterative LinearSolver set up for J at every call, from dz = 0: PETSc's GMRES
+/// (solver/petsc_solver.hpp, `nonsymmetric`); on a distributed mesh over the ranks' owned rows,
+/// the halo entries of dz received from their owners.
 class KrylovNewtonSolve : public NewtonLinearSolve {
  public:
   explicit KrylovNewtonSolve(LinearSolver& solver) : solver_(solver) {}

@@ -42,25 +42,26 @@ double linear_bytes_per_tet(SolverKind solver) {
 
 }  // namespace
 
-double run_bytes(SolverKind solver, double tets, int ranks, bool newton) {
-  if (solver == SolverKind::Cholmod || (newton && !is_petsc_solver(solver)))
+double run_bytes(SolverKind solver, double tets, int ranks, NewtonTangent tangent) {
+  if (solver == SolverKind::Cholmod || tangent == NewtonTangent::Factored)
     return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
-  const double per_tet = linear_bytes_per_tet(solver) + (newton ? kGmresBytesPerTet : 0);
+  const double per_tet =
+      linear_bytes_per_tet(solver) + (tangent == NewtonTangent::ByGmres ? kGmresBytesPerTet : 0);
   if (ranks > 1)
     return kLibraryBytes +
            std::max(kWholeBodyBytesPerTet * tets, per_tet * kHaloFactor * tets / ranks);
   return kLibraryBytes + per_tet * tets;
 }
 
-std::string run_bytes_basis(SolverKind solver, int ranks, bool newton) {
-  if (solver == SolverKind::Cholmod || (newton && !is_petsc_solver(solver)))
-    return (newton ? std::string("Newton's sparse factorizations") : kSolverKinds.name(solver)) +
-           ": 115 bytes x tets^4/3 (a factor's fill)";
-  const std::string name =
-      std::string(kSolverKinds.name(solver)) + (newton ? " with Newton's GMRES" : "");
+std::string run_bytes_basis(SolverKind solver, int ranks, NewtonTangent tangent) {
+  if (tangent == NewtonTangent::Factored)
+    return "Newton's sparse factorizations: 115 bytes x tets^4/3 (a factor's fill)";
+  const std::string name = kSolverKinds.name(solver);
+  if (solver == SolverKind::Cholmod) return name + ": 115 bytes x tets^4/3 (its factor's fill)";
+  const bool gmres = tangent == NewtonTangent::ByGmres;
   const std::string per_tet =
-      general_number((linear_bytes_per_tet(solver) + (newton ? kGmresBytesPerTet : 0)) / 1e3) +
-      " kB per tet";
+      general_number((linear_bytes_per_tet(solver) + (gmres ? kGmresBytesPerTet : 0)) / 1e3) +
+      " kB per tet" + (gmres ? " (with Newton's GMRES)" : "");
   if (ranks > 1)
     return name + ": " + per_tet + " over each rank's share of " + std::to_string(ranks) +
            " and its halo, at least 150 bytes per tet of the whole mesh rank 0 builds first";

@@ -24,13 +24,17 @@ namespace corofem {
 /// bytes per tet over its share of the tets, 1.3x for the halo (the largest rank of a 415k-tet bar
 /// held 1.04x its share at 2 ranks, 1.22x at 4; peak RSS per rank 504 and 321 MB for petsc-mg,
 /// against 579 and 330 MB estimated; GAMG 614 MB at 2 ranks against 619).
-/// `newton`: a corotated Newton run, whose tangent a PETSc solver solves by GMRES (on one process
-/// or distributed: its 50 basis vectors add 300 bytes per tet, 3 DOFs on about 0.2 vertices per
-/// tet; GAMG's Newton on a 240k-tet bar at 2 ranks peaked at 391 MB a rank, against 439 MB
-/// estimated with them) and any other run factors (CHOLMOD's rule: Cholesky, GMRES on a Cholesky
-/// factor, or UMFPACK's LU; a 240k-tet bar peaked at 1593 MB, the rule gives 1.9 GB).
-double run_bytes(SolverKind solver, double tets, int ranks = 1, bool newton = false);
+/// `tangent`: how a corotated Newton run solves its tangent. Factored (CHOLMOD's rule: Cholesky,
+/// GMRES on a Cholesky factor, or UMFPACK's LU; a 240k-tet static bar peaked at 1593 MB, the rule
+/// gives 1.9 GB); by the PETSc solver's GMRES (scene/analysis_settings.hpp:
+/// newton_tangent_by_solver), whose 50 basis vectors add 300 bytes per tet (3 DOFs on about 0.2
+/// vertices per tet; GAMG's Newton on that bar at 2 ranks peaked at 391 MB a rank, against 439 MB
+/// estimated with them).
+enum class NewtonTangent { None, Factored, ByGmres };
+double run_bytes(SolverKind solver, double tets, int ranks = 1,
+                 NewtonTangent tangent = NewtonTangent::None);
 /// The rule run_bytes applies, for messages ("1.5 kB per tet for mgpcg").
-std::string run_bytes_basis(SolverKind solver, int ranks = 1, bool newton = false);
+std::string run_bytes_basis(SolverKind solver, int ranks = 1,
+                            NewtonTangent tangent = NewtonTangent::None);
 
 }  // namespace corofem
