@@ -27,6 +27,7 @@ const Example kExamples[] = {
     {"quadruped_static_newton.json"},
     {"block_squash_stability.json"},
     {"box_petsc_gamg_mpi.json", false, true},
+    {"bar_static_newton_mpi.json", false, true},
     {"bunny_dynamic.json", true},
     {"dragon_given_levels.json", true},
     {"horse_bare_stl.json", true},
