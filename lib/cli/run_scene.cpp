@@ -68,10 +68,11 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
       {"integrator", kIntegrators.name(a.integrator)},
       {"rotation", kRotationMethods.name(corotational ? a.rotation : RotationMethod::None)},
       {"rotation_params", to_json(a.rotation_params)},
-      {"solver", a.integrator != Integrator::Newton || !corotational ? solver->name()
-                 : newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver)
+      {"solver", newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver)
                      ? solver->name() + " (GMRES), Newton"
-                     : "sparse LU (UMFPACK), Newton"}};
+                 : a.integrator == Integrator::Newton && corotational
+                     ? "sparse LU (UMFPACK), Newton"
+                     : solver->name()}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
     r["analysis"]["multigrid"] = to_json(multigrid_params(a));
     r["multigrid"] = simulation.describe_multigrid(*mg);

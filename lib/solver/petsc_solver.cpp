@@ -45,6 +45,14 @@ constexpr PetscInt kGmresRestart = 50;
 /// The largest relative residual accepted from the LU fallback (a singular matrix gives more).
 constexpr double kDirectResidual = 1e-6;
 
+/// Whether this PETSc has MUMPS (Debian's does): the distributed LU of petsc-mg's coarsest level
+/// and of a tangent GMRES misses.
+bool have_mumps() {
+  PetscBool mumps = PETSC_FALSE;
+  check(PetscHasExternalPackage("mumps", &mumps), "PetscHasExternalPackage");
+  return mumps == PETSC_TRUE;
+}
+
 class PetscSolver : public LinearSolver {
  public:
   PetscSolver(PetscSolverKind kind, const std::vector<Vec3>& rest, double tolerance,
@@ -157,9 +165,7 @@ class PetscSolver : public LinearSolver {
   /// converged or this solver is CG's.
   SolveStats solve_directly_if_missed(Vec b, Vec x, double b_norm) {
     if (!nonsymmetric_ || krylov_converged(b_norm)) return {};
-    PetscBool mumps = PETSC_FALSE;
-    check(PetscHasExternalPackage("mumps", &mumps), "PetscHasExternalPackage");
-    if (!mumps) return {};  // finish() then says that GMRES missed
+    if (!have_mumps()) return {};  // finish() then says that GMRES missed
     if (!direct_) {
       check(KSPCreate(comm_, &direct_), "KSPCreate");
       check(KSPSetType(direct_, KSPPREONLY), "KSPSetType");
@@ -328,11 +334,9 @@ class PetscSolver : public LinearSolver {
       option("-mg_levels_ksp_max_it", degree.c_str());
       option("-mg_levels_pc_type", "jacobi");
       option("-mg_coarse_ksp_type", "preonly");
-      PetscBool mumps = PETSC_FALSE;
-      check(PetscHasExternalPackage("mumps", &mumps), "PetscHasExternalPackage");
       if (ranks_ == 1) {
         option("-mg_coarse_pc_type", "lu");
-      } else if (mumps) {
+      } else if (have_mumps()) {
         // MUMPS's LU is distributed: on a 415k-tet bar at 2 ranks, 14 MB a rank less than
         // PETSc's redundant LU and as many iterations.
         option("-mg_coarse_pc_type", "lu");
