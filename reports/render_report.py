@@ -400,18 +400,22 @@ def render_roofline(tables, folder, md):
 def render_size_independence(tables, md):
     """The quadruped's re-meshed rows across its sizes (11k to 270k in the full report), as the
     record sums them up: the textbook property the paper claims is that rho and the iterations do
-    not grow with the mesh."""
-    si = tables.get("size_independence")
-    if not si:
-        return
-    sizes = si["sizes"]
-    rho = [r["rho"] for r in sizes]
-    its = [r["mgpcg_iterations"] for r in sizes]
-    targets = si["targets"]
-    md.append(f"Size independence, the {si['model']} at {', '.join(r['model'].split('-', 1)[1] for r in sizes)} "
-              f"tets: rho {num(min(rho), 2)} to {num(max(rho), 2)} (spread {num(si['rho_spread'], 2)}; "
-              f"target at most {num(targets['rho_spread'])}), MG-PCG iterations {num(min(its))} to {num(max(its))} "
-              f"(spread {num(si['iterations_spread'])}; target at most {num(targets['iterations_spread'])}).\n\n")
+    not grow with the mesh. Once with the coarse meshes at twice the size per level (the default),
+    once at a fixed vertex ratio per level (`analysis.coarsening`)."""
+    for key in ("size_independence", "size_independence_fixed_ratio"):
+        si = tables.get(key)
+        if not si:
+            continue
+        sizes = si["sizes"]
+        rho = [r["rho"] for r in sizes]
+        its = [r["mgpcg_iterations"] for r in sizes]
+        targets = si["targets"]
+        levels = (f"{num(si['coarsening'])}x fewer vertices per level" if si.get("coarsening")
+                  else "coarse meshes at twice the size per level")
+        md.append(f"Size independence, the {si['model']} at {', '.join(r['model'].split('-', 1)[1] for r in sizes)} "
+                  f"tets, {levels}: rho {num(min(rho), 2)} to {num(max(rho), 2)} (spread {num(si['rho_spread'], 2)}; "
+                  f"target at most {num(targets['rho_spread'])}), MG-PCG iterations {num(min(its))} to {num(max(its))} "
+                  f"(spread {num(si['iterations_spread'])}; target at most {num(targets['iterations_spread'])}).\n\n")
 
 
 def render_multigrid_quality(tables, md):
@@ -421,6 +425,8 @@ def render_multigrid_quality(tables, md):
             rows.append([r["model"], failure_text(r)] + [""] * 10)
             continue
         hierarchy = r["hierarchy"] + (", bare surface" if r.get("coarse_meshes") == "derived from the bare surface" else "")
+        if r.get("coarsening"):
+            hierarchy += f", {num(r['coarsening'])}x per level"
         rows.append([r["model"], hierarchy, r["levels"], " / ".join(str(v) for v in r["level_vertices"]),
                      num(r["operator_complexity"], 3), num(r["rho"], 2), num(r["vcycles"]),
                      num(r["mgpcg_iterations"]), t(r["setup_ms"]), t(r["update_ms"]), t(r["solve_ms"]),

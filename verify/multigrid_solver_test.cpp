@@ -247,6 +247,35 @@ TEST(MultigridSolver, BareSurfaceLevelsCoarsenAndSolutionsEqualCholmod) {
   expect_solutions_equal_cholmod(c);
 }
 
+TEST(MultigridSolver, LevelsSizedByVertexRatioHaveItAndSolutionsEqualCholmod) {
+  // analysis.coarsening: the 11k quadruped's derived level 1 re-meshed until it has 1/ratio of
+  // the fine vertices, within the 15% the search accepts. At 4.5 the doubled size (3.6x here)
+  // misses, so the re-meshing is exercised; at 3 the first guess is rejected the other way.
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::Quadruped;
+  spec.size = 0.0642;
+  const MeshCase c{"quadruped 11k", spec, load_scene_mesh(spec), {}, 2};
+  const double fine = c.mesh.num_vertices();
+  const double doubled = fine / coarse_meshes(spec, 2, c.name, fine, 0)[0].num_vertices();
+  FeProblem p = problem_for(c);
+  auto none = make_rotation_extractor(RotationMethod::None, p.mesh);
+  auto direct = make_cholmod_solver();
+  const SimulationResult ref = solve_static(p, *none, *direct, {false, 1, 1e-8, 1});
+  for (const double ratio : {3.0, 4.5}) {
+    EXPECT_GT(std::abs(std::log(doubled / ratio)), std::log(1.15)) << ratio;
+    const std::vector<TetMesh> coarse = coarse_meshes(spec, 3, c.name, fine, ratio);
+    ASSERT_GE(coarse.size(), 1u);
+    EXPECT_LE(std::abs(std::log(fine / coarse[0].num_vertices() / ratio)), std::log(1.15))
+        << "ratio " << ratio << ": " << coarse[0].num_vertices() << " of " << fine;
+    AnalysisSpec a = analysis("mgpcg", 1e-10, "meshes");
+    a.coarsening = ratio;
+    auto mg = make_linear_solver(a, p, coarse);
+    const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
+    EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm())
+        << "ratio " << ratio;
+  }
+}
+
 TEST(MultigridSolver, ChebyshevSmoothedSolutionsEqualCholmod) {
   // MG-PCG and stationary V-cycles with Chebyshev smoothing (degrees 1-3) on the meshes and the
   // lattice hierarchies: the static solve equals CHOLMOD's to 1e-8, as the Gauss-Seidel ones.

@@ -15,7 +15,7 @@ SceneBody test_body() {
   SceneBody body;
   body.mesh = make_box_mesh({3, 1, 1}, {6, 2, 2});
   for (int t = 0; t < body.mesh.num_tets(); ++t)
-    body.materials.push_back(Material{1e5 + t, 0.3, 1000 + t});
+    body.materials.push_back(Material{1e5 + t, 0.3, 1000.0 + t});
   for (int v = 0; v < body.mesh.num_vertices(); ++v)
     if (body.mesh.rest[v].x() == 0) body.fixed_vertices.push_back(v);
   body.external_force = Eigen::VectorXd::LinSpaced(3 * body.mesh.num_vertices(), -1, 2);
@@ -86,7 +86,9 @@ TEST(RankShare, EachRankGetsItsVerticesLoadsSupportsAndMaterialsAsTheSceneHadThe
       for (int u = 0; u < nv; ++u)
         if (new_index[u] == g) s = u;
       ASSERT_GE(s, 0);
-      if (v < part.owned_vertices) EXPECT_EQ(share.scene_vertex_index[v], s);
+      if (v < part.owned_vertices) {
+        EXPECT_EQ(share.scene_vertex_index[v], s);
+      }
       EXPECT_EQ(share.body.mesh.rest[v], scene_order.mesh.rest[s]);
       EXPECT_EQ(share.body.external_force.segment<3>(3 * v),
                 scene_order.external_force.segment<3>(3 * s));

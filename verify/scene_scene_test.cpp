@@ -62,6 +62,24 @@ TEST(Scene, CycleIsVOrW) {
   }
 }
 
+TEST(Scene, CoarseningIsZeroOrARatioOfAtLeastTwo) {
+  auto j = minimal();
+  j["analysis"] = {{"solver", "mgpcg"}};
+  EXPECT_EQ(parse_scene(j, "/base", "s.json").analysis.coarsening, 0);
+  j["analysis"]["coarsening"] = 3.5;
+  const Scene s = parse_scene(j, "/base", "s.json");
+  EXPECT_EQ(multigrid_params(s.analysis).hierarchy.coarsening, 3.5);
+  for (const double bad : {1.2, -1.0, 100.0}) {
+    j["analysis"]["coarsening"] = bad;
+    try {
+      parse_scene(j, "/base", "s.json");
+      ADD_FAILURE() << "coarsening " << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("coarsening"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Scene, RelativePathsResolveAgainstSceneFolder) {
   auto j = minimal();
   j["mesh"] = {{"file", "meshes/a.msh"}};

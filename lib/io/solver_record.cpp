@@ -18,6 +18,7 @@ nlohmann::json to_json(const HierarchyParams& p) {
   if (p.kind == HierarchyKind::Meshes) {
     j["min_coarsening"] = p.min_coarsening;
     j["end_below_vertices"] = p.end_below_vertices;
+    j["coarsening"] = p.coarsening;
   }
   if (p.coarsest_max_vertices > 0) j["coarsest_max_vertices"] = p.coarsest_max_vertices;
   return j;

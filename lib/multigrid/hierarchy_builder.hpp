@@ -36,6 +36,12 @@ struct HierarchyParams {
   /// instead (that level's direct factorization costs little; a lattice below a small curved
   /// level, as the quadruped's, slows the V-cycle: stationary cycles stalled at 0.99).
   int end_below_vertices = 2000;
+  /// meshes: the coarse meshes the scene derives (re-meshed, not given) are sized to have about
+  /// 1/this of the level above's vertices (scene/coarse_meshes.hpp). 0 (the default): the mesh
+  /// size doubled per level, whatever that gives: 3.6x fewer vertices on the 11k quadruped, 6.2x
+  /// on the 270k one, 6.6x on the bare horse, which is the fastest step there; a fixed ratio (3.5)
+  /// makes the quadruped's convergence independent of its size (README "Multigrid").
+  double coarsening = 0;
 };
 
 /// Where a coarse level came from: a coarse mesh of the body (its size, and how the level above

@@ -16,6 +16,7 @@ nlohmann::json to_json(const AnalysisVariant& v) {
   if (v.vcycles) j["vcycles"] = *v.vcycles;
   if (v.smoothing) j["smoothing"] = *v.smoothing;
   if (v.setup_reuse) j["setup_reuse"] = *v.setup_reuse;
+  if (v.coarsening) j["coarsening"] = *v.coarsening;
   return j;
 }
 

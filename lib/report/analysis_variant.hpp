@@ -23,6 +23,7 @@ struct AnalysisVariant {
   std::optional<double> tolerance{};
   std::optional<int> levels{}, vcycles{}, smoothing{};
   std::optional<bool> setup_reuse{};
+  std::optional<double> coarsening{};
 };
 
 /// The set fields as analysis keys and values (names from the name tables).

@@ -41,23 +41,89 @@ MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_
   return spec;
 }
 
+namespace {
+
+/// The mesh of a derived or given level's spec; `surface` is the fine surface, read once.
+TetMesh mesh_of(const MeshSpec& spec, const std::optional<SurfaceMesh>& surface) {
+  return spec.simplify_surface ? tetrahedralize_coarsened_surface(*surface, spec.path, spec.size)
+                               : load_scene_mesh(spec);
+}
+
+/// Whether `spec` is a surface coarsened below the fewest vertices that still follow the body.
+bool too_coarse(const MeshSpec& spec, const std::optional<SurfaceMesh>& surface) {
+  return spec.simplify_surface &&
+         coarsened_surface_vertices(*surface, spec.size) < kMinCoarsenedSurfaceVertices;
+}
+
+/// A derived level of about `wanted` vertices: `spec` (its size twice the level above's) meshed,
+/// and re-meshed at a corrected size while its count misses by more than 15%, at most 4 times.
+/// The count goes as size^-p, p between 2 (a mesh whose surface sets its vertices) and 3 (its
+/// volume): the first correction takes p = 2.5, later ones the slope of the last two meshings.
+/// The closest mesh is kept, with its size; nullopt where even the first size is too coarse for
+/// the surface.
+struct SizedMesh {
+  TetMesh mesh;
+  double size = 0;
+};
+std::optional<SizedMesh> mesh_near_vertex_count(MeshSpec spec, double wanted,
+                                                const std::optional<SurfaceMesh>& surface) {
+  constexpr int kMeshings = 4;
+  const double tolerance = std::log(1.15);
+  std::optional<SizedMesh> best;
+  double best_miss = 0, last_log_size = 0, last_miss = 0;
+  double log_size = std::log(spec.size);
+  for (int k = 0; k < kMeshings; ++k) {
+    spec.size = std::exp(log_size);
+    if (too_coarse(spec, surface)) break;  // finer than this was meshed, or nothing is
+    std::optional<TetMesh> mesh;
+    if (!best) {
+      mesh = mesh_of(spec, surface);  // the first size must mesh (coarse_meshes says why not)
+    } else {
+      try {
+        mesh = mesh_of(spec, surface);
+      } catch (const InputError&) {
+        break;  // keep the closest mesh made so far
+      }
+    }
+    const double miss = std::log(mesh->num_vertices() / wanted);  // > 0: too many vertices
+    if (!best || std::abs(miss) < std::abs(best_miss)) {
+      best = SizedMesh{std::move(*mesh), spec.size};
+      best_miss = miss;
+    }
+    if (std::abs(miss) <= tolerance) break;
+    double p = 2.5;
+    if (k > 0 && log_size != last_log_size)
+      p = std::clamp(-(miss - last_miss) / (log_size - last_log_size), 1.5, 3.5);
+    last_log_size = log_size;
+    last_miss = miss;
+    log_size += miss / p;
+  }
+  return best;
+}
+
+}  // namespace
+
 std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name,
-                                   int fine_vertices) {
+                                   int fine_vertices, double coarsening) {
   std::vector<TetMesh> meshes;
   int above = fine_vertices;
+  double size_above = fine.size;
   std::optional<SurfaceMesh> surface;  // read once for every coarsened level
+  const int given = static_cast<int>(fine.levels.size());
   for (int h = 1; h < levels; ++h) {
-    const MeshSpec spec = coarse_mesh_spec(fine, h, name);
+    MeshSpec spec = coarse_mesh_spec(fine, h, name);
     if (spec.simplify_surface && !surface) surface = read_surface(spec.path);
+    // Derived levels sized by their vertex count, each from the size of the level above (the
+    // doubling of coarse_mesh_spec is the first guess).
+    const bool by_count = h > given && coarsening > 0 && above > 0 &&
+                          (spec.kind == MeshSpec::Kind::Quadruped || spec.simplify_surface);
+    if (by_count) spec.size = 2 * size_above;
     // A surface too coarse to follow the body ends the meshes (the hierarchy says so).
-    if (spec.simplify_surface &&
-        coarsened_surface_vertices(*surface, spec.size) < kMinCoarsenedSurfaceVertices)
-      break;
-    TetMesh mesh;
+    if (too_coarse(spec, surface)) break;
+    std::optional<SizedMesh> sized;
     try {
-      mesh = spec.simplify_surface
-                 ? tetrahedralize_coarsened_surface(*surface, spec.path, spec.size)
-                 : load_scene_mesh(spec);
+      sized = by_count ? mesh_near_vertex_count(spec, above / coarsening, surface)
+                       : SizedMesh{mesh_of(spec, surface), spec.size};
     } catch (const InputError& e) {
       if (!spec.simplify_surface) throw;  // a level the scene gives must load
       std::cerr << "corofem: warning: scene '" << name << "': multigrid level " << h
@@ -65,6 +131,9 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
                 << "); lattice levels from there on\n";
       break;
     }
+    if (!sized) break;
+    size_above = sized->size;
+    TetMesh& mesh = sized->mesh;
     if (spec.reorder) sort_for_locality(mesh);
     mesh.source = "level " + std::to_string(h) + " (" + mesh.source + ")";
     validate_mesh(mesh);
@@ -81,7 +150,7 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
 std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices) {
   const AnalysisSpec& a = scene.analysis;
   if (!is_multigrid_solver(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
-  return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices);
+  return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices, a.coarsening);
 }
 
 }  // namespace corofem

@@ -202,6 +202,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
   a.coarsest_max_vertices =
       integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
+  a.coarsening = number_in(f, "coarsening", a.coarsening, 0, 64);
+  if (a.coarsening > 0 && a.coarsening < 2) f.fail("coarsening", "0 or in [2, 64]");
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
   const SmootherChoice smoother =

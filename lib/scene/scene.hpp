@@ -68,6 +68,7 @@ inline constexpr const char* kMultigridAnalysisKeys[] = {"levels",
                                                          "hierarchy",
                                                          "smoother",
                                                          "coarsest_max_vertices",
+                                                         "coarsening",
                                                          "chebyshev_degree",
                                                          "cycle"};
 
@@ -91,6 +92,9 @@ struct AnalysisSpec {
   /// Lattice levels below the `levels` ones until the coarsest has at most this many vertices
   /// (0: none); see README "Multigrid"
   int coarsest_max_vertices = 0;
+  /// Derived coarse meshes: about this many times fewer vertices than the level above (0: the
+  /// mesh size doubled per level); see README "Multigrid"
+  double coarsening = MultigridParams{}.hierarchy.coarsening;
   int vcycles = 0;  ///< 0: iterate to tolerance
   int smoothing = 1;
   /// Gauss-Seidel ordering: hybrid (the default: l1 Gauss-Seidel in domains, Jacobi across them,

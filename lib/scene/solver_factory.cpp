@@ -12,6 +12,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   p.hierarchy.kind = a.hierarchy;
   p.hierarchy.levels = a.levels;
   p.hierarchy.coarsest_max_vertices = a.coarsest_max_vertices;
+  p.hierarchy.coarsening = a.coarsening;
   p.pre_smoothing = p.post_smoothing = a.smoothing;
   p.vcycles = a.vcycles;
   p.tolerance = a.tolerance;
