@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Where a multigrid hierarchy is weak, by a route independent of corofem's own cycle (issue 36).
 
-Usage: bench/multigrid_diagnosis.py [--spectrum K] DIR [DIR...]      (needs python3-scipy)
+Usage: bench/multigrid_diagnosis.py [--spectrum K] [--smoothed-prolongation] DIR [DIR...]      (needs python3-scipy)
 
 DIR is what `corofem export-matrices SCENE.json --out DIR` writes: A<h>.mtx and R<h>.mtx (at least
 two levels). With natural-order nodal 3x3 block Gauss-Seidel (forward before the coarse
@@ -15,6 +15,11 @@ correction, backward after) and a direct solve on the coarsest level, it prints 
     it, how many of those lie outside their coarse tet (a negative transfer weight), how many
     clusters they form, and its Rayleigh quotient against the block diagonal (small: a smooth
     local mode that smoothing barely reduces);
+  - with --smoothed-prolongation, the same with the first transfer smoothed as smoothed
+    aggregation smooths its tentative one, P' = (I - w D^-1 A) P (D the 3x3 block diagonal,
+    w = 4 / (3 lambda_max(D^-1 A))), the coarse operators formed again from it, and their size:
+    whether a smoothed geometric prolongation (issue 36's candidate) would pay for its denser
+    coarse operators;
   - with --spectrum K, the K largest eigenvalues of the V-cycle's error propagation E = I - B A
     (Arnoldi, scipy's eigs): a few isolated ones would be what CG (or a deflation of a few
     vectors) removes in a few iterations; a cluster of many is what bounds MG-PCG's iterations.
@@ -37,8 +42,27 @@ def block_triangle(a, lower):
     return sp.csc_matrix((c.data[keep], (c.row[keep], c.col[keep])), shape=a.shape)
 
 
+def block_diagonal_inverse(a):
+    """The inverse of A's 3x3 block diagonal, as a sparse matrix."""
+    n = a.shape[0] // 3
+    return sp.block_diag([np.linalg.inv(a[3 * i:3 * i + 3, 3 * i:3 * i + 3].toarray()) for i in range(n)],
+                         format="csr")
+
+
+def smoothed_restriction(a, r):
+    """R' = P'^T for P' = (I - w D^-1 A) P, P = R^T: R' = R (I - w A D^-1) (A, D symmetric)."""
+    d_inv = block_diagonal_inverse(a)
+    v = np.random.default_rng(2).standard_normal(a.shape[0])
+    for _ in range(30):  # power iteration for lambda_max(D^-1 A)
+        v = d_inv @ (a @ v)
+        v /= np.linalg.norm(v)
+    lam = float(v @ (d_inv @ (a @ v)))
+    w = 4 / (3 * lam)
+    return sp.csr_matrix(r - w * ((r @ a) @ d_inv)), w
+
+
 class Hierarchy:
-    def __init__(self, folder):
+    def __init__(self, folder, smooth_first=False):
         self.a = []
         h = 0
         while True:
@@ -50,6 +74,11 @@ class Hierarchy:
         self.r = [sp.csr_matrix(scipy.io.mmread(f"{folder}/R{h}.mtx")) for h in range(len(self.a) - 1)]
         if len(self.a) < 2:
             sys.exit(f"{folder}: needs A0.mtx, A1.mtx and R0.mtx (corofem export-matrices)")
+        self.blocks_before = [a.nnz // 9 for a in self.a]
+        if smooth_first:
+            self.r[0], self.omega = smoothed_restriction(self.a[0], self.r[0])
+            for h in range(len(self.r)):
+                self.a[h + 1] = sp.csr_matrix(self.r[h] @ self.a[h] @ self.r[h].T)
         lu = lambda m: sl.splu(m, permc_spec="NATURAL", diag_pivot_thresh=0)
         self.forward = [lu(block_triangle(a, True)) for a in self.a]
         self.backward = [lu(block_triangle(a, False)) for a in self.a]
@@ -82,13 +111,17 @@ class Hierarchy:
         return float(np.exp(np.mean(np.log(ratios[-8:])))), e
 
 
-def diagnose(folder):
-    m = Hierarchy(folder)
+def diagnose(folder, smooth_first=False):
+    m = Hierarchy(folder, smooth_first)
     a, n = m.a[0], m.a[0].shape[0] // 3
     levels = len(m.a)
     two_grid, e = m.slowest(1)
     full = m.slowest(levels - 1)[0] if levels > 2 else two_grid
     print(f"{folder}: {levels} levels, {n} fine vertices")
+    if smooth_first:
+        print(f"  first prolongation smoothed (w = {m.omega:.3f}): coarse blocks per level " +
+              " / ".join(f"{b} -> {a.nnz // 9}" for b, a in zip(m.blocks_before[1:], m.a[1:])) +
+              f", transfer entries {m.r[0].nnz}")
     print(f"  two-grid factor {two_grid:.3f}, V-cycle over all levels {full:.3f}")
     print(f"  two-grid with 1 / 2 / 4 sweeps each side: {two_grid:.3f} / " +
           " / ".join(f"{m.slowest(1, s)[0]:.3f}" for s in (2, 4)))
@@ -125,10 +158,11 @@ def spectrum(folder, k):
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(usage=__doc__)
     parser.add_argument("--spectrum", type=int, default=0, metavar="K")
+    parser.add_argument("--smoothed-prolongation", action="store_true")
     parser.add_argument("folders", nargs="+", metavar="DIR")
     args = parser.parse_args()
     for folder in args.folders:
         if args.spectrum:
             spectrum(folder, args.spectrum)
         else:
-            diagnose(folder)
+            diagnose(folder, args.smoothed_prolongation)
