@@ -55,16 +55,17 @@ bool too_coarse(const MeshSpec& spec, const std::optional<SurfaceMesh>& surface)
          coarsened_surface_vertices(*surface, spec.size) < kMinCoarsenedSurfaceVertices;
 }
 
-/// A derived level of about `wanted` vertices: `spec` (its size twice the level above's) meshed,
-/// and re-meshed at a corrected size while its count misses by more than 15%, at most 4 times.
-/// The count goes as size^-p, p between 2 (a mesh whose surface sets its vertices) and 3 (its
-/// volume): the first correction takes p = 2.5, later ones the slope of the last two meshings.
-/// The closest mesh is kept, with its size; nullopt where even the first size is too coarse for
-/// the surface.
+/// A coarse level's mesh and the size it was meshed at (the next level starts from it).
 struct SizedMesh {
   TetMesh mesh;
   double size = 0;
 };
+
+/// A derived level of about `wanted` vertices: `spec` (its size twice the level above's) meshed,
+/// and re-meshed at a corrected size while its count misses by more than 15%, at most 4 times.
+/// The count goes as size^-p, p between 2 (a mesh whose surface sets its vertices) and 3 (its
+/// volume): the first correction takes p = 2.5, later ones the slope of the last two meshings.
+/// The closest mesh is kept; nullopt where even the first size is too coarse for the surface.
 std::optional<SizedMesh> mesh_near_vertex_count(MeshSpec spec, double wanted,
                                                 const std::optional<SurfaceMesh>& surface) {
   constexpr int kMeshings = 4;
