@@ -45,6 +45,19 @@ std::string closing_line(const Scene& scene, SimulationResult& result) {
 }
 
 /// The record's summary: provenance, the mesh, the analysis as run, convergence and timings.
+/// The record's solver: a corotated Newton run names how its tangent is solved.
+std::string newton_solver_name(NewtonTangent tangent, const std::string& solver) {
+  switch (tangent) {
+    case NewtonTangent::ByGmres:
+      return solver + " (GMRES), Newton";
+    case NewtonTangent::Factored:
+      return "sparse LU (UMFPACK), Newton";
+    case NewtonTangent::None:
+      break;
+  }
+  return solver;
+}
+
 nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& result) {
   const Scene& scene = simulation.scene();
   const FeProblem& problem = simulation.problem();
@@ -68,11 +81,8 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
       {"integrator", kIntegrators.name(a.integrator)},
       {"rotation", kRotationMethods.name(corotational ? a.rotation : RotationMethod::None)},
       {"rotation_params", to_json(a.rotation_params)},
-      {"solver", newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver)
-                     ? solver->name() + " (GMRES), Newton"
-                 : a.integrator == Integrator::Newton && corotational
-                     ? "sparse LU (UMFPACK), Newton"
-                     : solver->name()}};
+      {"solver", newton_solver_name(newton_tangent(a.type, a.integrator, a.formulation, a.solver),
+                                    solver->name())}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
     r["analysis"]["multigrid"] = to_json(multigrid_params(a));
     r["multigrid"] = simulation.describe_multigrid(*mg);

@@ -270,13 +270,6 @@ json bare_surface(json scene) {
   return scene;
 }
 
-/// Whether the scene's coarse meshes are re-meshed at sizes corofem picks (the quadruped, a
-/// surface without levels), which `analysis.coarsening` can set by their vertex ratio.
-bool re_meshes_levels(const json& scene) {
-  const json& mesh = scene["mesh"];
-  return !has_given_levels(scene) && (mesh.contains("shape") || mesh.contains("surface"));
-}
-
 /// The vertex ratio per level at which the quadruped's rho and MG-PCG iterations stop depending
 /// on its size (issue 36; README "Multigrid": 11k-270k tets, 25 steps, rho 0.40-0.44, 5
 /// iterations at every size, against 0.41-0.50 and 4-6 with the default size doubling).
@@ -460,7 +453,7 @@ json run_paper_tables(const ReportConfig& config) {
       tables["small_strain"].push_back(small_strain_row(m));
       for (const HierarchyKind hierarchy : {HierarchyKind::Meshes, HierarchyKind::Lattice})
         tables["multigrid"].push_back(multigrid_row(m, hierarchy));
-      if (m.id.rfind("quadruped-", 0) == 0 && re_meshes_levels(m.scene))
+      if (model == "quadruped")  // its coarse meshes derived, at sizes corofem picks
         tables["multigrid"].push_back(
             multigrid_row(m, HierarchyKind::Meshes, false, kSizeIndependentCoarsening));
       if (has_given_levels(m.scene))

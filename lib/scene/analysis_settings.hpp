@@ -76,6 +76,18 @@ inline bool newton_tangent_by_solver(AnalysisType type, Integrator integrator,
          formulation == Formulation::Corotational && is_petsc_solver(solver);
 }
 
+/// How a run solves a Newton tangent: none (no corotated Newton), factored (the serial sparse
+/// factorizations) or by the PETSc solver's GMRES (newton_tangent_by_solver).
+enum class NewtonTangent { None, Factored, ByGmres };
+inline NewtonTangent newton_tangent(AnalysisType type, Integrator integrator,
+                                    Formulation formulation, SolverKind solver) {
+  if (newton_tangent_by_solver(type, integrator, formulation, solver))
+    return NewtonTangent::ByGmres;
+  return integrator == Integrator::Newton && formulation == Formulation::Corotational
+             ? NewtonTangent::Factored
+             : NewtonTangent::None;
+}
+
 /// The PETSc solver of a solver kind for which is_petsc_solver holds.
 inline PetscSolverKind petsc_solver_kind(SolverKind solver) {
   return solver == SolverKind::PetscGamg        ? PetscSolverKind::Gamg

@@ -76,19 +76,16 @@ std::optional<SizedMesh> mesh_near_vertex_count(MeshSpec spec, double wanted,
   for (int k = 0; k < kMeshings; ++k) {
     spec.size = std::exp(log_size);
     if (too_coarse(spec, surface)) break;  // finer than this was meshed, or nothing is
-    std::optional<TetMesh> mesh;
-    if (!best) {
-      mesh = mesh_of(spec, surface);  // the first size must mesh (coarse_meshes says why not)
-    } else {
-      try {
-        mesh = mesh_of(spec, surface);
-      } catch (const InputError&) {
-        break;  // keep the closest mesh made so far
-      }
+    TetMesh mesh;
+    try {
+      mesh = mesh_of(spec, surface);
+    } catch (const InputError&) {
+      if (!best) throw;  // the first size must mesh (coarse_meshes says why not)
+      break;             // keep the closest mesh made so far
     }
-    const double miss = std::log(mesh->num_vertices() / wanted);  // > 0: too many vertices
+    const double miss = std::log(mesh.num_vertices() / wanted);  // > 0: too many vertices
     if (!best || std::abs(miss) < std::abs(best_miss)) {
-      best = SizedMesh{std::move(*mesh), spec.size};
+      best = SizedMesh{std::move(mesh), spec.size};
       best_miss = miss;
     }
     if (std::abs(miss) <= tolerance) break;

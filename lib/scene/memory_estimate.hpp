@@ -30,7 +30,6 @@ namespace corofem {
 /// newton_tangent_by_solver), whose 50 basis vectors add 300 bytes per tet (3 DOFs on about 0.2
 /// vertices per tet; GAMG's Newton on that bar at 2 ranks peaked at 391 MB a rank, against 439 MB
 /// estimated with them).
-enum class NewtonTangent { None, Factored, ByGmres };
 double run_bytes(SolverKind solver, double tets, int ranks = 1,
                  NewtonTangent tangent = NewtonTangent::None);
 /// The rule run_bytes applies, for messages ("1.5 kB per tet for mgpcg").

@@ -325,12 +325,7 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
     const AnalysisSpec& a = s.analysis;
     const int ranks =
         distributes_mesh(a.type, a.integrator, a.solver, launcher_size()) ? launcher_size() : 1;
-    const NewtonTangent tangent =
-        newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver)
-            ? NewtonTangent::ByGmres
-        : a.integrator == Integrator::Newton && a.formulation == Formulation::Corotational
-            ? NewtonTangent::Factored
-            : NewtonTangent::None;
+    const NewtonTangent tangent = newton_tangent(a.type, a.integrator, a.formulation, a.solver);
     require_memory(
         s.mesh.estimated_tets, run_bytes(a.solver, s.mesh.estimated_tets, ranks, tangent),
         "scene '" + name + "': mesh." + (s.mesh.kind == MeshSpec::Kind::Box ? "cells" : "size"),
