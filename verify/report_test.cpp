@@ -6,6 +6,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -450,6 +451,30 @@ TEST(Report, PublishedSnapshotHasTheSchemaTheCodeWrites) {
   EXPECT_EQ(std::system(command.c_str()), 0) << read_text(dir / "drift");
   EXPECT_EQ(read_text(dir / "drift").find(" 0 record file(s) compared"), std::string::npos)
       << read_text(dir / "drift");
+}
+
+TEST(Report, ReadmeHeadlineIsThePublishedSnapshots) {
+  // The front page's Table 1 (README.md, between its headline markers) is drawn from the
+  // published snapshot's tables.json, so its numbers, commit and machine are the snapshot's.
+  // On a failure: reports/readme_headline.py README.md reports (reports/publish runs it).
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the script cannot run";
+  TempDir dir;
+  const std::string command =
+      "python3 '" + (test::source_dir() / "reports" / "readme_headline.py").string() +
+      "' --check '" + (test::source_dir() / "README.md").string() + "' '" +
+      (test::source_dir() / "reports").string() + "' > '" + (dir / "drift").string() + "' 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0) << read_text(dir / "drift");
+  // and the check fails on a headline that is not the snapshot's
+  std::string stale = read_text(test::source_dir() / "README.md");
+  const std::size_t row = stale.find("| dragon | ");
+  ASSERT_NE(row, std::string::npos);
+  stale.insert(row + 2, "old ");
+  { std::ofstream(dir / "README.md") << stale; }
+  const std::string check_stale = "python3 '" +
+                                  (test::source_dir() / "reports" / "readme_headline.py").string() +
+                                  "' --check '" + (dir / "README.md").string() + "' '" +
+                                  (test::source_dir() / "reports").string() + "' > /dev/null 2>&1";
+  EXPECT_NE(std::system(check_stale.c_str()), 0);
 }
 
 TEST(Report, SaysWhenTheSolveCarriedTheCoarsestFactorization) {
