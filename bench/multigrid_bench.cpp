@@ -16,6 +16,7 @@
 #include "io/solver_record.hpp"
 #include "linalg/preconditioned_cg.hpp"
 #include "multigrid/multigrid_solver.hpp"
+#include "single_precision_kernels.hpp"
 #include "solver/petsc_galerkin.hpp"
 #include "solver/petsc_solver.hpp"
 #include "sparse/block_kernels.hpp"
@@ -334,7 +335,23 @@ void BM_BlockKernels(benchmark::State& state, const std::string& model) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(system.rhs.size()), y;
   std::vector<double> product_ms[2], sweep_ms[2], descent_ms[2];
   Eigen::VectorXd z;
+  // Issue 36's single-precision hierarchy: the same product and sweeps in float and double.
+  const BlocksIn<double> blocks_double(a);
+  const BlocksIn<float> blocks_float(a);
+  const Eigen::VectorXf rhs_float = system.rhs.cast<float>();
+  Eigen::VectorXf x_float = Eigen::VectorXf::Zero(rhs_float.size()), y_float(rhs_float.size());
+  Eigen::VectorXd x_double = Eigen::VectorXd::Zero(system.rhs.size());
+  Eigen::VectorXd y_double(system.rhs.size());
+  std::vector<double> product_double_ms, product_float_ms, sweeps_double_ms, sweeps_float_ms;
   for (auto _ : state) {
+    product_double_ms.push_back(
+        warm_time_ms([&] { multiply(blocks_double, system.rhs.data(), y_double.data()); }));
+    product_float_ms.push_back(
+        warm_time_ms([&] { multiply(blocks_float, rhs_float.data(), y_float.data()); }));
+    sweeps_double_ms.push_back(
+        warm_time_ms([&] { symmetric_sweeps(blocks_double, system.rhs.data(), x_double.data()); }));
+    sweeps_float_ms.push_back(
+        warm_time_ms([&] { symmetric_sweeps(blocks_float, rhs_float.data(), x_float.data()); }));
     descent_ms[0].push_back(warm_time_ms([&] {
       smoother.forward_from_zero(a, system.rhs, z);
       a.residual(system.rhs, z, y);
@@ -360,6 +377,11 @@ void BM_BlockKernels(benchmark::State& state, const std::string& model) {
   state.counters["sweeps_speedup"] = median(sweep_ms[0]) / median(sweep_ms[1]);
   state.counters["descent_separate_ms"] = median(descent_ms[0]);
   state.counters["descent_fused_ms"] = median(descent_ms[1]);
+  state.counters["product_float_speedup"] = median(product_double_ms) / median(product_float_ms);
+  state.counters["sweeps_float_speedup"] = median(sweeps_double_ms) / median(sweeps_float_ms);
+  // the float product's error against the double one, relative (float round-off: ~1e-7)
+  state.counters["product_float_error"] =
+      (y_float.cast<double>() - y_double).norm() / y_double.norm();
   state.counters["threads"] = thread_count();
 }
 
