@@ -44,7 +44,6 @@ std::string closing_line(const Scene& scene, SimulationResult& result) {
   return line + ", " + general_number(result.timings_ms["total"]) + " ms\n";
 }
 
-/// The record's summary: provenance, the mesh, the analysis as run, convergence and timings.
 /// The record's solver: a corotated Newton run names how its tangent is solved.
 std::string newton_solver_name(NewtonTangent tangent, const std::string& solver) {
   switch (tangent) {
@@ -58,6 +57,7 @@ std::string newton_solver_name(NewtonTangent tangent, const std::string& solver)
   return solver;
 }
 
+/// The record's summary: provenance, the mesh, the analysis as run, convergence and timings.
 nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& result) {
   const Scene& scene = simulation.scene();
   const FeProblem& problem = simulation.problem();
