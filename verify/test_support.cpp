@@ -10,6 +10,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/errors.hpp"
+#include "mesh/gmsh_mesh.hpp"
+
 namespace corofem::test {
 namespace fs = std::filesystem;
 
@@ -81,6 +84,17 @@ TempDir::~TempDir() {
 void write_text(const fs::path& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary);
   out << text;
+}
+
+void expect_mesh_refused(const fs::path& file, const std::string& fragment) {
+  try {
+    read_volume_mesh(file);
+    ADD_FAILURE() << "no error for " << file;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(file.string()), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
 }
 
 std::string read_text(const fs::path& file) {
