@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -387,6 +388,68 @@ TEST(CliRun, BadCoarseMeshIsBadInput) {
     EXPECT_NE(r.err.find(c.fragment), std::string::npos) << c.name << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << c.name;
   }
+}
+
+TEST(CliRun, AlternateRunsComparesTwoConfigurations) {
+  // bench/alternate_runs.py, the tool issue 36's timing targets are measured with: two
+  // configurations alternated, medians, ratios, and whether they computed the same thing.
+  TempDir dir;
+  const std::string bar = R"({
+    "mesh": {"box": [1, 0.1, 0.1], "cells": [12, 2, 2]},
+    "material": {"young": 5e6, "poisson": 0.3, "density": 1000},
+    "fixed": [{"box": [[0, 0, 0], [0, 0.1, 0.1]]}],
+    "gravity": [0, 0, -9.81],
+    "analysis": {"type": "dynamic", "solver": "mgpcg", "levels": 2, "dt": 0.01, "steps": 4,
+                 "tolerance": TOL}})";
+  const auto with_tolerance = [&](const std::string& tolerance) {
+    std::string scene = bar;
+    return scene.replace(scene.find("TOL"), 3, tolerance);
+  };
+  write_text(dir / "a.json", with_tolerance("1e-4"));
+  write_text(dir / "b.json", with_tolerance("1e-10"));
+  const auto compare = [&](const std::string& candidate_scene, const std::string& out) {
+    const std::string command =
+        "python3 '" + (test::source_dir() / "bench" / "alternate_runs.py").string() +
+        "' --runs 2 --threads 1 --target step=1e9 --target solve=1e-9 --baseline '" + COROFEM_CLI +
+        "' --candidate '" + COROFEM_CLI + ":" + (dir / candidate_scene).string() + "' --out '" +
+        (dir / out).string() + "' '" + (dir / "a.json").string() + "' 2> '" +
+        (dir / "err").string() + "'";
+    return std::system(command.c_str());
+  };
+  ASSERT_EQ(compare("a.json", "same.json"), 0) << test::read_text(dir / "err");
+  ASSERT_EQ(compare("b.json", "other.json"), 0) << test::read_text(dir / "err");
+  const auto same = nlohmann::json::parse(test::read_text(dir / "same.json"))["comparisons"][0];
+  const auto other = nlohmann::json::parse(test::read_text(dir / "other.json"))["comparisons"][0];
+  // One binary on one scene gives the same bits (a run is deterministic); a tolerance 1e6 times
+  // tighter takes more CG iterations and moves the displacements far more than 1e-12 of them.
+  EXPECT_TRUE(same["same_result"].get<bool>());
+  EXPECT_FALSE(other["same_result"].get<bool>());
+  for (const auto& c : {same, other}) {
+    for (const char* name : {"baseline", "candidate"}) {
+      const auto& runs = c[name]["ms_per_step_runs"];
+      ASSERT_EQ(runs["step"].size(), 2u);
+      const auto& ms = c[name]["ms_per_step"];
+      // The solve is a phase of the step, and the median of two runs lies between them.
+      EXPECT_GT(ms["solve"].get<double>(), 0);
+      EXPECT_LE(ms["solve"].get<double>(), ms["step"].get<double>());
+      EXPECT_GE(ms["step"].get<double>(),
+                std::min(runs["step"][0].get<double>(), runs["step"][1].get<double>()));
+      EXPECT_TRUE(c[name]["context"].contains("commit"));
+    }
+    const double ratio = c["candidate_over_baseline"]["step"].get<double>();
+    EXPECT_NEAR(ratio,
+                c["candidate"]["ms_per_step"]["step"].get<double>() /
+                    c["baseline"]["ms_per_step"]["step"].get<double>(),
+                1e-12 * ratio);
+    ASSERT_EQ(c["targets"].size(), 2u);
+    EXPECT_TRUE(c["targets"][0]["met"].get<bool>());   // step ratio <= 1e9
+    EXPECT_FALSE(c["targets"][1]["met"].get<bool>());  // solve ratio <= 1e-9
+  }
+  // A run that fails stops the tool with its message, and nothing is written.
+  write_text(dir / "b.json", "{");
+  EXPECT_NE(compare("b.json", "failed.json"), 0);
+  EXPECT_NE(test::read_text(dir / "err").find("b.json"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "failed.json"));
 }
 
 TEST(CliHelp, ToolAndCommandHelp) {
