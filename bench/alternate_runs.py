@@ -27,6 +27,8 @@ import subprocess
 import sys
 import tempfile
 
+from run_record import displacement_norm, ms_per_step
+
 PHASES = ("solve", "update", "step")
 
 
@@ -50,11 +52,8 @@ def run_once(config, scene, threads, out_file):
         sys.exit(f"alternate_runs: {' '.join(command)} exited {done.returncode}:\n{done.stderr}")
     with open(out_file) as f:
         record = json.load(f)
-    steps = record["steps"] if isinstance(record["steps"], int) else len(record["steps"])
-    ms = record["timings_ms"]
-    per_step = {"solve": ms.get("solve", 0.0) / steps, "update": ms.get("update", 0.0) / steps,
-                "step": (ms["total"] - ms.get("setup", 0.0)) / steps}
-    return record, per_step
+    per_step = ms_per_step(record)
+    return record, {phase: per_step.get(phase, 0.0) for phase in PHASES}
 
 
 def same_result(a, b):
@@ -63,11 +62,8 @@ def same_result(a, b):
     ua, ub = a["displacement"], b["displacement"]
     if len(ua) != len(ub):
         return False
-    flat_a = [x for v in ua for x in v]
-    flat_b = [x for v in ub for x in v]
-    norm = math.sqrt(sum(x * x for x in flat_a))
-    difference = math.sqrt(sum((x - y) ** 2 for x, y in zip(flat_a, flat_b)))
-    return difference <= 1e-12 * max(norm, 1e-300)
+    difference = math.sqrt(sum((x - y) ** 2 for u, v in zip(ua, ub) for x, y in zip(u, v)))
+    return difference <= 1e-12 * max(displacement_norm(a), 1e-300)
 
 
 def compare(scene, configs, runs, threads, targets, work):

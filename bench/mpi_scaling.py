@@ -22,12 +22,13 @@ atomically.
 """
 import argparse
 import json
-import math
 import os
 import statistics
 import subprocess
 import sys
 import tempfile
+
+from run_record import displacement_norm, ms_per_step
 
 SOLVERS = ["petsc-gamg", "hypre-boomeramg", "petsc-mg"]
 ELEMENT_PHASES = ("rotate", "assemble", "forces")
@@ -68,9 +69,7 @@ def measure(corofem, cells, solver, ranks, threads, steps, repeats, work):
     record = None
     for _ in range(repeats):
         record = run_once(corofem, bar_scene(cells, solver, steps), ranks, threads, work)
-        timings = record["timings_ms"]
-        phases = {k: v / record["steps"] for k, v in timings.items() if k not in ("setup", "total")}
-        phases["step"] = (timings["total"] - timings["setup"]) / record["steps"]
+        phases = ms_per_step(record)
         phases["element"] = sum(phases.get(p, 0.0) for p in ELEMENT_PHASES)
         phases["solver"] = sum(phases.get(p, 0.0) for p in SOLVE_PHASES)
         for k, v in phases.items():
@@ -83,7 +82,7 @@ def measure(corofem, cells, solver, ranks, threads, steps, repeats, work):
             "distributed": record["mpi"]["distributed"],
             "oversubscribed": ranks * threads > (os.cpu_count() or 1),
             "linear_iterations_per_step": record["linear_iterations"] / record["steps"],
-            "displacement_norm": math.sqrt(sum(c * c for u in record["displacement"] for c in u)),
+            "displacement_norm": displacement_norm(record),
             "converged": record["converged"],
             # The largest rank's: peak RSS, tets held (its element visits per pass) and halo.
             "peak_rss_kb_per_rank": largest.get("peak_rss_kb", record["peak_rss_kb"]),

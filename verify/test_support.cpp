@@ -86,6 +86,13 @@ void write_text(const fs::path& file, const std::string& text) {
   out << text;
 }
 
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 void expect_mesh_refused(const fs::path& file, const std::string& fragment) {
   try {
     read_volume_mesh(file);
@@ -95,13 +102,6 @@ void expect_mesh_refused(const fs::path& file, const std::string& fragment) {
     EXPECT_NE(what.find(file.string()), std::string::npos) << what;
     EXPECT_NE(what.find(fragment), std::string::npos) << what;
   }
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 CliResult run_cli(const std::string& args, const std::string& launcher) {

@@ -65,10 +65,10 @@ std::string without_mpi_singleton();
 std::string mpirun_two_ranks();
 
 void write_text(const std::filesystem::path& file, const std::string& text);
+std::string read_text(const std::filesystem::path& file);
 /// Expects read_volume_mesh to refuse `file` with an InputError naming the file and containing
 /// `fragment`.
 void expect_mesh_refused(const std::filesystem::path& file, const std::string& fragment);
-std::string read_text(const std::filesystem::path& file);
 
 /// Element e's dense 12x12 K_e from its rest vertices and material (element_stiffness), the
 /// oracle the assembly kernels are held to.
