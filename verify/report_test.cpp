@@ -567,7 +567,7 @@ TEST(Report, RecordCaseKeepsTheErrorKind) {
 }
 
 /// The main job's default (issue 38): Table 1 at the paper's three sizes, the comparison tables
-/// where they cost seconds; --full at every size.
+/// where they cost seconds (the Jacobi-PCG table on every model file); --full at every size.
 TEST(Report, StandardModeRunsTableOneAtThePapersThreeSizes) {
   ReportConfig standard;
   ASSERT_EQ(standard.mode, ReportConfig::Mode::Standard);
@@ -579,6 +579,12 @@ TEST(Report, StandardModeRunsTableOneAtThePapersThreeSizes) {
   EXPECT_TRUE(standard.comparison_tables(SceneSize::S));
   EXPECT_FALSE(standard.comparison_tables(SceneSize::M));
   EXPECT_FALSE(standard.comparison_tables(SceneSize::L));
+  EXPECT_FALSE(standard.jacobi_table(SceneSize::L));
+  ReportConfig with_models;
+  with_models.models_dir = "models";  // the horse's and dragon's Jacobi rows: issue 36's targets
+  EXPECT_TRUE(with_models.jacobi_table(SceneSize::M));
+  EXPECT_TRUE(with_models.jacobi_table(SceneSize::L));
+  EXPECT_FALSE(with_models.comparison_tables(SceneSize::L));
   EXPECT_EQ(standard.stability_scenes().size(), 6u);  // every procedural stability scene
   ReportConfig full;
   full.mode = ReportConfig::Mode::Full;

@@ -458,9 +458,10 @@ json run_paper_tables(const ReportConfig& config) {
             multigrid_row(m, HierarchyKind::Meshes, false, kSizeIndependentCoarsening));
       if (has_given_levels(m.scene))
         tables["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes, true));
-      if (config.comparison_tables(size)) {
+      if (config.jacobi_table(size))
         for (const double young_scale : {1.0, 100.0})
           tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
+      if (config.comparison_tables(size)) {
         for (const auto& [rival, reuse] :
              std::vector<std::pair<SolverKind, bool>>{{SolverKind::PetscGamg, false},
                                                       {SolverKind::HypreBoomeramg, false},

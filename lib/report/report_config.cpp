@@ -46,6 +46,10 @@ bool ReportConfig::comparison_tables(SceneSize size) const {
   return mode != Mode::Standard || size == SceneSize::Small || size == SceneSize::S;
 }
 
+bool ReportConfig::jacobi_table(SceneSize size) const {
+  return comparison_tables(size) || with_models();
+}
+
 std::vector<SceneSize> ReportConfig::multigrid_only_sizes(const std::string& model) const {
   if (mode != Mode::Full || with_models() || model != "quadruped") return {};
   return {SceneSize::XL};
