@@ -27,6 +27,7 @@ import subprocess
 import sys
 import tempfile
 
+from json_output import write_json_atomically
 from run_record import displacement_norm, ms_per_step
 
 PHASES = ("solve", "update", "step")
@@ -116,14 +117,10 @@ def main():
         report = {"producer": "bench/alternate_runs.py",
                   "comparisons": [compare(scene, configs, args.runs, args.threads, args.target,
                                           work) for scene in args.scenes]}
-    text = json.dumps(report, indent=1) + "\n"
-    if not args.out:
-        sys.stdout.write(text)
-        return
-    directory = os.path.dirname(os.path.abspath(args.out))
-    with tempfile.NamedTemporaryFile("w", dir=directory, delete=False) as f:
-        f.write(text)
-    os.replace(f.name, args.out)
+    if args.out:
+        write_json_atomically(args.out, report)
+    else:
+        sys.stdout.write(json.dumps(report, indent=1) + "\n")
 
 
 if __name__ == "__main__":

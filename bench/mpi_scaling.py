@@ -28,6 +28,7 @@ import subprocess
 import sys
 import tempfile
 
+from json_output import write_json_atomically
 from run_record import displacement_norm, ms_per_step
 
 SOLVERS = ["petsc-gamg", "hypre-boomeramg", "petsc-mg"]
@@ -169,12 +170,7 @@ def main():
                       "oversubscribed (memory and element visits only)",
               "summary": summary(runs, ranks),
               "runs": runs}
-    folder = os.path.dirname(os.path.abspath(args.out))
-    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".json")
-    with os.fdopen(fd, "w") as f:
-        json.dump(result, f, indent=1, sort_keys=True)
-    os.chmod(tmp, 0o644)
-    os.replace(tmp, args.out)
+    write_json_atomically(args.out, result, sort_keys=True)
     print(f"mpi_scaling: wrote {args.out}", file=sys.stderr)
     return 0
 

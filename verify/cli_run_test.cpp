@@ -418,6 +418,10 @@ TEST(CliRun, AlternateRunsComparesTwoConfigurations) {
   };
   ASSERT_EQ(compare("a.json", "same.json"), 0) << test::read_text(dir / "err");
   ASSERT_EQ(compare("b.json", "other.json"), 0) << test::read_text(dir / "err");
+  // Written whole through a rename, and readable by all as every other result file.
+  EXPECT_NE(std::filesystem::status(dir / "same.json").permissions() &
+                std::filesystem::perms::others_read,
+            std::filesystem::perms::none);
   const auto same = nlohmann::json::parse(test::read_text(dir / "same.json"))["comparisons"][0];
   const auto other = nlohmann::json::parse(test::read_text(dir / "other.json"))["comparisons"][0];
   // One binary on one scene gives the same bits (a run is deterministic); a tolerance 1e6 times

@@ -28,8 +28,8 @@ struct ReportConfig {
   /// The table models (procedural, or the files' with --models) and the sizes of each.
   std::vector<std::string> models() const;  ///< quadruped first: the paper's rows
   std::vector<SceneSize> table_sizes(const std::string& model) const;
-  /// Whether the tables past Table 1 (Jacobi-PCG, the rival solvers) run at this size: in the
-  /// standard report only up to the paper's smallest size, where they cost seconds, not minutes.
+  /// Whether the rival solvers' table (and the Jacobi-PCG table, see jacobi_table) runs at this
+  /// size: in the standard report only up to the paper's smallest size, where it costs seconds.
   bool comparison_tables(SceneSize size) const;
   /// Whether the Jacobi-PCG table runs at this size: as the comparison tables, and on every model
   /// file with --models, whose horse and dragon are where issue 36's targets against Jacobi-PCG
