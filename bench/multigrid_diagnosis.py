@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Where a multigrid hierarchy is weak, by a route independent of corofem's own cycle (issue 36).
 
-Usage: bench/multigrid_diagnosis.py [--spectrum K] [--smoothed-prolongation] DIR [DIR...]      (needs python3-scipy)
+Usage: bench/multigrid_diagnosis.py [--spectrum K] [--smoothed-prolongation] [--rigid-enrichment N]
+                                    [--thin-patches K] DIR [DIR...]      (needs python3-scipy)
 
 DIR is what `corofem export-matrices SCENE.json --out DIR` writes: A<h>.mtx and R<h>.mtx (at least
 two levels). With natural-order nodal 3x3 block Gauss-Seidel (forward before the coarse
@@ -20,6 +21,20 @@ correction, backward after) and a direct solve on the coarsest level, it prints 
     w = 4 / (3 lambda_max(D^-1 A))), the coarse operators formed again from it, and their size:
     whether a smoothed geometric prolongation (issue 36's candidate) would pay for its denser
     coarse operators;
+  - what the slowest error's vertices are: their neighbour counts against the mesh's, and (with
+    X0.mtx, the fine positions) how far the largest clusters' error is from a rigid motion and from
+    an affine field (least-squares misfit, 0 = exactly rigid): near-rigid motions of a feature are
+    what a coarse space with that feature's rigid-body modes would remove;
+  - with --rigid-enrichment N (needs X0.mtx), the two-grid factor with a second coarse correction
+    before and after the first: the rigid-body modes of aggregates of at most N vertices (greedy
+    balls in the matrix graph, 6 modes each), once on the vertices outside their coarse tet only,
+    once on all: whether the coarse space lacks piecewise-rigid motions;
+  - with --thin-patches K, the two-grid and V-cycle factors with a patch smoother beside the block
+    Gauss-Seidel sweeps: exact solves on patches of at most 40 vertices covering the vertices with at
+    most K neighbours and their neighbours (thin features: spikes and fins one or two elements
+    thick), forward before the coarse correction and backward after, and what their dense
+    factorizations cost: whether a smoother that solves thin features locally would reach the
+    slowest error;
   - with --spectrum K, the K largest eigenvalues of the V-cycle's error propagation E = I - B A
     (Arnoldi, scipy's eigs): a few isolated ones would be what CG (or a deflation of a few
     vectors) removes in a few iterations; a cluster of many is what bounds MG-PCG's iterations.
@@ -61,6 +76,118 @@ def smoothed_restriction(a, r):
     return sp.csr_matrix(r - w * ((r @ a) @ d_inv)), w
 
 
+def read_positions(folder):
+    """The fine vertices' positions (n x 3) from X0.mtx, or None when the folder has none."""
+    try:
+        return scipy.io.mmread(f"{folder}/X0.mtx").toarray()
+    except FileNotFoundError:
+        return None
+
+
+def vertex_graph(a):
+    """The vertices' adjacency (the 3x3 blocks' pattern), diagonal included."""
+    n = a.shape[0] // 3
+    c = a.tocoo()
+    return sp.csr_matrix((np.ones(len(c.row)), (c.row // 3, c.col // 3)), shape=(n, n))
+
+
+def aggregates(graph, members, size):
+    """Greedy breadth-first balls of at most `size` of the `members` vertices, in index order."""
+    label = -np.ones(graph.shape[0], int)
+    count = 0
+    for seed in np.flatnonzero(members):
+        if label[seed] >= 0:
+            continue
+        label[seed] = count
+        taken, front = 1, [seed]
+        while front and taken < size:
+            grown = []
+            for u in front:
+                for w in graph.indices[graph.indptr[u]:graph.indptr[u + 1]]:
+                    if members[w] and label[w] < 0 and taken < size:
+                        label[w] = count
+                        taken += 1
+                        grown.append(w)
+            front = grown
+        count += 1
+    return [np.flatnonzero(label == k) for k in range(count)]
+
+
+def motion_basis(x, kind):
+    """Columns of the translations, + rotations (rigid), + the 9 linear fields (affine) about the
+    points' centre, DOF 3 v + c."""
+    d = x - x.mean(axis=0)
+    fields = []
+    for c in range(3):
+        f = np.zeros_like(d)
+        f[:, c] = 1
+        fields.append(f)
+    if kind in ("rigid", "affine"):
+        for i, j in ((0, 1), (1, 2), (2, 0)):
+            f = np.zeros_like(d)
+            f[:, i], f[:, j] = -d[:, j], d[:, i]
+            fields.append(f)
+    if kind == "affine":
+        for i in range(3):
+            for j in range(3):
+                f = np.zeros_like(d)
+                f[:, i] = d[:, j]
+                fields.append(f)
+    return np.array([f.ravel() for f in fields]).T
+
+
+def misfit(x, e, vertices, kind):
+    """|e - its least-squares fit by `kind` motions| / |e| on the vertices."""
+    basis = motion_basis(x[vertices], kind)
+    y = e.reshape(-1, 3)[vertices].ravel()
+    fit = basis @ np.linalg.lstsq(basis, y, rcond=None)[0]
+    return np.linalg.norm(y - fit) / np.linalg.norm(y)
+
+
+def rigid_enrichment(a, x, groups):
+    """The extra coarse correction x += Q (Q^T A Q)^-1 Q^T r, Q the orthonormalized rigid-body modes
+    of each group of vertices (groups under 3 vertices skipped), and Q's column count."""
+    rows, cols, vals = [], [], []
+    for vertices in groups:
+        if len(vertices) < 3:
+            continue
+        q, r = np.linalg.qr(motion_basis(x[vertices], "rigid"))
+        q = q[:, np.abs(np.diag(r)) > 1e-8 * abs(r[0, 0])]
+        dofs = (3 * vertices[:, None] + np.arange(3)).ravel()
+        for column in q.T:
+            rows.append(dofs)
+            cols.append(np.full(len(dofs), len(cols)))
+            vals.append(column)
+    q = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                      shape=(a.shape[0], len(cols)))
+    solve = sl.splu(sp.csc_matrix(q.T @ a @ q)).solve
+    return (lambda v, b: v + q @ solve(q.T @ (b - a @ v))), len(cols)
+
+
+def thin_patches(a, neighbours):
+    """Forward and backward patch sweeps (exact solves) over patches of at most 40 vertices covering
+    the vertices with at most `neighbours` neighbours and their neighbours, the number of patch
+    vertices and the patches' dense Cholesky flops."""
+    graph = vertex_graph(a)
+    thin = np.diff(graph.indptr) - 1 <= neighbours
+    thin = thin | (graph @ thin.astype(float) > 0)
+    factors = []
+    for vertices in aggregates(graph, thin, 40):
+        dofs = (3 * vertices[:, None] + np.arange(3)).ravel()
+        factors.append((dofs, np.linalg.cholesky(a[dofs][:, dofs].toarray())))
+
+    def sweep(order):
+        def apply(v, b):
+            v = v.copy()
+            for dofs, chol in factors[::order]:
+                y = np.linalg.solve(chol, b[dofs] - a[dofs] @ v)
+                v[dofs] += np.linalg.solve(chol.T, y)
+            return v
+        return apply
+    flops = sum(len(d) ** 3 / 3 for d, _ in factors)
+    return sweep(1), sweep(-1), int(thin.sum()), flops
+
+
 class Hierarchy:
     def __init__(self, folder, smooth_first=False):
         self.a = []
@@ -83,6 +210,9 @@ class Hierarchy:
         self.forward = [lu(block_triangle(a, True)) for a in self.a]
         self.backward = [lu(block_triangle(a, False)) for a in self.a]
         self.direct = [sl.splu(a.tocsc()) for a in self.a]
+        # Optional fine-level corrections beside the sweeps: (v, b) -> v, after the forward sweep
+        # and before the backward one.
+        self.before_coarse = self.after_coarse = None
 
     def cycle(self, h, b, last, sweeps):
         """x ~ A_h^-1 b by one V-cycle down to `last` (solved directly)."""
@@ -92,7 +222,11 @@ class Hierarchy:
         x = self.forward[h].solve(b)
         for _ in range(sweeps - 1):
             x = x + self.forward[h].solve(b - a @ x)
+        if h == 0 and self.before_coarse:
+            x = self.before_coarse(x, b)
         x = x + self.r[h].T @ self.cycle(h + 1, self.r[h] @ (b - a @ x), last, sweeps)
+        if h == 0 and self.after_coarse:
+            x = self.after_coarse(x, b)
         for _ in range(sweeps):
             x = x + self.backward[h].solve(b - a @ x)
         return x
@@ -111,7 +245,7 @@ class Hierarchy:
         return float(np.exp(np.mean(np.log(ratios[-8:])))), e
 
 
-def diagnose(folder, smooth_first=False):
+def diagnose(folder, smooth_first=False, enrichment=0, patches=0):
     m = Hierarchy(folder, smooth_first)
     a, n = m.a[0], m.a[0].shape[0] // 3
     levels = len(m.a)
@@ -130,15 +264,39 @@ def diagnose(folder, smooth_first=False):
     p = m.r[0].T.tocoo()
     outside = np.zeros(n, bool)
     outside[p.row[p.data < -1e-12] // 3] = True
-    c = a.tocoo()
-    graph = sp.csr_matrix((np.ones(len(c.row)), (c.row // 3, c.col // 3)), shape=(n, n))
+    graph = vertex_graph(a)
     clusters, label = connected_components(graph[top][:, top], directed=False)
     shares = sorted((energy[top][label == k].sum() / energy.sum() for k in range(clusters)), reverse=True)
+    degree = np.diff(graph.indptr) - 1
     blocks = sp.block_diag([a[3 * i:3 * i + 3, 3 * i:3 * i + 3].toarray() for i in range(n)], format="csr")
     print(f"  slowest error: {energy[top].sum() / energy.sum():.1%} of its energy on {len(top)} vertices "
           f"(1%), {outside[top].mean():.0%} of them outside their coarse tet ({outside.mean():.0%} of all "
           f"vertices are), in {clusters} clusters (the largest holds {shares[0]:.0%}); Rayleigh quotient "
           f"against the block diagonal {float(e @ (a @ e)) / float(e @ (blocks @ e)):.3f}")
+    print(f"  its vertices have {np.median(degree[top]):.0f} neighbours (median; the mesh's "
+          f"{np.median(degree):.0f}), {np.mean(degree[top] <= 6):.0%} of them at most 6 "
+          f"({np.mean(degree <= 6):.0%} of all vertices)")
+    x = read_positions(folder)
+    if x is not None:
+        largest = sorted(range(clusters), key=lambda k: -energy[top][label == k].sum())[:3]
+        print("  the largest clusters' error, misfit by a rigid / an affine motion: " + ", ".join(
+            f"{len(top[label == k])} vertices {misfit(x, e, top[label == k], 'rigid'):.2f} / "
+            f"{misfit(x, e, top[label == k], 'affine'):.2f}" for k in largest))
+    if enrichment:
+        if x is None:
+            sys.exit(f"{folder}: --rigid-enrichment needs X0.mtx (corofem export-matrices writes it)")
+        for name, members in (("outside their coarse tet", outside), ("all", np.ones(n, bool))):
+            correct, columns = rigid_enrichment(a, x, aggregates(graph, members, enrichment))
+            m.before_coarse = m.after_coarse = correct
+            print(f"  rigid-body modes of aggregates of at most {enrichment} vertices ({name}, "
+                  f"{columns} columns) as a second coarse correction: two-grid {m.slowest(1)[0]:.3f}")
+        m.before_coarse = m.after_coarse = None
+    if patches:
+        m.before_coarse, m.after_coarse, covered, flops = thin_patches(a, patches)
+        print(f"  patch solves on thin features (at most {patches} neighbours, grown one ring: "
+              f"{covered} vertices, {covered / n:.0%}; {flops / 1e6:.0f} MFlop of factorization): "
+              f"two-grid {m.slowest(1)[0]:.3f}, V-cycle over all levels {m.slowest(levels - 1)[0]:.3f}")
+        m.before_coarse = m.after_coarse = None
 
 
 def spectrum(folder, k):
@@ -159,10 +317,12 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(usage=__doc__)
     parser.add_argument("--spectrum", type=int, default=0, metavar="K")
     parser.add_argument("--smoothed-prolongation", action="store_true")
+    parser.add_argument("--rigid-enrichment", type=int, default=0, metavar="N")
+    parser.add_argument("--thin-patches", type=int, default=0, metavar="K")
     parser.add_argument("folders", nargs="+", metavar="DIR")
     args = parser.parse_args()
     for folder in args.folders:
         if args.spectrum:
             spectrum(folder, args.spectrum)
         else:
-            diagnose(folder, args.smoothed_prolongation)
+            diagnose(folder, args.smoothed_prolongation, args.rigid_enrichment, args.thin_patches)

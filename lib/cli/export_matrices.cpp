@@ -62,6 +62,17 @@ void export_matrices(const Scene& scene, const std::filesystem::path& dir) {
     }
     levels.push_back(level);
   }
+  // The fine vertices' rest positions (n x 3, every entry stored): what a rival's rigid-body modes
+  // (PETSc's MatNullSpaceCreateRigidBody, PyAMG's) and bench/multigrid_diagnosis.py need.
+  const std::vector<Vec3>& rest = problem.mesh.rest;
+  std::vector<Eigen::Triplet<double>> xyz;
+  xyz.reserve(3 * rest.size());
+  for (std::size_t v = 0; v < rest.size(); ++v)
+    for (int c = 0; c < 3; ++c) xyz.emplace_back(static_cast<int>(v), c, rest[v][c]);
+  Eigen::SparseMatrix<double> coordinates(static_cast<Eigen::Index>(rest.size()), 3);
+  coordinates.setFromTriplets(xyz.begin(), xyz.end());
+  write_matrix_market(dir / "X0.mtx", coordinates);
+  levels[0]["coordinates"] = {{"file", "X0.mtx"}, {"rows", rest.size()}, {"cols", 3}};
   const nlohmann::json record = {
       {"producer", "corofem export-matrices"},
       {"context", run_context()},
