@@ -158,6 +158,8 @@ def rigid_enrichment(a, x, groups):
             rows.append(dofs)
             cols.append(np.full(len(dofs), len(cols)))
             vals.append(column)
+    if not cols:  # no group of 3 vertices or more (no vertex outside the coarse mesh)
+        return (lambda v, b: v), 0
     q = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
                       shape=(a.shape[0], len(cols)))
     solve = sl.splu(sp.csc_matrix(q.T @ a @ q)).solve
