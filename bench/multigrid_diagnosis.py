@@ -110,7 +110,8 @@ def aggregates(graph, members, size):
                         grown.append(w)
             front = grown
         count += 1
-    return [np.flatnonzero(label == k) for k in range(count)]
+    order = np.argsort(label, kind="stable")[np.sum(label < 0):]  # members by aggregate
+    return np.split(order, np.cumsum(np.bincount(label[order], minlength=count))[:-1])
 
 
 def motion_basis(x, kind):
@@ -268,7 +269,9 @@ def diagnose(folder, smooth_first=False, enrichment=0, patches=0):
     outside[p.row[p.data < -1e-12] // 3] = True
     graph = vertex_graph(a)
     clusters, label = connected_components(graph[top][:, top], directed=False)
-    shares = sorted((energy[top][label == k].sum() / energy.sum() for k in range(clusters)), reverse=True)
+    cluster_energy = np.bincount(label, weights=energy[top])
+    largest = np.argsort(-cluster_energy)  # clusters, most energy first
+    shares = cluster_energy[largest] / energy.sum()
     degree = np.diff(graph.indptr) - 1
     blocks = sp.block_diag([a[3 * i:3 * i + 3, 3 * i:3 * i + 3].toarray() for i in range(n)], format="csr")
     print(f"  slowest error: {energy[top].sum() / energy.sum():.1%} of its energy on {len(top)} vertices "
@@ -280,10 +283,9 @@ def diagnose(folder, smooth_first=False, enrichment=0, patches=0):
           f"({np.mean(degree <= 6):.0%} of all vertices)")
     x = read_positions(folder)
     if x is not None:
-        largest = sorted(range(clusters), key=lambda k: -energy[top][label == k].sum())[:3]
         print("  the largest clusters' error, misfit by a rigid / an affine motion: " + ", ".join(
             f"{len(top[label == k])} vertices {misfit(x, e, top[label == k], 'rigid'):.2f} / "
-            f"{misfit(x, e, top[label == k], 'affine'):.2f}" for k in largest))
+            f"{misfit(x, e, top[label == k], 'affine'):.2f}" for k in largest[:3]))
     if enrichment:
         if x is None:
             sys.exit(f"{folder}: --rigid-enrichment needs X0.mtx (corofem export-matrices writes it)")
