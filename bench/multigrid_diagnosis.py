@@ -2,7 +2,8 @@
 """Where a multigrid hierarchy is weak, by a route independent of corofem's own cycle (issue 36).
 
 Usage: bench/multigrid_diagnosis.py [--spectrum K] [--smoothed-prolongation] [--rigid-enrichment N]
-                                    [--thin-patches K] DIR [DIR...]      (needs python3-scipy)
+                                    [--thin-patches K] [--thin-coarse K] DIR [DIR...]
+                                    (needs python3-scipy)
 
 DIR is what `corofem export-matrices SCENE.json --out DIR` writes: A<h>.mtx and R<h>.mtx (at least
 two levels). With natural-order nodal 3x3 block Gauss-Seidel (forward before the coarse
@@ -35,6 +36,10 @@ correction, backward after) and a direct solve on the coarsest level, it prints 
     thick), forward before the coarse correction and backward after, and what their dense
     factorizations cost: whether a smoother that solves thin features locally would reach the
     slowest error;
+  - with --thin-coarse K, the two-grid factor at 1 and 2 sweeps with the thin features' vertices
+    themselves added to the first coarse space, P = [P_mesh, I_T], T the vertices with at most K
+    neighbours (then grown by one ring), the coarse problem solved exactly: the limit of a coarse
+    mesh that keeps every thin feature at the fine resolution, and how large its coarse level is;
   - with --spectrum K, the K largest eigenvalues of the V-cycle's error propagation E = I - B A
     (Arnoldi, scipy's eigs): a few isolated ones would be what CG (or a deflation of a few
     vectors) removes in a few iterations; a cluster of many is what bounds MG-PCG's iterations.
@@ -167,13 +172,20 @@ def rigid_enrichment(a, x, groups):
     return (lambda v, b: v + q @ solve(q.T @ (b - a @ v))), len(cols)
 
 
+def thin_vertices(graph, neighbours, rings):
+    """The vertices with at most `neighbours` neighbours, grown by `rings` rings of neighbours."""
+    thin = np.diff(graph.indptr) - 1 <= neighbours
+    for _ in range(rings):
+        thin = thin | (graph @ thin.astype(float) > 0)
+    return thin
+
+
 def thin_patches(a, neighbours):
     """Forward and backward patch sweeps (exact solves) over patches of at most 40 vertices covering
     the vertices with at most `neighbours` neighbours and their neighbours, the number of patch
     vertices and the patches' dense Cholesky flops."""
     graph = vertex_graph(a)
-    thin = np.diff(graph.indptr) - 1 <= neighbours
-    thin = thin | (graph @ thin.astype(float) > 0)
+    thin = thin_vertices(graph, neighbours, 1)
     factors = []
     for vertices in aggregates(graph, thin, 40):
         dofs = (3 * vertices[:, None] + np.arange(3)).ravel()
@@ -217,6 +229,12 @@ class Hierarchy:
         # and before the backward one.
         self.before_coarse = self.after_coarse = None
 
+    def replace_first_transfer(self, r):
+        """R0 := r and A1 := r A0 r^T, for two-grid factors only (the levels below stay as read)."""
+        self.r[0] = r
+        self.a[1] = sp.csr_matrix(r @ self.a[0] @ r.T)
+        self.direct[1] = sl.splu(self.a[1].tocsc())
+
     def cycle(self, h, b, last, sweeps):
         """x ~ A_h^-1 b by one V-cycle down to `last` (solved directly)."""
         a = self.a[h]
@@ -248,7 +266,7 @@ class Hierarchy:
         return float(np.exp(np.mean(np.log(ratios[-8:])))), e
 
 
-def diagnose(folder, smooth_first=False, enrichment=0, patches=0):
+def diagnose(folder, smooth_first=False, enrichment=0, patches=0, coarse_thin=0):
     m = Hierarchy(folder, smooth_first)
     a, n = m.a[0], m.a[0].shape[0] // 3
     levels = len(m.a)
@@ -301,6 +319,16 @@ def diagnose(folder, smooth_first=False, enrichment=0, patches=0):
               f"{covered} vertices, {covered / n:.0%}; {flops / 1e6:.0f} MFlop of factorization): "
               f"two-grid {m.slowest(1)[0]:.3f}, V-cycle over all levels {m.slowest(levels - 1)[0]:.3f}")
         m.before_coarse = m.after_coarse = None
+    if coarse_thin:  # last: it replaces the first transfer
+        r0 = m.r[0]
+        for rings in (0, 1):
+            dofs = (3 * np.flatnonzero(thin_vertices(graph, coarse_thin, rings))[:, None] + np.arange(3)).ravel()
+            m.replace_first_transfer(sp.vstack([r0, sp.csr_matrix(
+                (np.ones(len(dofs)), (np.arange(len(dofs)), dofs)), shape=(len(dofs), a.shape[0]))]).tocsr())
+            print(f"  thin vertices (at most {coarse_thin} neighbours, grown {rings} ring(s): {len(dofs) // 3}, "
+                  f"{len(dofs) / a.shape[0]:.0%}) added to the first coarse space: {r0.shape[0]} + {len(dofs)} "
+                  f"coarse DOFs, {m.a[1].nnz // 9} coarse blocks (the fine level's {a.nnz // 9}); "
+                  f"two-grid {m.slowest(1)[0]:.3f}, at 2 sweeps {m.slowest(1, 2)[0]:.3f}")
 
 
 def spectrum(folder, k):
@@ -323,10 +351,12 @@ if __name__ == "__main__":
     parser.add_argument("--smoothed-prolongation", action="store_true")
     parser.add_argument("--rigid-enrichment", type=int, default=0, metavar="N")
     parser.add_argument("--thin-patches", type=int, default=0, metavar="K")
+    parser.add_argument("--thin-coarse", type=int, default=0, metavar="K")
     parser.add_argument("folders", nargs="+", metavar="DIR")
     args = parser.parse_args()
     for folder in args.folders:
         if args.spectrum:
             spectrum(folder, args.spectrum)
         else:
-            diagnose(folder, args.smoothed_prolongation, args.rigid_enrichment, args.thin_patches)
+            diagnose(folder, args.smoothed_prolongation, args.rigid_enrichment, args.thin_patches,
+                     args.thin_coarse)
