@@ -322,13 +322,16 @@ def diagnose(folder, smooth_first=False, enrichment=0, patches=0, coarse_thin=0)
     if coarse_thin:  # last: it replaces the first transfer
         r0 = m.r[0]
         for rings in (0, 1):
-            dofs = (3 * np.flatnonzero(thin_vertices(graph, coarse_thin, rings))[:, None] + np.arange(3)).ravel()
-            m.replace_first_transfer(sp.vstack([r0, sp.csr_matrix(
-                (np.ones(len(dofs)), (np.arange(len(dofs)), dofs)), shape=(len(dofs), a.shape[0]))]).tocsr())
-            print(f"  thin vertices (at most {coarse_thin} neighbours, grown {rings} ring(s): {len(dofs) // 3}, "
-                  f"{len(dofs) / a.shape[0]:.0%}) added to the first coarse space: {r0.shape[0]} + {len(dofs)} "
-                  f"coarse DOFs, {m.a[1].nnz // 9} coarse blocks (the fine level's {a.nnz // 9}); "
-                  f"two-grid {m.slowest(1)[0]:.3f}, at 2 sweeps {m.slowest(1, 2)[0]:.3f}")
+            thin = np.flatnonzero(thin_vertices(graph, coarse_thin, rings))
+            dofs = (3 * thin[:, None] + np.arange(3)).ravel()
+            injection = sp.csr_matrix((np.ones(len(dofs)), (np.arange(len(dofs)), dofs)),
+                                      shape=(len(dofs), a.shape[0]))
+            m.replace_first_transfer(sp.vstack([r0, injection]).tocsr())
+            print(f"  thin vertices (at most {coarse_thin} neighbours, grown {rings} ring(s): "
+                  f"{len(thin)}, {len(thin) / n:.0%}) added to the first coarse space: "
+                  f"{r0.shape[0]} + {len(dofs)} coarse DOFs, {m.a[1].nnz // 9} coarse blocks (the fine "
+                  f"level's {a.nnz // 9}); two-grid {m.slowest(1)[0]:.3f}, at 2 sweeps "
+                  f"{m.slowest(1, 2)[0]:.3f}")
 
 
 def spectrum(folder, k):
