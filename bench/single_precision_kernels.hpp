@@ -49,26 +49,27 @@ inline void multiply(const BlocksIn<T>& m, const T* x, T* y) {
   }
 }
 
-/// One block Gauss-Seidel row: x_i = D_i^-1 (b_i - sum_{j != i} A_ij x_j).
-template <class T>
-inline void relax_row(const BlocksIn<T>& m, int i, const T* b, T* x) {
+/// One block Gauss-Seidel row: x_i = D_i^-1 (b_i - sum_{j != i} A_ij x_j), the blocks in T and
+/// the vectors and sums in X (X = double, T = float: only the matrix stored in single precision).
+template <class T, class X>
+inline void relax_row(const BlocksIn<T>& m, int i, const X* b, X* x) {
   const BrcMatrix& a = *m.a;
-  T s[3] = {b[3 * i], b[3 * i + 1], b[3 * i + 2]};
+  X s[3] = {b[3 * i], b[3 * i + 1], b[3 * i + 2]};
   for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k) {
     if (k == m.diagonal[i]) continue;
     const T* v = m.values.data() + 9 * static_cast<std::ptrdiff_t>(k);
-    const T* xj = x + 3 * a.col_index[k];
+    const X* xj = x + 3 * a.col_index[k];
     for (int r = 0; r < 3; ++r)
-      s[r] -= v[3 * r] * xj[0] + v[3 * r + 1] * xj[1] + v[3 * r + 2] * xj[2];
+      s[r] -= X(v[3 * r]) * xj[0] + X(v[3 * r + 1]) * xj[1] + X(v[3 * r + 2]) * xj[2];
   }
   const T* d = m.inverse_diagonal.data() + 9 * static_cast<std::ptrdiff_t>(i);
   for (int r = 0; r < 3; ++r)
-    x[3 * i + r] = d[3 * r] * s[0] + d[3 * r + 1] * s[1] + d[3 * r + 2] * s[2];
+    x[3 * i + r] = X(d[3 * r]) * s[0] + X(d[3 * r + 1]) * s[1] + X(d[3 * r + 2]) * s[2];
 }
 
 /// A forward and a backward sweep (the smoothing of V(1,1)), one thread, natural order.
-template <class T>
-inline void symmetric_sweeps(const BlocksIn<T>& m, const T* b, T* x) {
+template <class T, class X>
+inline void symmetric_sweeps(const BlocksIn<T>& m, const X* b, X* x) {
   const int n = m.a->block_rows;
   for (int i = 0; i < n; ++i) relax_row(m, i, b, x);
   for (int i = n - 1; i >= 0; --i) relax_row(m, i, b, x);
