@@ -1,10 +1,11 @@
 #pragma once
 // Issue 36's "hierarchy in single precision under a double-precision CG", measured before it is
 // built: the fine level's block product and a pair of Gauss-Seidel sweeps with the blocks and
-// vectors in float, against double (BM_BlockKernels' *_float counters). Measurement only: the
-// library keeps double. Each pass is one template instantiated twice (the product threaded as
-// BrcMatrix::multiply, the sweeps in natural order with the block-diagonal inverse), so the two
-// differ only in the width of the numbers they read (the compiler vectorizes both alike).
+// vectors in float, against double (BM_BlockKernels' *_float counters), and the sweeps with only
+// the blocks in float (*_mixed). Measurement only: the library keeps double. Each pass is one
+// template instantiated for each (the product threaded as BrcMatrix::multiply, the sweeps in
+// natural order with the block-diagonal inverse), so they differ only in the width of the numbers
+// they read (the compiler vectorizes them alike).
 #include <Eigen/Dense>
 #include <vector>
 

@@ -5,7 +5,8 @@
 // Q K_ab Q^T (fem/corotated_assembly.cpp) is switched with them.
 // A product is bound by instruction throughput, not by memory: scalar code issues some 25
 // instructions per block, the AVX2 form 7 (BM_BlockKernels: the product 1.4-1.6x faster at 1 and
-// 2 threads; single-precision blocks, half the bytes, were no faster). Each block row is one
+// 2 threads; single-precision blocks, half the bytes, were no faster where the matrices sit in
+// the L3, and no faster a step where they gained: lib/README "Multigrid"). Each block row is one
 // 4-wide load (the fourth lane, the next row's first entry, meets a zero lane of x and is
 // dropped), multiplied by x_j and added into one accumulator per block row; the three lanes are
 // summed when the row ends. Chosen once, at run time, on CPUs with AVX2 and FMA; the scalar form
