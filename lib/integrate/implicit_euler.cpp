@@ -183,41 +183,39 @@ SolveStats advance_by_newton(FeProblem& problem, RotationExtractor& rotate, Newt
 /// The linearly implicit step's system A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde (M lumped
 /// on the diagonal blocks), its right-hand side, and v_{n-1}, from which the solve's start is
 /// extrapolated.
+/// Small strain (`constant`): Ktilde = K does not depend on the state, so K is assembled once into
+/// problem.stiffness, and A is formed and handed to the solver (its multigrid update or its
+/// factorization) only at the first step and when the supported DOFs change.
 struct LinearStep {
   BrcMatrix system;  ///< the step's matrix; its pattern is allocated once
   Eigen::VectorXd b, previous_velocity;
   double k_scale;
   Eigen::VectorXd mass_diagonal;
   bool assemble_into_system;  ///< the assembly writes all of A, unless Ktilde itself is wanted
+  bool constant;              ///< small strain: K assembled once, A formed when the supports change
+  std::vector<char> solver_supports{};   ///< constant: the fixed DOFs of the A the solver holds
+  Eigen::VectorXd lifted{}, k_lifted{};  ///< constant: dt u + k_scale w and K times it
 };
 
-/// The linearly implicit step's solve for the new velocity, after the assembly:
-/// A v' = M v + dt (f - f_int(u)).
-SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
-                                 const DynamicOptions& options, int step,
-                                 const DirichletConditions& bc, const Eigen::VectorXd& elastic,
-                                 LinearStep& s, Eigen::VectorXd& velocity, PhaseClock& clock) {
-  const double dt = options.dt;
-  // Every pass of the step is in a named phase: "forces" (the right-hand side; the elastic
-  // force came out of the assembly) and "system" (A and its supports) besides rotate,
-  // assemble, update and solve.
-  clock.time("forces", [&] {
-    s.b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic);
-  });
-  clock.time("checks",
-             [&] { check_finite(problem, s.b, "force", "step " + std::to_string(step)); });
-  clock.time("system", [&] {
-    if (!s.assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
-      const std::vector<double>& k = problem.stiffness.values;
-      const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
-#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
-      for (std::ptrdiff_t i = 0; i < values; ++i) s.system.values[i] = s.k_scale * k[i];
-      add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, s.system);
-    }
-    apply_dirichlet(bc, s.system, s.b);
-  });
-  // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization.
-  clock.time("update", [&] { solver.take_matrix(s.system); });  // A is rebuilt in every step
+/// The small-strain step's right-hand side in one product with K (K constant): f_int(u) = K u,
+/// and apply_dirichlet's lift of the prescribed velocities w (the fixed DOFs' values; A's entries
+/// off the diagonal are k_scale K's, M being diagonal) folded in:
+///   b_free = (M v + dt f - K (dt u + k_scale w))_free,  b_fixed = w.
+void small_strain_rhs(const FeProblem& problem, const DirichletConditions& bc,
+                      const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity,
+                      double dt, LinearStep& s) {
+  s.lifted = dt * displacement;
+  for (int d = 0; d < problem.num_dofs(); ++d)
+    if (bc.fixed[d]) s.lifted[d] += s.k_scale * bc.value[d];
+  problem.stiffness.multiply(s.lifted, s.k_lifted);
+  s.b = problem.mass.cwiseProduct(velocity) + dt * problem.external_force - s.k_lifted;
+  for (int d = 0; d < problem.num_dofs(); ++d)
+    if (bc.fixed[d]) s.b[d] = bc.value[d];
+}
+
+/// The linearly implicit step's solve of A v' = s.b, A the matrix the solver holds.
+SolveStats solve_from_extrapolation(LinearSolver& solver, LinearStep& s, Eigen::VectorXd& velocity,
+                                    PhaseClock& clock) {
   return clock.time("solve", [&] {
     // The iterative solvers start from 2 v_n - v_{n-1}, the velocity extrapolated linearly
     // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only
@@ -226,6 +224,49 @@ SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
     velocity.swap(s.previous_velocity);                        // the start, and v_n kept
     return solver.solve(s.b, velocity);
   });
+}
+
+/// The linearly implicit step's solve for the new velocity, after the assembly:
+/// A v' = M v + dt (f - f_int(u)).
+SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
+                                 const DynamicOptions& options, int step,
+                                 const DirichletConditions& bc, const Eigen::VectorXd& elastic,
+                                 const Eigen::VectorXd& displacement, LinearStep& s,
+                                 Eigen::VectorXd& velocity, PhaseClock& clock) {
+  const double dt = options.dt;
+  // Every pass of the step is in a named phase: "forces" (the right-hand side; the elastic
+  // force came out of the assembly, or, small strain, out of one product with K) and "system"
+  // (A and its supports) besides rotate, assemble, update and solve.
+  clock.time("forces", [&] {
+    if (s.constant)
+      small_strain_rhs(problem, bc, displacement, velocity, dt, s);
+    else
+      s.b = problem.mass.cwiseProduct(velocity) + dt * (problem.external_force - elastic);
+  });
+  clock.time("checks",
+             [&] { check_finite(problem, s.b, "force", "step " + std::to_string(step)); });
+  if (s.constant && bc.fixed == s.solver_supports)
+    return solve_from_extrapolation(solver, s, velocity, clock);
+  clock.time("system", [&] {
+    if (!s.assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
+      const std::vector<double>& k = problem.stiffness.values;
+      const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
+#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
+      for (std::ptrdiff_t i = 0; i < values; ++i) s.system.values[i] = s.k_scale * k[i];
+      add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, s.system);
+    }
+    if (s.constant) {  // b is lifted already: apply_dirichlet only to A
+      Eigen::VectorXd lifted_already = s.b;
+      apply_dirichlet(bc, s.system, lifted_already);
+      s.solver_supports = bc.fixed;
+    } else {
+      apply_dirichlet(bc, s.system, s.b);
+    }
+  });
+  // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization. A is rebuilt for
+  // every call (the solver may take its values by swap).
+  clock.time("update", [&] { solver.take_matrix(s.system); });
+  return solve_from_extrapolation(solver, s, velocity, clock);
 }
 
 /// Each phase's time in one step (the totals after it less those before), and the whole step's.
@@ -262,12 +303,14 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
   result.displacement = Eigen::VectorXd::Zero(n);
   result.rotations.assign(problem.mesh.tets.size(), Mat3::Identity());
   Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n), elastic;
+  const bool small_strain_linear = !options.corotational && !options.newton;
   LinearStep linear{problem.stiffness,
                     {},
                     velocity,
                     dt * options.rayleigh_beta + dt * dt,
                     (1 + dt * options.rayleigh_alpha) * problem.mass,
-                    !options.newton && !options.keep_stiffness};
+                    !options.newton && !options.keep_stiffness && !small_strain_linear,
+                    small_strain_linear};
   if (options.newton && options.ranks.distributed())
     throw InputError("fully implicit Euler (Newton) does not run on a distributed mesh");
   std::unique_ptr<NewtonStepper> newton;
@@ -279,11 +322,13 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     std::vector<Vec3> p;  // the rotations' input
     clock.time("rotate", [&] { p = problem.positions(result.displacement); });
     // A = (1 + dt alpha) M + (dt beta + dt^2) Ktilde, with M lumped on the diagonal blocks: the
-    // assembly writes all of it into A's values unless Ktilde itself is wanted.
-    linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock,
-              linear.assemble_into_system
-                  ? AssemblyTarget{&linear.system, linear.k_scale, &linear.mass_diagonal}
-                  : AssemblyTarget{});
+    // assembly writes all of it into A's values unless Ktilde itself is wanted. Small strain,
+    // K once.
+    if (!linear.constant || step == 1)
+      linearize(problem, rotate, p, result.displacement, result.rotations, elastic, clock,
+                linear.assemble_into_system
+                    ? AssemblyTarget{&linear.system, linear.k_scale, &linear.mass_diagonal}
+                    : AssemblyTarget{});
     note_inverted(problem, rotate, p, result, clock, options.ranks);
     SolveStats stats;
     if (options.newton) {
@@ -296,8 +341,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
           bc.value[i] =
               bc.fixed[i] ? (problem.dirichlet.value[i] - result.displacement[i]) / dt : 0.0;
       });
-      stats = linear_implicit_solve(problem, solver, options, step, bc, elastic, linear, velocity,
-                                    clock);
+      stats = linear_implicit_solve(problem, solver, options, step, bc, elastic,
+                                    result.displacement, linear, velocity, clock);
       result.displacement += dt * velocity;
     }
     result.linear_iterations += stats.iterations;

@@ -22,6 +22,9 @@ namespace corofem {
 struct StepState;
 
 struct DynamicOptions {
+  /// Off: small strain (Ktilde = K). Linearly implicit, K and A are then the same at every step:
+  /// assembled and handed to the solver once (again only when the supported DOFs change), and a
+  /// step is one product with K and the solve.
   bool corotational = true;
   double dt = 0.01;
   int steps = 1;
