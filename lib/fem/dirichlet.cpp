@@ -31,7 +31,10 @@ std::vector<char> DirichletConditions::supported_vertices() const {
   return supported;
 }
 
-void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd& b) {
+namespace {
+
+/// apply_dirichlet, with b left alone where it is null.
+void constrain(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd* b) {
   // Only blocks in a row or column of a vertex with a fixed DOF change. The pattern is symmetric
   // (an FE matrix's), so they are row v and, through v's neighbours i, the blocks (i, v): visited
   // from the supported vertices alone, not by scanning every block's column.
@@ -47,7 +50,7 @@ void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorX
       for (int c = 0; c < 3; ++c) {
         const int col = 3 * j + c;
         double& entry = block[3 * r + c];
-        if (!bc.fixed[row] && bc.fixed[col]) b[row] -= entry * bc.value[col];
+        if (b && !bc.fixed[row] && bc.fixed[col]) (*b)[row] -= entry * bc.value[col];
         if (bc.fixed[row] || bc.fixed[col]) entry = (row == col) ? 1.0 : 0.0;
       }
     }
@@ -66,8 +69,19 @@ void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorX
       apply(i, transposed);
     }
   }
+  if (!b) return;
   for (int d = 0; d < static_cast<int>(bc.fixed.size()); ++d)
-    if (bc.fixed[d]) b[d] = bc.value[d];
+    if (bc.fixed[d]) (*b)[d] = bc.value[d];
+}
+
+}  // namespace
+
+void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd& b) {
+  constrain(bc, a, &b);
+}
+
+void apply_dirichlet_to_matrix(const DirichletConditions& bc, BrcMatrix& a) {
+  constrain(bc, a, nullptr);
 }
 
 double free_norm(const DirichletConditions& bc, const Eigen::VectorXd& v) {

@@ -22,6 +22,9 @@ struct DirichletConditions {
 
 /// Applies the conditions to A x = b in place.
 void apply_dirichlet(const DirichletConditions& bc, BrcMatrix& a, Eigen::VectorXd& b);
+/// A's part of apply_dirichlet alone: the fixed DOFs' rows and columns become identity, for a
+/// right-hand side that carries the prescribed values' lift already.
+void apply_dirichlet_to_matrix(const DirichletConditions& bc, BrcMatrix& a);
 
 /// Euclidean norm of v over the free DOFs only.
 double free_norm(const DirichletConditions& bc, const Eigen::VectorXd& v);

@@ -245,7 +245,10 @@ SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
   });
   clock.time("checks",
              [&] { check_finite(problem, s.b, "force", "step " + std::to_string(step)); });
-  if (s.constant && bc.fixed == s.solver_supports)
+  // Small strain: A changes with the supports only. On a distributed mesh a rank sees its own
+  // part's supports, and handing the solver a matrix is collective: a change on one rank is a
+  // change on all (else one rank waits in the update while the others solve).
+  if (s.constant && options.ranks.sum(bc.fixed == s.solver_supports ? 0.0 : 1.0) == 0)
     return solve_from_extrapolation(solver, s, velocity, clock);
   clock.time("system", [&] {
     if (!s.assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
@@ -255,9 +258,8 @@ SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
       for (std::ptrdiff_t i = 0; i < values; ++i) s.system.values[i] = s.k_scale * k[i];
       add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, s.system);
     }
-    if (s.constant) {  // b is lifted already: apply_dirichlet only to A
-      Eigen::VectorXd lifted_already = s.b;
-      apply_dirichlet(bc, s.system, lifted_already);
+    if (s.constant) {  // b is lifted already
+      apply_dirichlet_to_matrix(bc, s.system);
       s.solver_supports = bc.fixed;
     } else {
       apply_dirichlet(bc, s.system, s.b);
