@@ -63,8 +63,9 @@ void run_example(const Example& example, const std::string& launcher = "") {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json result = json::parse(test::read_text(dir / "result.json"));
   EXPECT_TRUE(result["converged"].get<bool>()) << result.dump();
-  if (scene.contains("output") && scene["output"].contains("vtu"))
+  if (scene.contains("output") && scene["output"].contains("vtu")) {
     EXPECT_TRUE(fs::exists(dir / scene["output"]["vtu"].get<std::string>()));
+  }
 }
 
 TEST_P(EachExample, RunsAndConverges) {

@@ -66,7 +66,9 @@ TEST(ChebyshevSmoother, ActsOnEachEigenvectorAsItsResidualPolynomial) {
       const double q = chebyshev_t(degree, (theta - lambda) / delta) * bound;
       // Round-off of `degree` products and solves on a vector of norm |v|.
       EXPECT_LT((x - q * v).norm(), 1e-10 * v.norm()) << "degree " << degree << ", " << lambda;
-      if (lambda >= lower) EXPECT_LE(std::abs(q), bound * (1 + 1e-12));
+      if (lambda >= lower) {
+        EXPECT_LE(std::abs(q), bound * (1 + 1e-12));
+      }
     }
   }
 }
