@@ -77,9 +77,12 @@ TEST(Dirichlet, EliminationIsTheDenseOneBitForBitWithSomeDofsOfAVertexFixed) {
     }
   for (int d = 0; d < dense.rows(); ++d)
     if (bc.fixed[d]) dense_b[d] = bc.value[d];
+  BrcMatrix matrix_only = a;  // the matrix-only form: the same A
   apply_dirichlet(bc, a, b);
   EXPECT_EQ((test::dense_copy(a) - dense).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_TRUE(std::memcmp(b.data(), dense_b.data(), sizeof(double) * b.size()) == 0);
+  apply_dirichlet_to_matrix(bc, matrix_only);
+  EXPECT_EQ(matrix_only.values, a.values);
 }
 
 }  // namespace

@@ -74,6 +74,10 @@ bool renderer_usable() {
          std::system("python3 -c 'import sys' >/dev/null 2>&1") == 0;
 }
 
+/// The JSON records `corofem report` writes (ci/report adds mpi_scaling.json).
+constexpr const char* kReportRecords[] = {"tables.json", "speed_accuracy.json", "stability.json",
+                                          "stability_frames.json", "model_accuracy.json"};
+
 void expect_keys(const json& j, std::initializer_list<const char*> keys, const std::string& where) {
   for (const char* key : keys) EXPECT_TRUE(j.contains(key)) << where << " lacks " << key;
 }
@@ -86,9 +90,8 @@ void expect_context(const json& record, const std::string& file) {
 
 TEST(SmokeReportSetup, TheCliWritesEveryRecord) {
   const fs::path& out = smoke_report();
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json",
-                           "stability_frames.json", "model_accuracy.json", "REPORT.md"})
-    EXPECT_TRUE(fs::exists(out / file)) << out / file;
+  for (const char* file : kReportRecords) EXPECT_TRUE(fs::exists(out / file)) << out / file;
+  EXPECT_TRUE(fs::exists(out / "REPORT.md")) << out / "REPORT.md";
 }
 
 TEST(SmokeReport, TablesHaveTheDocumentedSchemaAndTheOracleChecksHold) {
@@ -370,9 +373,7 @@ TEST(SmokeReport, MarkdownIsRedrawnFromTheJsonAlone) {
   const fs::path& out = smoke_report();
   ASSERT_TRUE(fs::exists(out / "REPORT.md"));
   TempDir copy;
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json",
-                           "stability_frames.json", "model_accuracy.json"})
-    fs::copy_file(out / file, copy / file);
+  for (const char* file : kReportRecords) fs::copy_file(out / file, copy / file);
   const std::string script = (test::source_dir() / "reports" / "render").string();
   ASSERT_EQ(std::system(("'" + script + "' '" + copy.path().string() + "' 2>/dev/null").c_str()),
             0);
@@ -397,9 +398,8 @@ fs::path golden_dir() {
 int render_golden_fixture(const TempDir& dir, const std::string& options,
                           const std::string& stderr_file,
                           const std::function<void(json&)>& edit_tables = {}) {
-  for (const char* file : {"tables.json", "speed_accuracy.json", "stability.json",
-                           "stability_frames.json", "model_accuracy.json", "mpi_scaling.json"})
-    fs::copy_file(golden_dir() / file, dir / file);
+  for (const char* file : kReportRecords) fs::copy_file(golden_dir() / file, dir / file);
+  fs::copy_file(golden_dir() / "mpi_scaling.json", dir / "mpi_scaling.json");
   if (edit_tables) {
     json tables = json::parse(read_text(dir / "tables.json"));
     edit_tables(tables);
