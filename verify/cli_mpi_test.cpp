@@ -49,6 +49,13 @@ nlohmann::json dynamic_bar(const std::string& solver) {
             {"tolerance", 1e-12}}}};
 }
 
+/// dynamic_bar on petsc-mg, coarser (12x3x3 cells), for the runs at 1, 2 and 3 ranks.
+nlohmann::json small_distributed_bar() {
+  nlohmann::json scene = dynamic_bar("petsc-mg");
+  scene["mesh"]["cells"] = {12, 3, 3};
+  return scene;
+}
+
 /// A corotated cantilever bent by an end load in two increments, to |f - f_int| / |f| <=
 /// `tolerance` by `integrator`, on CHOLMOD (a test swaps the solver).
 nlohmann::json static_bar(const std::string& rotation, const std::string& integrator,
@@ -171,8 +178,7 @@ TEST(CliMpi, DistributedMeshAgreesAtOneTwoAndThreeRanksWithCholmodForEveryRotati
   TempDir dir;
   for (const auto& [method, name] : kRotationMethods.entries) {
     SCOPED_TRACE(name);
-    nlohmann::json scene = dynamic_bar("petsc-mg");
-    scene["mesh"]["cells"] = {12, 3, 3};
+    nlohmann::json scene = small_distributed_bar();
     scene["analysis"]["steps"] = 3;
     scene["analysis"]["rotation"] = name;
     const std::vector<nlohmann::json> runs = runs_against_cholmod(dir, scene, 1e-10);
@@ -196,8 +202,7 @@ TEST(CliMpi, MovedAndReleasedSupportsOnADistributedMeshEqualCholmodAtOneTwoAndTh
   TempDir dir;
   for (const auto& [formulation, name] : kFormulations.entries) {
     SCOPED_TRACE(name);
-    nlohmann::json scene = dynamic_bar("petsc-mg");
-    scene["mesh"]["cells"] = {12, 3, 3};
+    nlohmann::json scene = small_distributed_bar();
     scene["analysis"]["formulation"] = name;
     scene["moves"] = {{{"box", {{1, 0, 0}, {1, 0.2, 0.2}}},
                        {"translate", {0, 0, 0.05}},
