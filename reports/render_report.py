@@ -418,16 +418,22 @@ def render_size_independence(tables, md):
                   f"(spread {num(si['iterations_spread'])}; target at most {num(targets['iterations_spread'])}).\n\n")
 
 
+def hierarchy_label(r):
+    """A multigrid row's hierarchy as both of its tables name it: the builder, whether its coarse
+    levels came from the bare surface, and its coarsening if one was asked for."""
+    label = r["hierarchy"] + (", bare surface" if r.get("coarse_meshes") == "derived from the bare surface" else "")
+    if r.get("coarsening"):
+        label += f", {num(r['coarsening'])}x per level"
+    return label
+
+
 def render_multigrid_quality(tables, md):
     rows = []
     for r in tables.get("multigrid", []):
         if failed(r):
             rows.append([r["model"], failure_text(r)] + [""] * 10)
             continue
-        hierarchy = r["hierarchy"] + (", bare surface" if r.get("coarse_meshes") == "derived from the bare surface" else "")
-        if r.get("coarsening"):
-            hierarchy += f", {num(r['coarsening'])}x per level"
-        rows.append([r["model"], hierarchy, r["levels"], " / ".join(str(v) for v in r["level_vertices"]),
+        rows.append([r["model"], hierarchy_label(r), r["levels"], " / ".join(str(v) for v in r["level_vertices"]),
                      num(r["operator_complexity"], 3), num(r["rho"], 2), num(r["vcycles"]),
                      num(r["mgpcg_iterations"]), t(r["setup_ms"]), t(r["update_ms"]), t(r["solve_ms"]),
                      t(r["step_ms"])])
@@ -449,7 +455,7 @@ def render_multigrid_quality(tables, md):
             continue
         sp, up = r["solve_parts_ms"], r.get("update_parts_ms") or {}
         outer = sum(sp.get(p, 0.0) for p in parts)
-        rows.append([r["model"], r["hierarchy"]] + [t(sp.get(p)) for p in parts] +
+        rows.append([r["model"], hierarchy_label(r)] + [t(sp.get(p)) for p in parts] +
                     [t(r["solve_ms"] - outer) if r.get("solve_ms") is not None else "-"] +
                     [t(up.get(p)) for p in ("galerkin", "smoothers", "coarsest")])
     if rows:

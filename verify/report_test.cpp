@@ -505,6 +505,27 @@ TEST(Report, SaysWhenTheSolveCarriedTheCoarsestFactorization) {
   EXPECT_NE(read_text(deferred / "REPORT.md").find(note), std::string::npos);
 }
 
+TEST(Report, BareSurfaceRowsAreNamedSoInBothMultigridTables) {
+  // A row whose coarse levels came from the bare surface is labelled so in the quality table and
+  // in the table of where its time goes (the second once printed only "meshes", making a bare row
+  // indistinguishable from the models' own levels).
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  TempDir copy;
+  ASSERT_EQ(render_golden_fixture(copy, "--blank-times", "/dev/null",
+                                  [](json& tables) {
+                                    for (json& row : tables["multigrid"])
+                                      if (row["hierarchy"] == "meshes")
+                                        row["coarse_meshes"] = "derived from the bare surface";
+                                  }),
+            0);
+  const std::string report = read_text(copy / "REPORT.md");
+  std::size_t labelled = 0;
+  for (std::size_t at = 0; (at = report.find("| meshes, bare surface |", at)) != std::string::npos;
+       ++at)
+    ++labelled;
+  EXPECT_EQ(labelled, 2u) << report;  // the fixture's one meshes row, once in each table
+}
+
 TEST(Report, RendererDrawsEveryChartOfTheFixtureWithoutWarnings) {
   if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
   TempDir copy;
