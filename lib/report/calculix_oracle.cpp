@@ -78,11 +78,14 @@ std::string tail_of(const std::filesystem::path& file, std::size_t chars) {
 Eigen::VectorXd run_calculix(const FeProblem& problem, bool nlgeom,
                              const std::filesystem::path& work_dir, const std::string& job,
                              int increments) {
-  std::filesystem::create_directories(work_dir);
+  // Absolute: the command changes into it and then writes the log by its path (`corofem report
+  // --out out/report`, ci/report's default, made every job fail with an empty log).
+  const std::filesystem::path dir = std::filesystem::absolute(work_dir);
+  std::filesystem::create_directories(dir);
   const std::string deck = calculix_deck(problem, nlgeom, increments);
-  write_file_atomically(work_dir / (job + ".inp"), [&](std::ostream& out) { out << deck; });
-  const std::filesystem::path log = work_dir / (job + ".log");
-  const std::string command = "cd '" + work_dir.string() + "' && OMP_NUM_THREADS=1 ccx -i '" + job +
+  write_file_atomically(dir / (job + ".inp"), [&](std::ostream& out) { out << deck; });
+  const std::filesystem::path log = dir / (job + ".log");
+  const std::string command = "cd '" + dir.string() + "' && OMP_NUM_THREADS=1 ccx -i '" + job +
                               "' > '" + log.string() + "' 2>&1";
   const int status = std::system(command.c_str());
   const auto fail = [&](const std::string& what) -> NumericalFault {
@@ -91,7 +94,7 @@ Eigen::VectorXd run_calculix(const FeProblem& problem, bool nlgeom,
   };
   if (status != 0) throw fail("exited with status " + std::to_string(status));
   // The .dat holds one displacement block per printed increment: keep the last.
-  std::ifstream dat(work_dir / (job + ".dat"));
+  std::ifstream dat(dir / (job + ".dat"));
   std::string line;
   Eigen::VectorXd u =
       Eigen::VectorXd::Constant(problem.num_dofs(), std::numeric_limits<double>::quiet_NaN());
