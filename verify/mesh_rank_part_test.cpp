@@ -42,7 +42,9 @@ TEST(RankPart, PartsOwnEveryVertexAndTetOnceAndHoldWhatTheirRowsNeed) {
                         [&](int v) { return v >= begin && v < end; }))
           expected.push_back(t);
       EXPECT_EQ(part.global_tet, expected);
-      if (ranks > 1) EXPECT_LT(part.mesh.num_tets(), whole.num_tets());
+      if (ranks > 1) {
+        EXPECT_LT(part.mesh.num_tets(), whole.num_tets());
+      }
       // The local mesh is the global one renumbered: owned vertices first, in order, then the
       // halo ascending; every tet's vertices and tags map back.
       for (int v = 0; v < part.mesh.num_vertices(); ++v) {
@@ -50,7 +52,9 @@ TEST(RankPart, PartsOwnEveryVertexAndTetOnceAndHoldWhatTheirRowsNeed) {
         EXPECT_EQ(part.mesh.rest[v], whole.rest[g]);
         EXPECT_EQ(part.mesh.node_tags[v], whole.node_tags[g]);
         EXPECT_EQ(v < part.owned_vertices, g >= begin && g < end);
-        if (v > part.owned_vertices) EXPECT_LT(part.global_vertex[v - 1], g);
+        if (v > part.owned_vertices) {
+          EXPECT_LT(part.global_vertex[v - 1], g);
+        }
       }
       for (int t = 0; t < part.mesh.num_tets(); ++t) {
         const Tet& global = whole.tets[part.global_tet[t]];
@@ -97,7 +101,9 @@ TEST(RankPart, GroupingByPartMakesEachPartContiguousAndKeepsTheMesh) {
     EXPECT_TRUE(n >= start[part[v]] && n < start[part[v] + 1]) << v;  // inside its part's range
     EXPECT_EQ(mesh.rest[n], original.rest[v]);
     EXPECT_EQ(mesh.node_tags[n], original.node_tags[v]);
-    if (v > 0 && part[v - 1] == part[v]) EXPECT_EQ(new_index[v - 1] + 1, n);  // order kept
+    if (v > 0 && part[v - 1] == part[v]) {
+      EXPECT_EQ(new_index[v - 1] + 1, n);  // order kept
+    }
   }
   for (int t = 0; t < mesh.num_tets(); ++t)
     for (int k = 0; k < 4; ++k) EXPECT_EQ(mesh.tets[t][k], new_index[original.tets[t][k]]);
