@@ -156,6 +156,32 @@ const BadRun kBadRuns[] = {
 INSTANTIATE_TEST_SUITE_P(Cases, CliBadInput, ::testing::ValuesIn(kBadRuns),
                          [](const auto& info) { return std::string(info.param.name); });
 
+TEST(CliRun, StaticSceneNeedsEveryPartOfTheBodyHeld) {
+  // One STL, two separate cubes, only the first fixed: static, the second is free to move
+  // rigidly and its stiffness singular. The error names that part and where it is (Newton said
+  // only "the tangent matrix is singular"). The same scene, dynamic, runs: the free cube falls.
+  TempDir dir;
+  write_text(dir / "two.stl", test::cube_stl(2) + test::cube_stl(2, Vec3(2, 0, 0)));
+  nlohmann::json scene = {{"mesh", {{"surface", "two.stl"}, {"size", 0.5}}},
+                          {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+                          {"fixed", {{{"box", {{-1, -1, -1}, {1.5, 2, 1e-6}}}}}},
+                          {"gravity", {0, 0, -9.81}},
+                          {"analysis", {{"type", "static"}}}};
+  write_text(dir / "static.json", scene.dump());
+  auto r = run_cli("run '" + (dir / "static.json").string() + "' --out '" +
+                   (dir / "static_result.json").string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("leaves rigid motions free on part 2 of the 2 separate parts"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("around (2."), std::string::npos) << r.err;  // the second cube, x in [2, 3]
+  scene["analysis"] = {{"type", "dynamic"}, {"steps", 2}};
+  write_text(dir / "dynamic.json", scene.dump());
+  r = run_cli("run '" + (dir / "dynamic.json").string() + "' --out '" +
+              (dir / "dynamic_result.json").string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST(CliRun, UnwritableOutputIsBadInput) {
   TempDir dir;
   write_text(dir / "bar.json", kScene);

@@ -141,6 +141,69 @@ TEST(GmshMesh, TetrahedralizesClosedSurface) {
   EXPECT_NEAR(total_volume(m), 1.0, 1e-12);
 }
 
+/// `read` of `file` throws an InputError naming the file and holding `fragment`.
+template <class Read>
+void expect_surface_refused(const std::filesystem::path& file, const std::string& fragment,
+                            Read read) {
+  try {
+    read(file);
+    ADD_FAILURE() << "no error for " << file;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'" + file.string() + "'"), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
+}
+
+TetMesh fill_at_quarter(const std::filesystem::path& file) {
+  return tetrahedralize_surface(file, 0.25);
+}
+
+TEST(GmshMesh, OpenSurfaceIsRefusedNamingItsHoles) {
+  // The cube without its last triangle: a hole whose rim is that triangle's 3 edges. gmsh alone
+  // said "No elements in volume 1"; the error now says the surface is not closed and where. The
+  // coarse-surface path (read_surface, before any simplification) says the same.
+  TempDir dir;
+  std::string stl = test::cube_stl(4);
+  const std::size_t last = stl.rfind("facet normal");
+  stl.erase(last, stl.rfind("endfacet\n") + 9 - last);
+  write_text(dir / "holed.stl", stl);
+  const std::string fragment = "is not closed: 3 of its edges border one triangle only";
+  expect_surface_refused(dir / "holed.stl", fragment, fill_at_quarter);
+  expect_surface_refused(dir / "holed.stl", fragment, read_surface);
+}
+
+TEST(GmshMesh, SelfIntersectingSurfaceIsSaidSo) {
+  // Two unit cubes overlapping by half: their faces cross, which gmsh reports as a "PLC Error".
+  TempDir dir;
+  write_text(dir / "overlap.stl", test::cube_stl(2) + test::cube_stl(2, Vec3(0.5, 0.25, 0.25)));
+  expect_surface_refused(dir / "overlap.stl", "the surface intersects itself", fill_at_quarter);
+}
+
+TEST(GmshMesh, SeparateClosedBodiesAreFilledEach) {
+  // Two disjoint unit cubes in one STL, as two solids and as one: both filled, the volume both
+  // of theirs. (As two solids, gmsh alone found "No elements in volume 1".)
+  TempDir dir;
+  const std::string first = test::cube_stl(2), second = test::cube_stl(2, Vec3(2, 0, 0));
+  write_text(dir / "two_solids.stl", first + second);
+  std::string one_solid =
+      first.substr(0, first.rfind("endsolid")) + second.substr(second.find('\n') + 1);
+  write_text(dir / "one_solid.stl", one_solid);
+  for (const char* name : {"two_solids.stl", "one_solid.stl"}) {
+    SCOPED_TRACE(name);
+    const TetMesh m = tetrahedralize_surface(dir / name, 0.5);
+    EXPECT_NEAR(total_volume(m), 2.0, 1e-12);
+  }
+  // A hollow cube (side 4, a void of side 2) holding a unit cube in its void: 64 - 8 + 1. (gmsh
+  // alone filled the void, 64.) Nesting is found by position, not by the triangles' orientation
+  // (the void's face outward here; an STL's should face into the void).
+  write_text(dir / "hollow.stl", test::cube_stl(4, Vec3::Zero(), 4) +
+                                     test::cube_stl(2, Vec3(1, 1, 1), 2) +
+                                     test::cube_stl(2, Vec3(1.5, 1.5, 1.5)));
+  const TetMesh hollow = tetrahedralize_surface(dir / "hollow.stl", 0.5);
+  EXPECT_NEAR(total_volume(hollow), 57.0, 1e-11);
+}
+
 TEST(GmshMesh, TetrahedralizesModelSurfaceWhenAvailable) {
   const auto models = test::models_dir();
   if (models.empty() || !std::filesystem::exists(models / "bunny_L2.stl"))

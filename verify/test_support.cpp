@@ -160,9 +160,10 @@ bool full_sweep() {
   return env && std::string(env) == "1";
 }
 
-std::string cube_stl(int n) {
+std::string cube_stl(int n, const Vec3& origin, double side) {
   std::string s = "solid cube\n";
-  auto point = [](const Vec3& p) {
+  auto point = [&](Vec3 p) {
+    p = origin + side * p;
     return "vertex " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
            std::to_string(p.z()) + "\n";
   };

@@ -81,8 +81,9 @@ std::filesystem::path models_dir();
 bool full_sweep();
 
 /// Unit cube surface as ASCII STL, each face split into n x n squares of 2 outward triangles
-/// (gmsh keeps the surface triangles, so they set the interior size too).
-std::string cube_stl(int n);
+/// (gmsh keeps the surface triangles, so they set the interior size too); scaled by `side`, its
+/// corner at `origin`.
+std::string cube_stl(int n, const Vec3& origin = Vec3::Zero(), double side = 1);
 
 /// Source tree root (for scene files in bench/scenes).
 std::filesystem::path source_dir();

@@ -9,6 +9,7 @@
 #include "mesh/gmsh_api.hpp"
 #include "mesh/gmsh_session.hpp"
 #include "mesh/msh_precheck.hpp"
+#include "mesh/surface_shells.hpp"
 
 namespace corofem {
 namespace gmsh = gmsh_api;
@@ -40,14 +41,57 @@ TetMesh read_volume_mesh(const fs::path& file) {
 
 namespace {
 
+/// The current gmsh model's surface triangles, its duplicate vertices merged as gmsh reads them.
+SurfaceMesh model_surface() {
+  SurfaceMesh surface;
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coordinates, parametric;
+  gmsh::model::mesh::getNodes(node_tags, coordinates, parametric, 2, -1, true, false);
+  std::size_t max_tag = 0;
+  for (std::size_t tag : node_tags) max_tag = std::max(max_tag, tag);
+  std::vector<int> index(max_tag + 1, -1);
+  for (std::size_t i = 0; i < node_tags.size(); ++i) {
+    index[node_tags[i]] = surface.num_vertices();
+    surface.points.emplace_back(coordinates[3 * i], coordinates[3 * i + 1], coordinates[3 * i + 2]);
+  }
+  std::vector<std::size_t> element_tags, triangle_nodes;
+  gmsh::model::mesh::getElementsByType(2, element_tags, triangle_nodes);
+  for (std::size_t i = 0; i + 2 < triangle_nodes.size(); i += 3)
+    surface.triangles.push_back(
+        {index[triangle_nodes[i]], index[triangle_nodes[i + 1]], index[triangle_nodes[i + 2]]});
+  return surface;
+}
+
+/// gmsh fills only a closed surface; given one with holes it fails with "No elements in volume 1"
+/// or meshes the space around it. Say where the holes are instead.
+void require_closed(const SurfaceMesh& surface, const fs::path& source) {
+  const auto open = open_edges(surface);
+  if (open.empty()) return;
+  const auto point = [&](int v) {
+    const Vec3& p = surface.points[v];
+    return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " +
+           std::to_string(p.z()) + ")";
+  };
+  throw InputError(
+      "surface file '" + source.string() + "' is not closed: " + std::to_string(open.size()) +
+      " of its edges border one triangle only (the " + "first from " + point(open[0][0]) + " to " +
+      point(open[0][1]) +
+      "); corofem fills a closed surface with tets, so its holes must be closed first");
+}
+
 void check_size(const fs::path& source, double size) {
   if (!(size > 0) || !std::isfinite(size))
     throw InputError("mesh size for '" + source.string() + "' must be a positive number");
 }
 
+/// A volume to fill, as gmsh's surface loops of the model's surface entities: the outer loop
+/// first, then its voids'.
+using VolumeLoops = std::vector<std::vector<int>>;
+
 /// Fills the current model's surfaces with tets of gmsh size `size` (the models' README recipe:
-/// the surface triangles stay the boundary) and returns them.
-TetMesh fill_surfaces(const fs::path& source, double size) {
+/// the surface triangles stay the boundary) and returns them: the `volumes` given, or one volume
+/// bounded by all the surfaces.
+TetMesh fill_surfaces(const fs::path& source, double size, std::vector<VolumeLoops> volumes = {}) {
   call_gmsh(source, "tetrahedralize", [&] {
     // A regular tet of edge h has volume h^3 / 8.5: the bounding box bounds the count from above.
     double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
@@ -62,15 +106,30 @@ TetMesh fill_surfaces(const fs::path& source, double size) {
     gmsh::model::getEntities(surfaces, 2);
     if (surfaces.empty())
       throw InputError("surface file '" + source.string() + "' has no triangles");
-    std::vector<int> surface_tags;
-    for (const auto& dt : surfaces) surface_tags.push_back(dt.second);
-    int loop = gmsh::model::geo::addSurfaceLoop(surface_tags);
-    gmsh::model::geo::addVolume({loop});
+    require_closed(model_surface(), source);
+    if (volumes.empty()) {
+      std::vector<int> surface_tags;
+      for (const auto& dt : surfaces) surface_tags.push_back(dt.second);
+      volumes.push_back({surface_tags});
+    }
+    for (const VolumeLoops& volume : volumes) {
+      std::vector<int> loops;
+      for (const std::vector<int>& loop : volume)
+        loops.push_back(gmsh::model::geo::addSurfaceLoop(loop));
+      gmsh::model::geo::addVolume(loops);
+    }
     gmsh::model::geo::synchronize();
     gmsh::option::setNumber("Mesh.MeshSizeMax", size);
     gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay
     gmsh::option::setNumber("Mesh.Optimize", 1);
-    gmsh::model::mesh::generate(3);
+    try {
+      gmsh::model::mesh::generate(3);
+    } catch (const std::exception& e) {
+      // gmsh's Delaunay says "PLC Error" of an input whose facets cross.
+      if (std::string(e.what()).find("PLC Error") == std::string::npos) throw;
+      throw InputError("gmsh could not tetrahedralize '" + source.string() + "': " + e.what() +
+                       " (the surface intersects itself, or two of its bodies overlap)");
+    }
   });
   return collect_tets(source);
 }
@@ -81,29 +140,57 @@ TetMesh tetrahedralize_surface(const fs::path& file, double size) {
   check_readable(file);
   precheck_stl(file);
   check_size(file, size);
-  GmshSession session;
-  call_gmsh(file, "read", [&] { gmsh::merge(file.string()); });
-  return fill_surfaces(file, size);
+  SurfaceMesh surface;
+  {
+    GmshSession session;
+    gmsh::vectorpair entities;
+    call_gmsh(file, "read", [&] {
+      gmsh::merge(file.string());
+      gmsh::model::getEntities(entities, 2);
+      surface = model_surface();
+    });
+    if (entities.size() <= 1 && surface_shells(surface).size() <= 1)
+      return fill_surfaces(file, size);
+  }
+  // Several solids, or several shells: filled shell by shell (below). As gmsh read them, two
+  // bodies in two solids gave "No elements in volume 1", and a void was filled.
+  return tetrahedralize_surface(surface, size, file.string());
 }
 
 TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const std::string& name) {
   check_size(name, size);
+  std::vector<SurfaceShell> shells = surface_shells(surface);
+  if (shells.size() == 1) shells[0].surface = surface;  // its own vertex order, as given
   GmshSession session;
+  std::vector<VolumeLoops> volumes;
   call_gmsh(name, "read", [&] {
-    const int tag = gmsh::model::addDiscreteEntity(2);
-    std::vector<std::size_t> node_tags(surface.points.size());
-    std::vector<double> coordinates;
-    for (std::size_t v = 0; v < surface.points.size(); ++v) {
-      node_tags[v] = v + 1;
-      for (int c = 0; c < 3; ++c) coordinates.push_back(surface.points[v][c]);
+    // One discrete surface a shell; a body is a shell of even depth with the voids just inside it.
+    std::vector<int> tags;
+    std::size_t first_node = 1;
+    for (const SurfaceShell& shell : shells) {
+      const SurfaceMesh& piece = shell.surface;
+      tags.push_back(gmsh::model::addDiscreteEntity(2));
+      std::vector<std::size_t> node_tags(piece.points.size());
+      std::vector<double> coordinates;
+      for (std::size_t v = 0; v < piece.points.size(); ++v) {
+        node_tags[v] = first_node + v;
+        for (int c = 0; c < 3; ++c) coordinates.push_back(piece.points[v][c]);
+      }
+      gmsh::model::mesh::addNodes(2, tags.back(), node_tags, coordinates);
+      std::vector<std::size_t> triangle_nodes;
+      for (const auto& t : piece.triangles)
+        for (int v : t) triangle_nodes.push_back(first_node + static_cast<std::size_t>(v));
+      gmsh::model::mesh::addElementsByType(tags.back(), 2, {}, triangle_nodes);
+      first_node += piece.points.size();
     }
-    gmsh::model::mesh::addNodes(2, tag, node_tags, coordinates);
-    std::vector<std::size_t> triangle_nodes;
-    for (const auto& t : surface.triangles)
-      for (int v : t) triangle_nodes.push_back(static_cast<std::size_t>(v) + 1);
-    gmsh::model::mesh::addElementsByType(tag, 2, {}, triangle_nodes);
+    for (std::size_t body = 0; body < shells.size(); ++body) {
+      if (shells[body].depth % 2 != 0) continue;
+      volumes.push_back({{tags[body]}});
+      for (std::size_t v = 0; v < shells.size(); ++v)
+        if (shells[v].inside == static_cast<int>(body)) volumes.back().push_back({tags[v]});
+    }
   });
-  return fill_surfaces(name, size);
+  return fill_surfaces(name, size, std::move(volumes));
 }
 
 SurfaceMesh read_surface(const fs::path& file) {
@@ -113,25 +200,11 @@ SurfaceMesh read_surface(const fs::path& file) {
   SurfaceMesh surface;
   call_gmsh(file, "read", [&] {
     gmsh::merge(file.string());
-    std::vector<std::size_t> node_tags;
-    std::vector<double> coordinates, parametric;
-    gmsh::model::mesh::getNodes(node_tags, coordinates, parametric, 2, -1, true, false);
-    std::size_t max_tag = 0;
-    for (std::size_t tag : node_tags) max_tag = std::max(max_tag, tag);
-    std::vector<int> index(max_tag + 1, -1);
-    for (std::size_t i = 0; i < node_tags.size(); ++i) {
-      index[node_tags[i]] = surface.num_vertices();
-      surface.points.emplace_back(coordinates[3 * i], coordinates[3 * i + 1],
-                                  coordinates[3 * i + 2]);
-    }
-    std::vector<std::size_t> element_tags, triangle_nodes;
-    gmsh::model::mesh::getElementsByType(2, element_tags, triangle_nodes);
-    for (std::size_t i = 0; i + 2 < triangle_nodes.size(); i += 3)
-      surface.triangles.push_back(
-          {index[triangle_nodes[i]], index[triangle_nodes[i + 1]], index[triangle_nodes[i + 2]]});
+    surface = model_surface();
   });
   if (surface.triangles.empty())
     throw InputError("surface file '" + file.string() + "' has no triangles");
+  require_closed(surface, file);
   return surface;
 }
 

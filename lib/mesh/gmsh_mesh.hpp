@@ -15,14 +15,15 @@ namespace corofem {
 TetMesh read_volume_mesh(const std::filesystem::path& file);
 
 /// Tetrahedralizes the volume enclosed by a closed triangle surface, keeping the surface triangles
-/// as the boundary, with gmsh's Mesh.MeshSizeMax = `size`. Throws InputError naming the file.
+/// as the boundary, with gmsh's Mesh.MeshSizeMax = `size`. Throws InputError naming the file: a
+/// surface that is not closed (where its holes are), one that intersects itself, or gmsh's error.
 TetMesh tetrahedralize_surface(const std::filesystem::path& file, double size);
 
 /// The same for a surface given as triangles (`name` for messages).
 TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const std::string& name);
 
 /// A surface file's triangles, its duplicate vertices merged as gmsh reads them. Throws InputError
-/// naming the file.
+/// naming the file, and where its holes are if it is not closed.
 SurfaceMesh read_surface(const std::filesystem::path& file);
 
 }  // namespace corofem

@@ -20,4 +20,12 @@ double surface_area(const SurfaceMesh& surface);
 /// Volume enclosed by a closed, outward-oriented surface (divergence theorem).
 double enclosed_volume(const SurfaceMesh& surface);
 
+/// Each vertex's first vertex at the same coordinates: one index per distinct point, as an STL
+/// repeats each vertex in every triangle that has it.
+std::vector<int> welded_vertices(const SurfaceMesh& surface);
+
+/// The edges that border one triangle only, as vertex pairs: the rims of the surface's holes
+/// (none on a closed surface). Vertices at the same coordinates count as one (welded_vertices).
+std::vector<std::array<int, 2>> open_edges(const SurfaceMesh& surface);
+
 }  // namespace corofem

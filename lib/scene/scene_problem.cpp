@@ -7,6 +7,7 @@
 #include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/coarse_surface_mesh.hpp"
+#include "mesh/connected_parts.hpp"
 #include "mesh/locality_order.hpp"
 #include "mesh/quadruped_mesh.hpp"
 
@@ -44,6 +45,36 @@ int affine_rank(const std::vector<Vec3>& points) {
   return rank;
 }
 
+/// A static analysis needs each piece of the body held against rigid motions: at least 3
+/// non-collinear fixed vertices on every connected part (an STL can hold several bodies).
+void require_every_part_held(const Scene& scene, const TetMesh& mesh,
+                             const std::vector<char>& fixed) {
+  const ConnectedParts parts = connected_parts(mesh);
+  std::vector<std::vector<Vec3>> fixed_points(parts.count);
+  std::vector<int> vertices(parts.count, 0);
+  std::vector<Vec3> centre(parts.count, Vec3::Zero());
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const int part = parts.of_vertex[v];
+    ++vertices[part];
+    centre[part] += mesh.rest[v];
+    if (fixed[v]) fixed_points[part].push_back(mesh.rest[v]);
+  }
+  for (int part = 0; part < parts.count; ++part) {
+    if (affine_rank(fixed_points[part]) >= 2) continue;
+    const std::string count = std::to_string(fixed_points[part].size()) + " fixed vertices";
+    if (parts.count == 1)
+      throw InputError("scene '" + scene.name + "': fixed leaves rigid motions free (" + count +
+                       "; a static analysis needs at least 3 non-collinear ones)");
+    const Vec3 c = centre[part] / vertices[part];
+    throw InputError("scene '" + scene.name + "': fixed leaves rigid motions free on part " +
+                     std::to_string(part + 1) + " of the " + std::to_string(parts.count) +
+                     " separate parts of the mesh (" + std::to_string(vertices[part]) +
+                     " vertices around (" + std::to_string(c.x()) + ", " + std::to_string(c.y()) +
+                     ", " + std::to_string(c.z()) + "), " + count +
+                     "); a static analysis needs at least 3 non-collinear ones on every part");
+  }
+}
+
 }  // namespace
 
 SceneBody build_body(const Scene& scene, MeshValidation* validation) {
@@ -68,10 +99,7 @@ SceneBody build_body(const Scene& scene, MeshValidation* validation) {
   }
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (fixed[v]) body.fixed_vertices.push_back(v);
-  if (scene.analysis.type == AnalysisType::Static && affine_rank(fixed_points) < 2)
-    throw InputError("scene '" + scene.name + "': fixed leaves rigid motions free (" +
-                     std::to_string(fixed_points.size()) +
-                     " fixed vertices; a static analysis needs at least 3 non-collinear ones)");
+  if (scene.analysis.type == AnalysisType::Static) require_every_part_held(scene, mesh, fixed);
   body.external_force = Eigen::VectorXd::Zero(3 * mesh.num_vertices());
   if (scene.gravity.norm() > 0)
     body.external_force += gravity_load(mesh, body.materials, scene.gravity);
