@@ -1,27 +1,18 @@
 #include "mesh/connected_parts.hpp"
 
-#include <numeric>
+#include "core/disjoint_sets.hpp"
 
 namespace corofem {
 
 ConnectedParts connected_parts(const TetMesh& mesh) {
-  // Union-find over the vertices, halving paths on the way up.
-  std::vector<int> parent(mesh.num_vertices());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  DisjointSets joined(mesh.num_vertices());
   for (const Tet& tet : mesh.tets)
-    for (int a = 1; a < 4; ++a) {
-      const int r0 = root(tet[0]), ra = root(tet[a]);
-      if (r0 != ra) parent[std::max(r0, ra)] = std::min(r0, ra);
-    }
+    for (int a = 1; a < 4; ++a) joined.join(tet[0], tet[a]);
   ConnectedParts parts;
   parts.of_vertex.assign(mesh.num_vertices(), -1);
   std::vector<int> part_of_root(mesh.num_vertices(), -1);
   for (int v = 0; v < mesh.num_vertices(); ++v) {
-    int& part = part_of_root[root(v)];
+    int& part = part_of_root[joined.find(v)];
     if (part < 0) part = parts.count++;
     parts.of_vertex[v] = part;
   }

@@ -4,7 +4,8 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <numeric>
+
+#include "core/disjoint_sets.hpp"
 
 namespace corofem {
 
@@ -44,23 +45,14 @@ bool inside_shell(const Vec3& p, const SurfaceMesh& shell) {
 
 std::vector<SurfaceShell> surface_shells(const SurfaceMesh& surface) {
   const std::vector<int> same = welded_vertices(surface);
-  // Union-find over the welded vertices, joined by each triangle's.
-  std::vector<int> parent(surface.points.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  DisjointSets joined(surface.num_vertices());  // welded vertices, joined by each triangle's
   for (const auto& t : surface.triangles)
-    for (int k = 1; k < 3; ++k) {
-      const int r0 = root(same[t[0]]), rk = root(same[t[k]]);
-      if (r0 != rk) parent[std::max(r0, rk)] = std::min(r0, rk);
-    }
+    for (int k = 1; k < 3; ++k) joined.join(same[t[0]], same[t[k]]);
   std::vector<SurfaceShell> shells;
   std::map<int, int> shell_of_root;
   std::vector<std::map<int, int>> local_index;  // per shell: welded vertex -> its own index
   for (const auto& t : surface.triangles) {
-    const auto [at, added] = shell_of_root.try_emplace(root(same[t[0]]), shells.size());
+    const auto [at, added] = shell_of_root.try_emplace(joined.find(same[t[0]]), shells.size());
     if (added) {
       shells.emplace_back();
       local_index.emplace_back();
