@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/memory_usage.hpp"
+#include "core/number_text.hpp"
 #include "mesh/gmsh_api.hpp"
 #include "mesh/gmsh_session.hpp"
 #include "mesh/msh_precheck.hpp"
@@ -67,15 +68,10 @@ SurfaceMesh model_surface() {
 void require_closed(const SurfaceMesh& surface, const fs::path& source) {
   const auto open = open_edges(surface);
   if (open.empty()) return;
-  const auto point = [&](int v) {
-    const Vec3& p = surface.points[v];
-    return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " +
-           std::to_string(p.z()) + ")";
-  };
   throw InputError(
       "surface file '" + source.string() + "' is not closed: " + std::to_string(open.size()) +
-      " of its edges border one triangle only (the " + "first from " + point(open[0][0]) + " to " +
-      point(open[0][1]) +
+      " of its edges border one triangle only (the first from " +
+      point_text(surface.points[open[0][0]]) + " to " + point_text(surface.points[open[0][1]]) +
       "); corofem fills a closed surface with tets, so its holes must be closed first");
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "fem/loads.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/coarse_surface_mesh.hpp"
@@ -69,8 +70,7 @@ void require_every_part_held(const Scene& scene, const TetMesh& mesh,
     throw InputError("scene '" + scene.name + "': fixed leaves rigid motions free on part " +
                      std::to_string(part + 1) + " of the " + std::to_string(parts.count) +
                      " separate parts of the mesh (" + std::to_string(vertices[part]) +
-                     " vertices around (" + std::to_string(c.x()) + ", " + std::to_string(c.y()) +
-                     ", " + std::to_string(c.z()) + "), " + count +
+                     " vertices around " + point_text(c) + ", " + count +
                      "); a static analysis needs at least 3 non-collinear ones on every part");
   }
 }
