@@ -86,16 +86,12 @@ SceneBody build_body(const Scene& scene, MeshValidation* validation) {
   body.materials = materials_per_element(mesh, scene.material, scene.regions);
   const auto& rest = mesh.rest;
   std::vector<char> fixed(mesh.num_vertices(), 0);
-  std::vector<Vec3> fixed_points;
   for (std::size_t i = 0; i < scene.fixed.size(); ++i) {
     const auto vertices = vertices_in_box(rest, scene.fixed[i]);
     if (vertices.empty())
       throw InputError("scene '" + scene.name + "': fixed[" + std::to_string(i) +
                        "].box selects no vertex of the mesh");
-    for (int v : vertices) {
-      fixed[v] = 1;
-      fixed_points.push_back(rest[v]);
-    }
+    for (int v : vertices) fixed[v] = 1;
   }
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (fixed[v]) body.fixed_vertices.push_back(v);
