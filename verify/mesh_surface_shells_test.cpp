@@ -2,6 +2,8 @@
 // by side, nested three deep, and an STL's unshared vertices.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "mesh/surface_shells.hpp"
 
 namespace corofem {
@@ -57,12 +59,19 @@ TEST(SurfaceShells, NestingDepthAndImmediateEncloser) {
   add_cube(s, Vec3::Zero(), 8);          // 2: outermost
   add_cube(s, Vec3(10, 0, 0), 1, true);  // 3: beside
   add_cube(s, Vec3(6, 6, 6), 1);         // 4: inside 2 only
-  const auto shells = surface_shells(s);
-  ASSERT_EQ(shells.size(), 5u);
   const int depth[] = {2, 1, 0, 0, 1}, inside[] = {1, 2, -1, -1, 2};
-  for (int i = 0; i < 5; ++i) {
-    EXPECT_EQ(shells[i].depth, depth[i]) << i;
-    EXPECT_EQ(shells[i].inside, inside[i]) << i;
+  // The same nesting whatever the triangles' orientation: as given (all outward), and with the
+  // side-4 cube's turned inward, as an STL's void should face.
+  for (const bool void_faces_inward : {false, true}) {
+    SCOPED_TRACE(void_faces_inward ? "void faces inward" : "all outward");
+    if (void_faces_inward)
+      for (std::size_t t = 12; t < 24; ++t) std::swap(s.triangles[t][1], s.triangles[t][2]);
+    const auto shells = surface_shells(s);
+    ASSERT_EQ(shells.size(), 5u);
+    for (int i = 0; i < 5; ++i) {
+      EXPECT_EQ(shells[i].depth, depth[i]) << i;
+      EXPECT_EQ(shells[i].inside, inside[i]) << i;
+    }
   }
 }
 

@@ -130,37 +130,19 @@ TetMesh fill_surfaces(const fs::path& source, double size, std::vector<VolumeLoo
   return collect_tets(source);
 }
 
-}  // namespace
-
-TetMesh tetrahedralize_surface(const fs::path& file, double size) {
-  check_readable(file);
-  precheck_stl(file);
-  check_size(file, size);
-  SurfaceMesh surface;
-  {
-    GmshSession session;
-    gmsh::vectorpair entities;
-    call_gmsh(file, "read", [&] {
-      gmsh::merge(file.string());
-      gmsh::model::getEntities(entities, 2);
-      surface = model_surface();
-    });
-    if (entities.size() <= 1 && surface_shells(surface).size() <= 1)
-      return fill_surfaces(file, size);
-  }
-  // Several solids, or several shells: filled shell by shell (below). As gmsh read them, two
-  // bodies in two solids gave "No elements in volume 1", and a void was filled.
-  return tetrahedralize_surface(surface, size, file.string());
+/// The surface's shells (surface_shells); a single one keeps the surface's own vertex order.
+std::vector<SurfaceShell> shells_of(const SurfaceMesh& surface) {
+  std::vector<SurfaceShell> shells = surface_shells(surface);
+  if (shells.size() == 1) shells[0].surface = surface;
+  return shells;
 }
 
-TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const std::string& name) {
-  check_size(name, size);
-  std::vector<SurfaceShell> shells = surface_shells(surface);
-  if (shells.size() == 1) shells[0].surface = surface;  // its own vertex order, as given
+/// Fills the shells with tets: one discrete surface a shell; a body is a shell of even depth with
+/// the voids just inside it.
+TetMesh fill_shells(const std::vector<SurfaceShell>& shells, double size, const std::string& name) {
   GmshSession session;
   std::vector<VolumeLoops> volumes;
   call_gmsh(name, "read", [&] {
-    // One discrete surface a shell; a body is a shell of even depth with the voids just inside it.
     std::vector<int> tags;
     std::size_t first_node = 1;
     for (const SurfaceShell& shell : shells) {
@@ -187,6 +169,33 @@ TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const st
     }
   });
   return fill_surfaces(name, size, std::move(volumes));
+}
+
+}  // namespace
+
+TetMesh tetrahedralize_surface(const fs::path& file, double size) {
+  check_readable(file);
+  precheck_stl(file);
+  check_size(file, size);
+  std::vector<SurfaceShell> shells;
+  {
+    GmshSession session;
+    gmsh::vectorpair entities;
+    call_gmsh(file, "read", [&] {
+      gmsh::merge(file.string());
+      gmsh::model::getEntities(entities, 2);
+      shells = shells_of(model_surface());
+    });
+    if (entities.size() <= 1 && shells.size() <= 1) return fill_surfaces(file, size);
+  }
+  // Several solids, or several shells: filled shell by shell. As gmsh read them, two bodies in
+  // two solids gave "No elements in volume 1", and a void was filled.
+  return fill_shells(shells, size, file.string());
+}
+
+TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const std::string& name) {
+  check_size(name, size);
+  return fill_shells(shells_of(surface), size, name);
 }
 
 SurfaceMesh read_surface(const fs::path& file) {
