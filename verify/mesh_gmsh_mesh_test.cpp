@@ -204,6 +204,31 @@ TEST(GmshMesh, SeparateClosedBodiesAreFilledEach) {
   EXPECT_NEAR(total_volume(hollow), 57.0, 1e-11);
 }
 
+TEST(GmshMesh, ExpectedTetsErrHighButFollowTheVolumeNotTheBox) {
+  // The memory check's count against gmsh's own, within [1x, 3x]: a cube, and a rod along the
+  // cube's diagonal, which fills 0.3% of its bounding box. The box's bound (8.5 box / h^3, the
+  // old count) would have counted the rod 30x too many: sizes the machine could run were refused.
+  TempDir dir;
+  write_text(dir / "cube.stl", test::cube_stl(8));
+  // The rod: 2 x 0.1 x 0.1, its long edge along (1, 1, 1), surface cells of about 0.05.
+  const Vec3 along = Vec3(1, 1, 1).normalized(), across = Vec3(1, -1, 0).normalized();
+  Mat3 edges;
+  edges << 2 * along, 0.1 * across, 0.1 * along.cross(across);
+  write_text(dir / "rod.stl", test::box_stl({40, 2, 2}, edges, Vec3::Zero()));
+  for (const auto& [name, size] : {std::pair{"cube.stl", 0.125}, {"rod.stl", 0.05}}) {
+    SCOPED_TRACE(name);
+    const auto shells = surface_shells(read_surface(dir / name));
+    const double expected = expected_tets(shells, size);
+    const double made = tetrahedralize_surface(dir / name, size).num_tets();
+    EXPECT_GE(expected, made);
+    EXPECT_LE(expected, 3 * made);
+    if (std::string(name) == "rod.stl") {
+      const Vec3 box = edges.cwiseAbs().rowwise().sum();  // each axis's extent
+      EXPECT_GT(8.5 * box.prod() / (size * size * size), 30 * made);
+    }
+  }
+}
+
 TEST(GmshMesh, TetrahedralizesModelSurfaceWhenAvailable) {
   const auto models = test::models_dir();
   if (models.empty() || !std::filesystem::exists(models / "bunny_L2.stl"))

@@ -75,5 +75,26 @@ TEST(SurfaceShells, NestingDepthAndImmediateEncloser) {
   }
 }
 
+TEST(SurfaceShells, FilledVolumeSubtractsVoidsWhicheverWayTrianglesFace) {
+  // The arrangement above: bodies of depth 0 and 2 (sides 8, 1 beside, 2), voids of depth 1
+  // (sides 4, 1): 512 + 1 + 8 - 64 - 1. The divergence theorem's sum is exact for cubes, to
+  // round-off.
+  SurfaceMesh s;
+  add_cube(s, Vec3(2, 2, 2), 2);
+  add_cube(s, Vec3(1, 1, 1), 4);
+  add_cube(s, Vec3::Zero(), 8);
+  add_cube(s, Vec3(10, 0, 0), 1, true);
+  add_cube(s, Vec3(6, 6, 6), 1);
+  EXPECT_NEAR(filled_volume(surface_shells(s)), 456.0, 1e-12 * 512);
+  // Every third triangle turned over (an STL with flipped facets, which gmsh meshes as well):
+  // each shell's triangles are made to agree before summing. Without that the sum is wrong.
+  for (std::size_t t = 0; t < s.triangles.size(); t += 3)
+    std::swap(s.triangles[t][1], s.triangles[t][2]);
+  EXPECT_NEAR(filled_volume(surface_shells(s)), 456.0, 1e-12 * 512);
+  // All of the side-8 cube's turned inward.
+  for (std::size_t t = 24; t < 36; ++t) std::swap(s.triangles[t][1], s.triangles[t][2]);
+  EXPECT_NEAR(filled_volume(surface_shells(s)), 456.0, 1e-12 * 512);
+}
+
 }  // namespace
 }  // namespace corofem

@@ -161,9 +161,13 @@ bool full_sweep() {
 }
 
 std::string cube_stl(int n, const Vec3& origin, double side) {
-  std::string s = "solid cube\n";
-  auto point = [&](Vec3 p) {
-    p = origin + side * p;
+  return box_stl({n, n, n}, side * Mat3::Identity(), origin);
+}
+
+std::string box_stl(const std::array<int, 3>& cells, const Mat3& edges, const Vec3& origin) {
+  std::string s = "solid box\n";
+  auto point = [&](const Vec3& unit) {
+    const Vec3 p = origin + edges * unit;
     return "vertex " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
            std::to_string(p.z()) + "\n";
   };
@@ -174,12 +178,13 @@ std::string cube_stl(int n, const Vec3& origin, double side) {
   for (int axis = 0; axis < 3; ++axis)
     for (int side = 0; side < 2; ++side) {
       const Vec3 normal = (side ? 1.0 : -1.0) * Vec3::Unit(axis);
-      const Vec3 eu = Vec3::Unit((axis + 1) % 3), ev = Vec3::Unit((axis + 2) % 3);
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const Vec3 eu = Vec3::Unit(u) / cells[u], ev = Vec3::Unit(v) / cells[v];
       const bool flip = eu.cross(ev).dot(normal) < 0;
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-          const Vec3 o = side * Vec3::Unit(axis) + (double(i) / n) * eu + (double(j) / n) * ev;
-          const Vec3 a = o, b = o + eu / n, c = o + (eu + ev) / n, d = o + ev / n;
+      for (int i = 0; i < cells[u]; ++i)
+        for (int j = 0; j < cells[v]; ++j) {
+          const Vec3 o = side * Vec3::Unit(axis) + i * eu + j * ev;
+          const Vec3 a = o, b = o + eu, c = o + eu + ev, d = o + ev;
           if (flip) {
             tri(a, c, b);
             tri(a, d, c);
@@ -189,7 +194,7 @@ std::string cube_stl(int n, const Vec3& origin, double side) {
           }
         }
     }
-  return s + "endsolid cube\n";
+  return s + "endsolid box\n";
 }
 
 Mat12 dense_element_stiffness(const FeProblem& p, int e) {

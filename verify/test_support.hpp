@@ -2,6 +2,7 @@
 // Helpers shared by the gates: temporary folders, running the CLI, small meshes, tolerances.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <iostream>
 #include <random>
@@ -84,6 +85,10 @@ bool full_sweep();
 /// (gmsh keeps the surface triangles, so they set the interior size too); scaled by `side`, its
 /// corner at `origin`.
 std::string cube_stl(int n, const Vec3& origin = Vec3::Zero(), double side = 1);
+
+/// The parallelepiped origin + edges * [0, 1]^3 (det(edges) > 0) as ASCII STL, the faces split
+/// into cells[a] x cells[b] parallelograms of 2 outward triangles along edges a and b.
+std::string box_stl(const std::array<int, 3>& cells, const Mat3& edges, const Vec3& origin);
 
 /// Source tree root (for scene files in bench/scenes).
 std::filesystem::path source_dir();

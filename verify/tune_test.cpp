@@ -158,7 +158,8 @@ TEST(Tune, RefusesATargetBelowTheReferencesOwnError) {
 TEST(Tune, BadOptionsExit2AndWriteNothing) {
   TempDir dir;
   write_text(dir / "bent.json", kBentBar);
-  const std::string scene = "'" + (dir / "bent.json").string() + "'";
+  const std::string scene =
+      std::string("'") + (dir / "bent.json").string() + "'";  // as in cli_mpi_test
   const std::string out = " --out '" + (dir / "out").string() + "'";
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {"--target 2", "--target must be in (0, 1)"},

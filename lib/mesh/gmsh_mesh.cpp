@@ -86,23 +86,22 @@ using VolumeLoops = std::vector<std::vector<int>>;
 
 /// Fills the current model's surfaces with tets of gmsh size `size` (the models' README recipe:
 /// the surface triangles stay the boundary) and returns them: the `volumes` given, or one volume
-/// bounded by all the surfaces.
-TetMesh fill_surfaces(const fs::path& source, double size, std::vector<VolumeLoops> volumes = {}) {
+/// bounded by all the surfaces. `shells` are the surfaces' shells (surface_shells).
+TetMesh fill_surfaces(const fs::path& source, double size, const std::vector<SurfaceShell>& shells,
+                      std::vector<VolumeLoops> volumes = {}) {
   call_gmsh(source, "tetrahedralize", [&] {
-    // A regular tet of edge h has volume h^3 / 8.5: the bounding box bounds the count from above.
-    double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
-    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
-    // gmsh's meshing beside a run: the dragon's dynamic MG-PCG run with its gmsh meshing peaked
-    // at 3.4 kB per tet (the solver's own need is checked with the scene, scene/memory_estimate).
-    const double tets = 8.5 * (x1 - x0) * (y1 - y0) * (z1 - z0) / (size * size * size);
-    require_memory(tets, 3.5e3 * tets,
-                   "mesh size " + std::to_string(size) + " for '" + source.string() + "'",
-                   "3.5 kB per tet: gmsh's meshing beside an MG-PCG run");
     gmsh::vectorpair surfaces;
     gmsh::model::getEntities(surfaces, 2);
     if (surfaces.empty())
       throw InputError("surface file '" + source.string() + "' has no triangles");
-    require_closed(model_surface(), source);
+    const SurfaceMesh surface = model_surface();
+    require_closed(surface, source);
+    const double tets = expected_tets(shells, size);
+    // gmsh's meshing beside a run: the dragon's dynamic MG-PCG run with its gmsh meshing peaked
+    // at 3.4 kB per tet (the solver's own need is checked with the scene, scene/memory_estimate).
+    require_memory(tets, 3.5e3 * tets,
+                   "mesh size " + std::to_string(size) + " for '" + source.string() + "'",
+                   "3.5 kB per tet: gmsh's meshing beside an MG-PCG run");
     if (volumes.empty()) {
       std::vector<int> surface_tags;
       for (const auto& dt : surfaces) surface_tags.push_back(dt.second);
@@ -168,10 +167,20 @@ TetMesh fill_shells(const std::vector<SurfaceShell>& shells, double size, const 
         if (shells[v].inside == static_cast<int>(body)) volumes.back().push_back({tags[v]});
     }
   });
-  return fill_surfaces(name, size, std::move(volumes));
+  return fill_surfaces(name, size, shells, std::move(volumes));
 }
 
 }  // namespace
+
+// gmsh's tets average about h^3 / 5 of volume (3.9-5.2 tets per h^3 on the bunny, horse and
+// dragon at the table sizes and finer; 6 is taken, to err high), plus one per surface triangle,
+// which gmsh keeps. The volume, not the bounding box: the horse fills 11% of its box, and the
+// box's bound refused sizes the machine could run.
+double expected_tets(const std::vector<SurfaceShell>& shells, double size) {
+  std::size_t triangles = 0;
+  for (const SurfaceShell& shell : shells) triangles += shell.surface.triangles.size();
+  return 6 * filled_volume(shells) / (size * size * size) + static_cast<double>(triangles);
+}
 
 TetMesh tetrahedralize_surface(const fs::path& file, double size) {
   check_readable(file);
@@ -186,7 +195,7 @@ TetMesh tetrahedralize_surface(const fs::path& file, double size) {
       gmsh::model::getEntities(entities, 2);
       shells = shells_of(model_surface());
     });
-    if (entities.size() <= 1 && shells.size() <= 1) return fill_surfaces(file, size);
+    if (entities.size() <= 1 && shells.size() <= 1) return fill_surfaces(file, size, shells);
   }
   // Several solids, or several shells: filled shell by shell. As gmsh read them, two bodies in
   // two solids gave "No elements in volume 1", and a void was filled.

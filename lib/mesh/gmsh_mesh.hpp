@@ -3,8 +3,10 @@
 // tets (Delaunay, the recipe of the models' README).
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mesh/surface_mesh.hpp"
+#include "mesh/surface_shells.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace corofem {
@@ -18,6 +20,10 @@ TetMesh read_volume_mesh(const std::filesystem::path& file);
 /// as the boundary, with gmsh's Mesh.MeshSizeMax = `size`. Throws InputError naming the file: a
 /// surface that is not closed (where its holes are), one that intersects itself, or gmsh's error.
 TetMesh tetrahedralize_surface(const std::filesystem::path& file, double size);
+
+/// About how many tets tetrahedralize_surface fills the shells with at `size`, erring high: what
+/// its memory check counts before gmsh starts. From the bodies' volume, not their bounding box.
+double expected_tets(const std::vector<SurfaceShell>& shells, double size);
 
 /// The same for a surface given as triangles (`name` for messages).
 TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const std::string& name);

@@ -1,6 +1,7 @@
 #include "mesh/surface_shells.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -41,7 +42,57 @@ bool inside_shell(const Vec3& p, const SurfaceMesh& shell) {
   return votes >= 2;
 }
 
+/// The volume one closed shell encloses, its triangles facing either way: each edge-connected
+/// piece's triangles turned to agree with the first's (two triangles agree when they run their
+/// shared edge in opposite directions), then the divergence theorem's sum, taken positive.
+double shell_volume(const SurfaceMesh& shell) {
+  const std::vector<int> same = welded_vertices(shell);
+  const int n = static_cast<int>(shell.triangles.size());
+  auto corner = [&](int t, int k) { return same[shell.triangles[t][k % 3]]; };
+  std::map<std::array<int, 2>, std::vector<int>> at_edge;  // undirected edge -> its triangles
+  for (int t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k)
+      at_edge[{std::min(corner(t, k), corner(t, k + 1)), std::max(corner(t, k), corner(t, k + 1))}]
+          .push_back(t);
+  auto runs = [&](int t, int a, int b) {  // whether triangle t runs the edge from a to b
+    for (int k = 0; k < 3; ++k)
+      if (corner(t, k) == a && corner(t, k + 1) == b) return true;
+    return false;
+  };
+  std::vector<int> sign(n, 0);
+  double volume = 0;
+  for (int first = 0; first < n; ++first) {
+    if (sign[first] != 0) continue;
+    sign[first] = 1;
+    double piece = 0;
+    std::vector<int> todo = {first};
+    while (!todo.empty()) {
+      const int t = todo.back();
+      todo.pop_back();
+      const auto& v = shell.triangles[t];
+      piece += sign[t] * shell.points[v[0]].dot(shell.points[v[1]].cross(shell.points[v[2]])) / 6;
+      for (int k = 0; k < 3; ++k) {
+        const int a = corner(t, k), b = corner(t, k + 1);
+        for (int u : at_edge[{std::min(a, b), std::max(a, b)}])
+          if (sign[u] == 0) {
+            sign[u] = runs(u, a, b) ? -sign[t] : sign[t];
+            todo.push_back(u);
+          }
+      }
+    }
+    volume += std::abs(piece);
+  }
+  return volume;
+}
+
 }  // namespace
+
+double filled_volume(const std::vector<SurfaceShell>& shells) {
+  double volume = 0;
+  for (const SurfaceShell& shell : shells)
+    volume += (shell.depth % 2 == 0 ? 1 : -1) * shell_volume(shell.surface);
+  return volume;
+}
 
 std::vector<SurfaceShell> surface_shells(const SurfaceMesh& surface) {
   const std::vector<int> same = welded_vertices(surface);

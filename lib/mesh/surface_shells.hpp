@@ -19,4 +19,8 @@ struct SurfaceShell {
 /// majority's parity). Shells are taken not to cross each other; gmsh refuses ones that do.
 std::vector<SurfaceShell> surface_shells(const SurfaceMesh& surface);
 
+/// The volume the shells' bodies fill: each body's enclosed volume less its voids', whichever way
+/// the triangles face (a shell's triangles are first turned to agree with their neighbours).
+double filled_volume(const std::vector<SurfaceShell>& shells);
+
 }  // namespace corofem
