@@ -173,6 +173,24 @@ TEST(GmshMesh, OpenSurfaceIsRefusedNamingItsHoles) {
   expect_surface_refused(dir / "holed.stl", fragment, read_surface);
 }
 
+TEST(GmshMesh, CoincidingTrianglesAreRefusedNamingWhere) {
+  // A repeated triangle, and two cubes touching along a face (whose 2 x 2 x 2 = 8 face triangles
+  // coincide): gmsh alone said "Invalid boundary mesh (overlapping facets) on surface 1".
+  TempDir dir;
+  std::string stl = test::cube_stl(2);
+  const std::size_t first = stl.find("facet normal"), end = stl.find("endfacet\n") + 9;
+  stl.insert(stl.rfind("endsolid"), stl.substr(first, end - first));
+  write_text(dir / "repeated.stl", stl);
+  write_text(dir / "touching.stl", test::cube_stl(2) + test::cube_stl(2, Vec3(1, 0, 0)));
+  for (const auto& [name, count] : {std::pair{"repeated.stl", 1}, {"touching.stl", 8}}) {
+    SCOPED_TRACE(name);
+    const std::string fragment =
+        "has triangles that coincide with others (" + std::to_string(count) + " of them";
+    expect_surface_refused(dir / name, fragment, fill_at_quarter);
+    expect_surface_refused(dir / name, fragment, read_surface);
+  }
+}
+
 TEST(GmshMesh, SelfIntersectingSurfaceIsSaidSo) {
   // Two unit cubes overlapping by half: their faces cross, which gmsh reports as a "PLC Error".
   TempDir dir;

@@ -63,16 +63,28 @@ SurfaceMesh model_surface() {
   return surface;
 }
 
-/// gmsh fills only a closed surface; given one with holes it fails with "No elements in volume 1"
-/// or meshes the space around it. Say where the holes are instead.
-void require_closed(const SurfaceMesh& surface, const fs::path& source) {
+/// gmsh fills only a closed surface without coinciding triangles; given one with holes it fails
+/// with "No elements in volume 1" or meshes the space around it, and given coinciding triangles
+/// with "Invalid boundary mesh (overlapping facets)". Say what and where instead.
+void require_fillable(const SurfaceMesh& surface, const fs::path& source) {
   const auto open = open_edges(surface);
-  if (open.empty()) return;
-  throw InputError(
-      "surface file '" + source.string() + "' is not closed: " + std::to_string(open.size()) +
-      " of its edges border one triangle only (the first from " +
-      point_text(surface.points[open[0][0]]) + " to " + point_text(surface.points[open[0][1]]) +
-      "); corofem fills a closed surface with tets, so its holes must be closed first");
+  if (!open.empty())
+    throw InputError(
+        "surface file '" + source.string() + "' is not closed: " + std::to_string(open.size()) +
+        " of its edges border one triangle only (the first from " +
+        point_text(surface.points[open[0][0]]) + " to " + point_text(surface.points[open[0][1]]) +
+        "); corofem fills a closed surface with tets, so its holes must be closed first");
+  const auto coinciding = coinciding_triangles(surface);
+  if (!coinciding.empty()) {
+    const auto& t = surface.triangles[coinciding[0]];
+    throw InputError("surface file '" + source.string() +
+                     "' has triangles that coincide with others (" +
+                     std::to_string(coinciding.size()) + " of them; the first at " +
+                     point_text(surface.points[t[0]]) + ", " + point_text(surface.points[t[1]]) +
+                     ", " + point_text(surface.points[t[2]]) +
+                     "): a triangle repeated, or two bodies touching along a face, which must be "
+                     "merged into one closed surface");
+  }
 }
 
 void check_size(const fs::path& source, double size) {
@@ -95,7 +107,7 @@ TetMesh fill_surfaces(const fs::path& source, double size, const std::vector<Sur
     if (surfaces.empty())
       throw InputError("surface file '" + source.string() + "' has no triangles");
     const SurfaceMesh surface = model_surface();
-    require_closed(surface, source);
+    require_fillable(surface, source);
     const double tets = expected_tets(shells, size);
     // gmsh's meshing beside a run: the dragon's dynamic MG-PCG run with its gmsh meshing peaked
     // at 3.4 kB per tet (the solver's own need is checked with the scene, scene/memory_estimate).
@@ -218,7 +230,7 @@ SurfaceMesh read_surface(const fs::path& file) {
   });
   if (surface.triangles.empty())
     throw InputError("surface file '" + file.string() + "' has no triangles");
-  require_closed(surface, file);
+  require_fillable(surface, file);
   return surface;
 }
 

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
+#include <set>
 #include <tuple>
 
 namespace corofem {
@@ -44,6 +45,19 @@ std::vector<std::array<int, 2>> open_edges(const SurfaceMesh& s) {
   for (const auto& [edge, count] : triangles_at)
     if (count == 1) open.push_back(edge);
   return open;
+}
+
+std::vector<int> coinciding_triangles(const SurfaceMesh& s) {
+  const std::vector<int> same = welded_vertices(s);
+  std::set<std::array<int, 3>> seen;
+  std::vector<int> coinciding;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    std::array<int, 3> corners = {same[s.triangles[t][0]], same[s.triangles[t][1]],
+                                  same[s.triangles[t][2]]};
+    std::sort(corners.begin(), corners.end());
+    if (!seen.insert(corners).second) coinciding.push_back(static_cast<int>(t));
+  }
+  return coinciding;
 }
 
 }  // namespace corofem

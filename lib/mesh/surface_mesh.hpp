@@ -28,4 +28,8 @@ std::vector<int> welded_vertices(const SurfaceMesh& surface);
 /// (none on a closed surface). Vertices at the same coordinates count as one (welded_vertices).
 std::vector<std::array<int, 2>> open_edges(const SurfaceMesh& surface);
 
+/// The triangles with the same three vertices as an earlier one, either way round: a repeated
+/// triangle, or two bodies touching along a face (welded_vertices).
+std::vector<int> coinciding_triangles(const SurfaceMesh& surface);
+
 }  // namespace corofem
