@@ -16,10 +16,13 @@ struct RankView {
   int owned_vertices = -1;                       ///< -1: every vertex (one rank)
   std::vector<char> owned_tet;                   ///< empty: every tet
   std::function<double(double)> sum_over_ranks;  ///< empty: one rank
+  std::function<double(double)> max_over_ranks;  ///< empty: one rank
 
   bool distributed() const { return owned_vertices >= 0; }
   /// `value` summed over the ranks (itself with one rank).
   double sum(double value) const { return sum_over_ranks ? sum_over_ranks(value) : value; }
+  /// The largest `value` over the ranks (itself with one rank).
+  double max(double value) const { return max_over_ranks ? max_over_ranks(value) : value; }
   /// free_norm over the whole body: the owned free DOFs of every rank.
   double free_norm(const DirichletConditions& bc, const Eigen::VectorXd& v) const;
   /// count_inverted over the whole body: the owned tets of every rank.

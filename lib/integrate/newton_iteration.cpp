@@ -243,9 +243,11 @@ NewtonReport newton_iterate(
     };
     int halvings = 0;
     bool found = false;
+    const double longest = settings.step_bound ? std::min(1.0, settings.step_bound(dz)) : 1.0;
+    report.bounded_steps += longest < 1;
     if (potential && slope < -kPotentialResolution * phi.magnitude) {  // Armijo on the potential
       ++report.potential_steps;
-      double alpha = 1;
+      double alpha = longest;
       for (int h = 0; h <= settings.max_halvings && !found; ++h, alpha *= 0.5) {
         evaluate(alpha);
         found = std::isfinite(trial_phi.value) &&
@@ -255,7 +257,7 @@ NewtonReport newton_iterate(
       report.potential_fallbacks += !found;
     }
     if (!found) {  // the safeguarded full step
-      double alpha = 1;
+      double alpha = longest;
       for (int h = 0;; ++h, alpha *= 0.5) {
         evaluate(alpha);
         if ((std::isfinite(trial_norm) && trial_norm <= settings.max_growth * norm) ||

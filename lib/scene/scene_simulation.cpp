@@ -80,7 +80,7 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
   problem_ = make_problem(std::move(share.body));
   extractor_ = make_rotation_extractor(corotational() ? a.rotation : RotationMethod::None,
                                        problem_.mesh, a.rotation_params);
-  ranks_ = RankView{part_->owned_vertices, part_->owned_tet, sum_over_ranks};
+  ranks_ = RankView{part_->owned_vertices, part_->owned_tet, sum_over_ranks, max_over_ranks};
   if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_, ranks_);
   const PetscSolveSettings s = petsc_solve_settings(a);  // static Newton: the tangent by GMRES
   solver_ = make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, s.tolerance,

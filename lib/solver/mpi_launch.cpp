@@ -62,16 +62,31 @@ void abort_all_ranks(int code) {
 #endif
 }
 
-double sum_over_ranks(double value) {
+namespace {
+
+/// `value` over the ranks, their largest or their sum (itself with one rank).
+double reduce_over_ranks(double value, [[maybe_unused]] const char* what,
+                         [[maybe_unused]] bool largest) {
 #ifdef COROFEM_HAVE_PETSC
   if (mpi_launch().size > 1) {
-    double sum = 0;
-    if (MPI_Allreduce(&value, &sum, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD) != MPI_SUCCESS)
-      throw NumericalFault("MPI_Allreduce of a sum over the ranks failed");
-    return sum;
+    double reduced = 0;
+    if (MPI_Allreduce(&value, &reduced, 1, MPI_DOUBLE, largest ? MPI_MAX : MPI_SUM,
+                      PETSC_COMM_WORLD) != MPI_SUCCESS)
+      throw NumericalFault(std::string("MPI_Allreduce of a ") + what + " over the ranks failed");
+    return reduced;
   }
 #endif
   return value;
+}
+
+}  // namespace
+
+double sum_over_ranks(double value) {
+  return reduce_over_ranks(value, "sum", false);
+}
+
+double max_over_ranks(double value) {
+  return reduce_over_ranks(value, "maximum", true);
 }
 
 namespace {

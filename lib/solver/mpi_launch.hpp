@@ -34,6 +34,9 @@ void abort_all_ranks(int code);
 /// The sum of `value` over the ranks (on every rank); `value` itself with one rank.
 double sum_over_ranks(double value);
 
+/// The largest `value` over the ranks (on every rank); `value` itself with one rank.
+double max_over_ranks(double value);
+
 /// Rank 0's `status` and `message` on every rank (a collective call; unchanged with one rank):
 /// how rank 0, alone doing work that can fail, tells the others whether it did.
 void broadcast_status(int& status, std::string& message);
