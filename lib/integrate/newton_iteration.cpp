@@ -244,7 +244,6 @@ NewtonReport newton_iterate(
     int halvings = 0;
     bool found = false;
     const double longest = settings.step_bound ? std::min(1.0, settings.step_bound(dz)) : 1.0;
-    report.bounded_steps += longest < 1;
     if (potential && slope < -kPotentialResolution * phi.magnitude) {  // Armijo on the potential
       ++report.potential_steps;
       double alpha = longest;

@@ -51,7 +51,6 @@ struct NewtonReport {
   int halvings = 0;             ///< step halvings in all (both rules)
   int potential_steps = 0;      ///< steps along which the potential descends
   int potential_fallbacks = 0;  ///< of those, steps where the search found no decrease
-  int bounded_steps = 0;        ///< steps the step_bound shortened
   double residual = 0;          ///< |g|_free / scale at the end
   bool converged = false;
   bool at_floor = false;  ///< converged by the floor rule (see NewtonSettings::floor_factor)

@@ -148,12 +148,12 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
                                    result, clock);
     // Inverted tets are counted in the states the run reaches (each increment's answer, or where
     // it stops), not in Newton's trial states on the way, nor in a cut increment's.
-    const auto count_inverted = [&] {
+    const auto note_inverted = [&] {
       result.inverted_max = std::max(result.inverted_max,
                                      options.ranks.count_inverted(problem, problem.positions(u)));
     };
     if (converged) {
-      count_inverted();
+      note_inverted();
       ++done;
       ++result.steps;
       if (tangent) {  // the state a cut increment restarts from (only Newton increments are cut)
@@ -170,7 +170,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       ++result.increment_cuts;
       continue;
     }
-    count_inverted();
+    note_inverted();
     result.converged = false;
     result.message =
         where + " did not reach tolerance " + general_number(options.tolerance) + " in " +
