@@ -67,14 +67,15 @@ SurfaceMesh model_surface() {
 /// with "No elements in volume 1" or meshes the space around it, and given coinciding triangles
 /// with "Invalid boundary mesh (overlapping facets)". Say what and where instead.
 void require_fillable(const SurfaceMesh& surface, const fs::path& source) {
-  const auto open = open_edges(surface);
+  const SurfaceDefects defects = surface_defects(surface);
+  const auto& open = defects.open_edges;
   if (!open.empty())
     throw InputError(
         "surface file '" + source.string() + "' is not closed: " + std::to_string(open.size()) +
         " of its edges border one triangle only (the first from " +
         point_text(surface.points[open[0][0]]) + " to " + point_text(surface.points[open[0][1]]) +
         "); corofem fills a closed surface with tets, so its holes must be closed first");
-  const auto coinciding = coinciding_triangles(surface);
+  const auto& coinciding = defects.coinciding_triangles;
   if (!coinciding.empty()) {
     const auto& t = surface.triangles[coinciding[0]];
     throw InputError("surface file '" + source.string() +
@@ -98,7 +99,8 @@ using VolumeLoops = std::vector<std::vector<int>>;
 
 /// Fills the current model's surfaces with tets of gmsh size `size` (the models' README recipe:
 /// the surface triangles stay the boundary) and returns them: the `volumes` given, or one volume
-/// bounded by all the surfaces. `shells` are the surfaces' shells (surface_shells).
+/// bounded by all the surfaces. `shells` are the surfaces' shells (surface_shells), fillable
+/// (require_fillable).
 TetMesh fill_surfaces(const fs::path& source, double size, const std::vector<SurfaceShell>& shells,
                       std::vector<VolumeLoops> volumes = {}) {
   call_gmsh(source, "tetrahedralize", [&] {
@@ -106,8 +108,6 @@ TetMesh fill_surfaces(const fs::path& source, double size, const std::vector<Sur
     gmsh::model::getEntities(surfaces, 2);
     if (surfaces.empty())
       throw InputError("surface file '" + source.string() + "' has no triangles");
-    const SurfaceMesh surface = model_surface();
-    require_fillable(surface, source);
     const double tets = expected_tets(shells, size);
     // gmsh's meshing beside a run: the dragon's dynamic MG-PCG run with its gmsh meshing peaked
     // at 3.4 kB per tet (the solver's own need is checked with the scene, scene/memory_estimate).
@@ -205,7 +205,9 @@ TetMesh tetrahedralize_surface(const fs::path& file, double size) {
     call_gmsh(file, "read", [&] {
       gmsh::merge(file.string());
       gmsh::model::getEntities(entities, 2);
-      shells = shells_of(model_surface());
+      const SurfaceMesh surface = model_surface();
+      require_fillable(surface, file);
+      shells = shells_of(surface);
     });
     if (entities.size() <= 1 && shells.size() <= 1) return fill_surfaces(file, size, shells);
   }
@@ -216,6 +218,7 @@ TetMesh tetrahedralize_surface(const fs::path& file, double size) {
 
 TetMesh tetrahedralize_surface(const SurfaceMesh& surface, double size, const std::string& name) {
   check_size(name, size);
+  require_fillable(surface, name);
   return fill_shells(shells_of(surface), size, name);
 }
 

@@ -15,10 +15,13 @@ double surface_area(const SurfaceMesh& s) {
   return area;
 }
 
+double signed_triangle_volume(const SurfaceMesh& s, const std::array<int, 3>& t) {
+  return s.points[t[0]].dot(s.points[t[1]].cross(s.points[t[2]])) / 6;
+}
+
 double enclosed_volume(const SurfaceMesh& s) {
   double volume = 0;
-  for (const auto& t : s.triangles)
-    volume += s.points[t[0]].dot(s.points[t[1]].cross(s.points[t[2]])) / 6;
+  for (const auto& t : s.triangles) volume += signed_triangle_volume(s, t);
   return volume;
 }
 
@@ -33,31 +36,24 @@ std::vector<int> welded_vertices(const SurfaceMesh& s) {
   return same;
 }
 
-std::vector<std::array<int, 2>> open_edges(const SurfaceMesh& s) {
+SurfaceDefects surface_defects(const SurfaceMesh& s) {
   const std::vector<int> same = welded_vertices(s);
   std::map<std::array<int, 2>, int> triangles_at;
-  for (const auto& t : s.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const int a = same[t[k]], b = same[t[(k + 1) % 3]];
-      ++triangles_at[{std::min(a, b), std::max(a, b)}];
-    }
-  std::vector<std::array<int, 2>> open;
-  for (const auto& [edge, count] : triangles_at)
-    if (count == 1) open.push_back(edge);
-  return open;
-}
-
-std::vector<int> coinciding_triangles(const SurfaceMesh& s) {
-  const std::vector<int> same = welded_vertices(s);
   std::set<std::array<int, 3>> seen;
-  std::vector<int> coinciding;
+  SurfaceDefects defects;
   for (std::size_t t = 0; t < s.triangles.size(); ++t) {
     std::array<int, 3> corners = {same[s.triangles[t][0]], same[s.triangles[t][1]],
                                   same[s.triangles[t][2]]};
+    for (int k = 0; k < 3; ++k) {
+      const int a = corners[k], b = corners[(k + 1) % 3];
+      ++triangles_at[{std::min(a, b), std::max(a, b)}];
+    }
     std::sort(corners.begin(), corners.end());
-    if (!seen.insert(corners).second) coinciding.push_back(static_cast<int>(t));
+    if (!seen.insert(corners).second) defects.coinciding_triangles.push_back(static_cast<int>(t));
   }
-  return coinciding;
+  for (const auto& [edge, count] : triangles_at)
+    if (count == 1) defects.open_edges.push_back(edge);
+  return defects;
 }
 
 }  // namespace corofem

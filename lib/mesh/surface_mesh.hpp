@@ -17,6 +17,10 @@ struct SurfaceMesh {
 /// Area of the surface.
 double surface_area(const SurfaceMesh& surface);
 
+/// One triangle's term of the divergence theorem: the signed volume of the tet it spans with the
+/// origin, positive when the triangle faces away from the origin.
+double signed_triangle_volume(const SurfaceMesh& surface, const std::array<int, 3>& triangle);
+
 /// Volume enclosed by a closed, outward-oriented surface (divergence theorem).
 double enclosed_volume(const SurfaceMesh& surface);
 
@@ -24,12 +28,17 @@ double enclosed_volume(const SurfaceMesh& surface);
 /// repeats each vertex in every triangle that has it.
 std::vector<int> welded_vertices(const SurfaceMesh& surface);
 
-/// The edges that border one triangle only, as vertex pairs: the rims of the surface's holes
-/// (none on a closed surface). Vertices at the same coordinates count as one (welded_vertices).
-std::vector<std::array<int, 2>> open_edges(const SurfaceMesh& surface);
+/// What keeps a surface from being filled with tets. Vertices at the same coordinates count as
+/// one (welded_vertices).
+struct SurfaceDefects {
+  /// The edges that border one triangle only, as vertex pairs: the rims of the surface's holes.
+  std::vector<std::array<int, 2>> open_edges;
+  /// The triangles with the same three vertices as an earlier one, either way round: a repeated
+  /// triangle, or two bodies touching along a face.
+  std::vector<int> coinciding_triangles;
+};
 
-/// The triangles with the same three vertices as an earlier one, either way round: a repeated
-/// triangle, or two bodies touching along a face (welded_vertices).
-std::vector<int> coinciding_triangles(const SurfaceMesh& surface);
+/// The surface's defects, found in one pass over its welded triangles: none on a closed surface.
+SurfaceDefects surface_defects(const SurfaceMesh& surface);
 
 }  // namespace corofem

@@ -69,8 +69,7 @@ double shell_volume(const SurfaceMesh& shell) {
     while (!todo.empty()) {
       const int t = todo.back();
       todo.pop_back();
-      const auto& v = shell.triangles[t];
-      piece += sign[t] * shell.points[v[0]].dot(shell.points[v[1]].cross(shell.points[v[2]])) / 6;
+      piece += sign[t] * signed_triangle_volume(shell, shell.triangles[t]);
       for (int k = 0; k < 3; ++k) {
         const int a = corner(t, k), b = corner(t, k + 1);
         for (int u : at_edge[{std::min(a, b), std::max(a, b)}])
