@@ -5,17 +5,20 @@
 // non-conservative ones is measured.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <iostream>
 
 #include "cantilever_fixture.hpp"
 #include "core/errors.hpp"
 #include "fem/corotated_assembly.hpp"
+#include "fem/corotated_system.hpp"
 #include "fem/dirichlet.hpp"
 #include "fem/rotation_tangent.hpp"
 #include "integrate/implicit_euler.hpp"
 #include "integrate/newton_iteration.hpp"
 #include "integrate/static_solver.hpp"
 #include "linalg/linear_solver.hpp"
+#include "rotation/polar_decomposition.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "solver/petsc_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
@@ -89,6 +92,49 @@ TEST(StaticNewton, TheWholeLoadInOneIncrementByBoundedSteps) {
             1e-8 * answers[1].displacement.norm());
   // Inverted tets are counted in the answer, not in the trial states on the way.
   EXPECT_EQ(answers[0].inverted_max, 0);
+}
+
+/// Polar rotations turned by 1e-9 rad about z, the sign flipping at every extraction: an
+/// iterative method's rotations found to a tolerance, an error in the internal forces that
+/// Newton's steps cannot remove.
+class RoughPolar : public RotationExtractor {
+ public:
+  explicit RoughPolar(const TetMesh& mesh)
+      : polar_(make_rotation_extractor(RotationMethod::Polar, mesh)) {}
+  RotationMethod method() const override { return RotationMethod::Polar; }
+  void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override {
+    polar_->extract(positions, rotations);
+    const Mat3 turn =
+        Eigen::AngleAxisd((extractions_++ % 2 == 0 ? 1 : -1) * 1e-9, Vec3::UnitZ()).matrix();
+    for (Mat3& r : rotations) r = turn * r;
+  }
+
+ private:
+  std::unique_ptr<RotationExtractor> polar_;
+  int extractions_ = 0;
+};
+
+TEST(StaticNewton, AnIncrementStalledAtAFloorIsNotCutAndSaysWhy) {
+  // The soft cantilever's gravity in one increment to 1e-10 with rotations 1e-9 rad off: the
+  // residual's floor lies near 2e-8. Without the stall rule the increment ran to its cap of 100
+  // iterations and was cut 8 times, each cut stalling at the same floor (900 iterations); now it
+  // stops 10 iterations after its residual last halved (15).
+  FeProblem p = soft_cantilever().build(1);
+  RoughPolar rotation(p.mesh);
+  auto solver = make_cholmod_solver();
+  int reported = 0;
+  StaticOptions options{true, 1, 1e-10, 100, true};
+  options.on_iteration = [&](const StaticIteration&) { ++reported; };
+  const SimulationResult r = solve_static(p, rotation, *solver, options);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.increment_cuts, 0);
+  EXPECT_LT(r.iterations, 30);
+  EXPECT_GT(r.residual, 1e-10);
+  EXPECT_LT(r.residual, 1e-6);
+  EXPECT_EQ(reported, r.iterations);
+  EXPECT_NE(r.message.find("load increment 1 of 1 stalls at residual"), std::string::npos)
+      << r.message;
+  std::cout << r.message << "\n";
 }
 
 TEST(StaticNewton, LaggedIterationStallsWhereNewtonConverges) {
@@ -313,6 +359,62 @@ TEST(NewtonLineSearch, LowersThePolarPotentialOnEveryAcceptedStep) {
             << " without\n";
   if (without.converged) {
     EXPECT_LT((u - v).norm(), 1e-6 * u.norm());
+  }
+}
+
+TEST(NewtonStall, AFloorAboveTheToleranceStopsTheIterationsOnceTheyNoLongerHalveIt) {
+  // g(u) = K u - f + e, K the soft cantilever's linear stiffness and e an error of size 1e-8 |f|
+  // on one free DOF whose sign flips at every evaluation: a floor like the internal forces'
+  // rounding, which the Newton step (by K) cannot remove. Each step cancels the last error and
+  // meets the next, so from the first step on |g| = 2e-8 |f| and never halves again: the stall
+  // rule stops 10 iterations after the first, where without it Newton runs to its cap. Every
+  // iteration is reported, in order, with its residual.
+  FeProblem p = soft_cantilever().build(1);
+  std::map<std::string, double> timings;
+  PhaseClock clock(timings);
+  {  // K into p.stiffness: the system linearized about the rest state
+    IdentityExtractor identity;
+    const Eigen::VectorXd rest = Eigen::VectorXd::Zero(p.num_dofs());
+    std::vector<Mat3> rotations(p.mesh.tets.size(), Mat3::Identity());
+    Eigen::VectorXd force;
+    linearize(p, identity, p.positions(rest), rest, rotations, force, clock);
+  }
+  const double f_norm = p.external_force.norm();
+  int free_dof = 0;
+  while (p.dirichlet.fixed[free_dof]) ++free_dof;
+  int evaluations = 0;
+  const auto residual = [&](const Eigen::VectorXd& u) {
+    Eigen::VectorXd g = Eigen::VectorXd(to_eigen(p.stiffness) * u) - p.external_force;
+    g[free_dof] += (evaluations++ % 2 == 0 ? 1 : -1) * 1e-8 * f_norm;
+    return g;
+  };
+  const auto jacobian = [&](BrcMatrix& j) { j = p.stiffness; };
+  BrcMatrix work = p.stiffness;
+  SparseLuSolve solve(work);
+  for (const int stall : {10, 0}) {
+    SCOPED_TRACE(stall);
+    NewtonSettings settings;
+    settings.tolerance = 1e-10;
+    settings.max_iterations = 40;
+    settings.floor_factor = 1;
+    settings.stall_iterations = stall;
+    std::vector<std::pair<int, double>> seen;
+    settings.on_iteration = [&](int it, double r) { seen.emplace_back(it, r); };
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(p.num_dofs());
+    evaluations = 0;
+    const NewtonReport report =
+        newton_iterate(u, residual, jacobian, p.dirichlet, f_norm, settings, solve, work, clock);
+    EXPECT_FALSE(report.converged);
+    EXPECT_EQ(report.stalled, stall > 0);
+    if (stall > 0)
+      EXPECT_EQ(report.iterations, 1 + stall);  // the first step lands on the floor
+    else
+      EXPECT_EQ(report.iterations, settings.max_iterations);
+    ASSERT_EQ(static_cast<int>(seen.size()), report.iterations);
+    for (int k = 0; k < report.iterations; ++k) {
+      EXPECT_EQ(seen[k].first, k + 1);
+      EXPECT_NEAR(seen[k].second, 2e-8, 1e-10);  // the solve's error, 1e-12 |f| by GMRES
+    }
   }
 }
 

@@ -30,6 +30,28 @@ TEST(Scene, MinimalSceneGetsDefaults) {
   EXPECT_EQ(s.fixed.size(), 1u);
 }
 
+TEST(Scene, AStaticRunFindsIterativeRotationsBelowItsTolerance) {
+  // The rotations' own error must not set the floor of the static residual: 1e-5 x tolerance,
+  // unless the scene says; a dynamic run keeps the extractors' defaults.
+  auto j = minimal();
+  j["analysis"] = {{"rotation", "energy-newton"}, {"tolerance", 1e-6}};
+  RotationParams p = parse_scene(j, "/base", "s.json").analysis.rotation_params;
+  EXPECT_DOUBLE_EQ(p.newton_tolerance, 1e-11);
+  EXPECT_DOUBLE_EQ(p.mueller_tolerance, 1e-11);
+  j["analysis"]["tolerance"] = 1e-12;  // never below what the scene allows any tolerance
+  EXPECT_DOUBLE_EQ(parse_scene(j, "/base", "s.json").analysis.rotation_params.newton_tolerance,
+                   1e-15);
+  j["analysis"]["rotation_params"] = {{"newton_tolerance", 1e-7}};
+  p = parse_scene(j, "/base", "s.json").analysis.rotation_params;
+  EXPECT_DOUBLE_EQ(p.newton_tolerance, 1e-7);
+  EXPECT_DOUBLE_EQ(p.mueller_tolerance, 1e-15);
+  j["analysis"] = {{"type", "dynamic"}, {"tolerance", 1e-6}};
+  j["material"]["density"] = 1000;
+  p = parse_scene(j, "/base", "s.json").analysis.rotation_params;
+  EXPECT_EQ(p.newton_tolerance, RotationParams{}.newton_tolerance);
+  EXPECT_EQ(p.mueller_tolerance, RotationParams{}.mueller_tolerance);
+}
+
 TEST(Scene, SmootherNamesAnOrderingOrChebyshev) {
   auto j = minimal();
   j["analysis"] = {{"solver", "mgpcg"}, {"smoother", "domains"}};

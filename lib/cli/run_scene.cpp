@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/rank_records.hpp"
+#include "cli/static_progress.hpp"
 #include "cli/step_progress.hpp"
 #include "core/memory_usage.hpp"
 #include "core/number_text.hpp"
@@ -165,7 +166,11 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
   }
   StepProgress steps(progress, progress == &std::cerr && isatty(STDERR_FILENO),
                      scene.analysis.steps);
-  SimulationResult result = simulation.run([&](const StepState& s) { steps.step_done(s.step); });
+  StaticProgress iterations(progress, progress == &std::cerr && isatty(STDERR_FILENO),
+                            scene.analysis.tolerance);
+  SimulationResult result =
+      simulation.run([&](const StepState& s) { steps.step_done(s.step); },
+                     [&](const StaticIteration& at) { iterations.iteration_done(at); });
 
   nlohmann::json r = run_summary(simulation, result);
   if (part) {

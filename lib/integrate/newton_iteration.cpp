@@ -208,8 +208,12 @@ NewtonReport newton_iterate(
   double norm = ranks.free_norm(fixed, g);
   PotentialValue phi = potential ? potential() : PotentialValue{};
   double previous_norm = std::numeric_limits<double>::infinity();
+  double last_halved = std::numeric_limits<double>::infinity();  // the stall rule's reference
+  int halved_at = 0;
   for (;; ++report.iterations) {
     report.residual = norm / scale;
+    if (settings.on_iteration && report.iterations > 0)
+      settings.on_iteration(report.iterations, report.residual);
     if (report.residual <= settings.tolerance) {
       report.converged = true;
       return report;
@@ -220,6 +224,16 @@ NewtonReport newton_iterate(
       return report;
     }
     previous_norm = norm;
+    if (norm <= 0.5 * last_halved) {
+      last_halved = norm;
+      halved_at = report.iterations;
+    }
+    if (settings.stall_iterations > 0 &&
+        report.residual <= settings.stall_factor * settings.tolerance &&
+        report.iterations - halved_at >= settings.stall_iterations) {
+      report.stalled = true;
+      return report;
+    }
     if (report.iterations == settings.max_iterations) return report;
     jacobian(work);
     Eigen::VectorXd rhs = -g;

@@ -42,8 +42,15 @@ struct NewtonSettings {
   /// no longer halves it (Newton near a root would square it; rounding in f_int, whose element
   /// terms cancel, stops it there).
   double floor_factor = 100;
+  /// > 0: stop, stalled, once the residual is within stall_factor x tolerance and the last
+  /// stall_iterations iterations have not halved it: a floor above the tolerance (the internal
+  /// forces' own error) that more iterations do not pass. 0: iterate to max_iterations.
+  int stall_iterations = 0;
+  double stall_factor = 1e4;
   /// The longest step length allowed along a Newton step dz, at most 1 (empty: 1).
   std::function<double(const Eigen::VectorXd& dz)> step_bound;
+  /// Called after every step taken, with the iterations so far and |g|_free / scale (progress).
+  std::function<void(int iteration, double residual)> on_iteration{};
 };
 
 struct NewtonReport {
@@ -54,6 +61,7 @@ struct NewtonReport {
   double residual = 0;          ///< |g|_free / scale at the end
   bool converged = false;
   bool at_floor = false;  ///< converged by the floor rule (see NewtonSettings::floor_factor)
+  bool stalled = false;   ///< stopped by the stall rule (see NewtonSettings::stall_iterations)
 };
 
 /// A potential's value and the size of its terms before they cancel (what its rounding is

@@ -6,6 +6,8 @@
 // With `newton`: per increment, Newton iterations on f_int(u) = f with the consistent tangent
 // (fem/rotation_tangent.hpp, sparse LU), converging quadratically where the lagged ones crawl;
 // an increment whose full Newton steps do not converge is halved and retried.
+#include <functional>
+
 #include "fem/fe_problem.hpp"
 #include "fem/rank_view.hpp"
 #include "fem/simulation_result.hpp"
@@ -13,6 +15,16 @@
 #include "rotation/rotation_extractor.hpp"
 
 namespace corofem {
+
+/// Where a static run stands after one of its iterations, for progress lines.
+struct StaticIteration {
+  long long increment = 1;   ///< the load increment being solved, 1-based, of `increments`
+  long long increments = 1;  ///< the increments the load is split into (doubled by each cut)
+  int iteration = 0;         ///< iterations taken in this increment
+  double residual = 0;       ///< |f - f_int(u)|_free / |f|
+  bool converged = false;    ///< the increment's answer is accepted
+  bool cut = false;          ///< the increment missed the tolerance and is retried as two halves
+};
 
 struct StaticOptions {
   bool corotational = true;
@@ -27,6 +39,8 @@ struct StaticOptions {
   /// Newton: the tangent goes to `solver` (made for non-symmetric matrices: PETSc's GMRES), on one
   /// process or a distributed mesh; otherwise to the serial sparse factorizations.
   bool tangent_by_solver = false;
+  /// Called after every iteration and when an increment converges (progress).
+  std::function<void(const StaticIteration&)> on_iteration{};
 };
 
 /// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).

@@ -158,7 +158,9 @@ nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) c
   return s ? to_json(*s) : nlohmann::json(nullptr);
 }
 
-SimulationResult SceneSimulation::run(const std::function<void(const StepState&)>& on_step) {
+SimulationResult SceneSimulation::run(
+    const std::function<void(const StepState&)>& on_step,
+    const std::function<void(const StaticIteration&)>& on_iteration) {
   const auto start = std::chrono::steady_clock::now();
   const AnalysisSpec& a = scene_.analysis;
   SimulationResult result =
@@ -167,7 +169,8 @@ SimulationResult SceneSimulation::run(const std::function<void(const StepState&)
           : solve_static(problem_, *extractor_, *solver_,
                          {corotational(), a.load_steps, a.tolerance, a.max_iterations,
                           a.integrator == Integrator::Newton, ranks_,
-                          newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver)});
+                          newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver),
+                          on_iteration});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

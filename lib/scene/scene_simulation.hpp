@@ -61,9 +61,10 @@ class SceneSimulation {
     if (dynamic_) dynamic_->keep_stiffness = true;
   }
 
-  /// Static or dynamic, as the scene says; `on_step` follows every dynamic step. Phase times
-  /// include "setup" (building) and "total".
-  SimulationResult run(const std::function<void(const StepState&)>& on_step = {});
+  /// Static or dynamic, as the scene says; `on_step` follows every dynamic step, `on_iteration`
+  /// every static iteration. Phase times include "setup" (building) and "total".
+  SimulationResult run(const std::function<void(const StepState&)>& on_step = {},
+                       const std::function<void(const StaticIteration&)>& on_iteration = {});
 
  private:
   /// Rank 0 of a distributed run: builds and partitions the whole body, sends each other rank
