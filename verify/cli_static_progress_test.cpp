@@ -1,13 +1,18 @@
-// A static run's progress lines: on a log, each tenth of the increments and every cut, and no
-// iteration lines while they come faster than one in a few seconds; on a terminal, one line
-// redrawn in place that ends when the last increment converges.
+// A run's progress lines: a static run's on a log, each tenth of the increments and every cut,
+// and no iteration lines while they come faster than one in a few seconds; on a terminal, one
+// line redrawn in place that ends when the last increment converges, or, for static and dynamic
+// runs alike, before anything else is written when the run stops early.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/static_progress.hpp"
+#include "cli/step_progress.hpp"
 
 namespace corofem {
 namespace {
@@ -64,6 +69,34 @@ TEST(StaticProgress, ATerminalGetsOneLineRedrawnThatEndsWithTheLastIncrement) {
   EXPECT_NE(text.find("\rcorofem: load increment 3 of 3 converged in 3 iterations\x1b[K\n"),
             std::string::npos);
   EXPECT_EQ(text.back(), '\n');
+}
+
+TEST(StaticProgress, ALineLeftOpenByARunThatStopsEarlyIsEndedOnce) {
+  std::ostringstream out;
+  {
+    StaticProgress progress(&out, true, 1e-8);
+    progress.iteration_done(
+        {.increment = 1, .increments = 3, .iteration = 3, .residual = 1e-9, .converged = true});
+    EXPECT_NE(out.str().back(), '\n');  // increment 1 of 3: the line stays open for the next
+    progress.end_line();
+    EXPECT_EQ(out.str().back(), '\n');
+    progress.end_line();
+  }
+  const std::string text = out.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1);
+}
+
+TEST(StepProgress, ALineLeftOpenIsEndedWhenTheRunUnwinds) {
+  // A dynamic run that throws at step 1 of 10: the bar's line ends before the error is written.
+  std::ostringstream out;
+  {
+    StepProgress progress(&out, true, 10);
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));  // past the redraw interval
+    progress.step_done(1);
+    EXPECT_NE(out.str().find("step 1/10"), std::string::npos);
+    EXPECT_NE(out.str().back(), '\n');
+  }
+  EXPECT_EQ(out.str().back(), '\n');
 }
 
 }  // namespace

@@ -187,6 +187,8 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
       r["vtu"] = scene.output.vtu->string();
     }
   }
+  steps.end_line();
+  iterations.end_line();
   if (progress) *progress << closing_line(scene, result);
   return {std::move(r), result.converged};
 }

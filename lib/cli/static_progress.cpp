@@ -25,6 +25,7 @@ StaticProgress::StaticProgress(std::ostream* out, bool terminal, double toleranc
     : out_(out),
       terminal_(terminal),
       tolerance_(tolerance),
+      line_(out),
       last_draw_(std::chrono::steady_clock::now()) {}
 
 void StaticProgress::iteration_done(const StaticIteration& at) {
@@ -43,8 +44,7 @@ void StaticProgress::iteration_done(const StaticIteration& at) {
   if (terminal_) {
     if (!settled && now - last_draw_ < kRedrawEvery) return;
     last_draw_ = now;
-    const bool keep = at.cut || (at.converged && at.increment == at.increments);
-    *out_ << "\r" << text << "\x1b[K" << (keep ? "\n" : "") << std::flush;
+    line_.draw(text, at.cut || (at.converged && at.increment == at.increments));
     return;
   }
   const long long every = std::max(1LL, at.increments / 10);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <ostream>
 
+#include "cli/redrawn_line.hpp"
 #include "integrate/static_solver.hpp"
 
 namespace corofem {
@@ -15,11 +16,14 @@ class StaticProgress {
   /// residual the increments iterate to.
   StaticProgress(std::ostream* out, bool terminal, double tolerance);
   void iteration_done(const StaticIteration& at);
+  /// Ends the terminal's line if a redraw left it open (a run that stops early).
+  void end_line() { line_.end(); }
 
  private:
   std::ostream* out_;
   bool terminal_;
   double tolerance_;
+  RedrawnLine line_;
   std::chrono::steady_clock::time_point last_draw_;
 };
 

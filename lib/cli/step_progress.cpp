@@ -20,6 +20,7 @@ std::string time_left(double elapsed_s, int done, int steps) {
 StepProgress::StepProgress(std::ostream* out, bool terminal, int steps)
     : out_(out),
       terminal_(terminal),
+      line_(out),
       steps_(steps),
       every_(std::max(1, steps / 10)),
       start_(std::chrono::steady_clock::now()),
@@ -37,9 +38,9 @@ void StepProgress::step_done(int step) {
     last_draw_ = now;
     constexpr int kWidth = 30;
     const int filled = kWidth * step / steps_;
-    *out_ << "\r" << counts << " [" << std::string(filled, '#') << std::string(kWidth - filled, ' ')
-          << "] " << (step < steps_ ? time_left(elapsed, step, steps_) : std::string("done"))
-          << "\x1b[K" << (step == steps_ ? "\n" : "") << std::flush;
+    line_.draw(counts + " [" + std::string(filled, '#') + std::string(kWidth - filled, ' ') + "] " +
+                   (step < steps_ ? time_left(elapsed, step, steps_) : std::string("done")),
+               step == steps_);
     return;
   }
   if (step % every_ == 0 || step == steps_)

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <ostream>
 
+#include "cli/redrawn_line.hpp"
+
 namespace corofem {
 
 class StepProgress {
@@ -12,10 +14,13 @@ class StepProgress {
   StepProgress(std::ostream* out, bool terminal, int steps);
   /// After step `step` (1-based) of the run.
   void step_done(int step);
+  /// Ends the terminal's line if a redraw left it open (a run that stops early).
+  void end_line() { line_.end(); }
 
  private:
   std::ostream* out_;
   bool terminal_;
+  RedrawnLine line_;
   int steps_, every_;
   std::chrono::steady_clock::time_point start_, last_draw_;
 };
