@@ -15,8 +15,7 @@ constexpr auto kLogEvery = std::chrono::seconds(5);
 constexpr auto kRedrawEvery = std::chrono::milliseconds(200);
 
 std::string increment_text(const StaticIteration& at) {
-  return "corofem: load increment " + std::to_string(at.increment) + " of " +
-         std::to_string(at.increments);
+  return "corofem: " + at.name();
 }
 
 }  // namespace

@@ -46,8 +46,7 @@ IncrementEnd newton_increment(FeProblem& problem, RotationExtractor& rotate,
                               const RotationTangent& tangent, NewtonLinearSolve& linear,
                               BrcMatrix& jacobian_matrix, double scale, const Eigen::VectorXd& f,
                               double f_norm, const StaticOptions& options, StaticIteration& at,
-                              const std::string& where, Eigen::VectorXd& u,
-                              SimulationResult& result, PhaseClock& clock) {
+                              Eigen::VectorXd& u, SimulationResult& result, PhaseClock& clock) {
   for (int i = 0; i < u.size(); ++i)
     if (problem.dirichlet.fixed[i]) u[i] = scale * problem.dirichlet.value[i];
   const int linear_before = linear.iterations();
@@ -80,7 +79,7 @@ IncrementEnd newton_increment(FeProblem& problem, RotationExtractor& rotate,
                              })
                            : nullptr},
       linear, jacobian_matrix, clock, {}, options.ranks);
-  check_finite(problem, u, "displacement", where);
+  check_finite(problem, u, "displacement", at.name());
   at.iteration = report.iterations;
   at.residual = report.residual;
   result.iterations += report.iterations;
@@ -96,15 +95,14 @@ IncrementEnd newton_increment(FeProblem& problem, RotationExtractor& rotate,
 /// solve). Counts into `result`.
 IncrementEnd lagged_increment(FeProblem& problem, RotationExtractor& rotate, LinearSolver& solver,
                               double scale, const Eigen::VectorXd& f, double f_norm,
-                              const StaticOptions& options, StaticIteration& at,
-                              const std::string& where, Eigen::VectorXd& u,
+                              const StaticOptions& options, StaticIteration& at, Eigen::VectorXd& u,
                               SimulationResult& result, PhaseClock& clock) {
   Eigen::VectorXd elastic, du = Eigen::VectorXd::Zero(problem.num_dofs());
   for (int it = 0; it <= options.max_iterations; ++it) {
     const auto p = problem.positions(u);
     linearize(problem, rotate, p, u, result.rotations, elastic, clock);
     const Eigen::VectorXd r = f - elastic;
-    check_finite(problem, r, "force", where + ", iteration " + std::to_string(it));
+    check_finite(problem, r, "force", at.name() + ", iteration " + std::to_string(it));
     result.residual = options.ranks.free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
     at.iteration = it;
     at.residual = result.residual;
@@ -124,7 +122,7 @@ IncrementEnd lagged_increment(FeProblem& problem, RotationExtractor& rotate, Lin
     result.linear_iterations += clock.time("solve", [&] { return solver.solve(b, du); }).iterations;
     u += du;
     ++result.iterations;
-    check_finite(problem, u, "displacement", where + ", iteration " + std::to_string(it + 1));
+    check_finite(problem, u, "displacement", at.name() + ", iteration " + std::to_string(it + 1));
   }
   return IncrementEnd::Missed;
 }
@@ -165,13 +163,11 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
     const double scale = static_cast<double>(done + 1) / static_cast<double>(denominator);
     const Eigen::VectorXd f = scale * problem.external_force;
     const double f_norm = options.ranks.free_norm(problem.dirichlet, f);
-    const std::string where =
-        "load increment " + std::to_string(done + 1) + " of " + std::to_string(denominator);
     StaticIteration at{.increment = done + 1, .increments = denominator};
     const IncrementEnd end =
         tangent ? newton_increment(problem, rotate, *tangent, *linear, jacobian_matrix, scale, f,
-                                   f_norm, options, at, where, u, result, clock)
-                : lagged_increment(problem, rotate, solver, scale, f, f_norm, options, at, where, u,
+                                   f_norm, options, at, u, result, clock)
+                : lagged_increment(problem, rotate, solver, scale, f, f_norm, options, at, u,
                                    result, clock);
     // Inverted tets are counted in the states the run reaches (each increment's answer, or where
     // it stops), not in Newton's trial states on the way, nor in a cut increment's.
@@ -209,13 +205,13 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
                                  : "";
     result.message =
         end == IncrementEnd::Stalled
-            ? where + " stalls at residual " + general_number(result.residual) +
+            ? at.name() + " stalls at residual " + general_number(result.residual) +
                   " above tolerance " + general_number(options.tolerance) + " (" +
                   std::to_string(at.iteration) + " iterations" + cuts +
                   "): the floor of the internal forces' own error, their rounding and an "
                   "iterative rotation method's tolerance (rotation_params); a looser tolerance "
                   "ends here"
-            : where + " did not reach tolerance " + general_number(options.tolerance) + " in " +
+            : at.name() + " did not reach tolerance " + general_number(options.tolerance) + " in " +
                   std::to_string(options.max_iterations) + " iterations (residual " +
                   general_number(result.residual) + cuts + ")";
     break;

@@ -7,6 +7,7 @@
 // (fem/rotation_tangent.hpp, sparse LU), converging quadratically where the lagged ones crawl;
 // an increment whose full Newton steps do not converge is halved and retried.
 #include <functional>
+#include <string>
 
 #include "fem/fe_problem.hpp"
 #include "fem/rank_view.hpp"
@@ -24,6 +25,10 @@ struct StaticIteration {
   double residual = 0;       ///< |f - f_int(u)|_free / |f|
   bool converged = false;    ///< the increment's answer is accepted
   bool cut = false;          ///< the increment missed the tolerance and is retried as two halves
+  /// "load increment 3 of 8": how messages and progress lines name the increment.
+  std::string name() const {
+    return "load increment " + std::to_string(increment) + " of " + std::to_string(increments);
+  }
 };
 
 struct StaticOptions {
