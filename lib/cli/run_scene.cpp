@@ -46,10 +46,13 @@ std::string closing_line(const Scene& scene, SimulationResult& result) {
 }
 
 /// The record's solver: a corotated Newton run names how its tangent is solved.
-std::string newton_solver_name(NewtonTangent tangent, const std::string& solver) {
+std::string newton_solver_name(NewtonTangent tangent, SolverKind kind, const std::string& solver) {
   switch (tangent) {
     case NewtonTangent::ByGmres:
-      return solver + " (GMRES), Newton";
+      return is_petsc_solver(kind)
+                 ? solver + " (GMRES), Newton"
+                 : "GMRES preconditioned by " + solver +
+                       " on the symmetric part (the sparse factorizations where it fails), Newton";
     case NewtonTangent::Factored:
       return "sparse LU (UMFPACK), Newton";
     case NewtonTangent::None:
@@ -83,9 +86,9 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
       {"rotation", kRotationMethods.name(corotational ? a.rotation : RotationMethod::None)},
       {"rotation_params", to_json(a.rotation_params)},
       {"solver", newton_solver_name(newton_tangent(a.type, a.integrator, a.formulation, a.solver),
-                                    solver->name())}};
+                                    a.solver, solver->name())}};
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
-    r["analysis"]["multigrid"] = to_json(multigrid_params(a));
+    r["analysis"]["multigrid"] = to_json(mg->params());
     r["multigrid"] = simulation.describe_multigrid(*mg);
   }
   r["converged"] = result.converged;

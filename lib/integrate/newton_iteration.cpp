@@ -3,40 +3,17 @@
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <limits>
-#include <unsupported/Eigen/IterativeSolvers>
 #include <vector>
 
 #include "core/errors.hpp"
 #include "linalg/blas_turn.hpp"
 #include "linalg/cholmod_factorization.hpp"
+#include "linalg/flexible_gmres.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
 
 namespace {
-
-/// GMRES's preconditioner: the Cholesky factor of the tangent's symmetric part, factored
-/// beforehand (compute() leaves it as it is).
-struct SymmetricPartPreconditioner {
-  const CholmodFactorization* factor = nullptr;
-  template <class M>
-  SymmetricPartPreconditioner& analyzePattern(const M&) {
-    return *this;
-  }
-  template <class M>
-  SymmetricPartPreconditioner& factorize(const M&) {
-    return *this;
-  }
-  template <class M>
-  SymmetricPartPreconditioner& compute(const M&) {
-    return *this;
-  }
-  template <class R>
-  Eigen::VectorXd solve(const Eigen::MatrixBase<R>& b) const {
-    return factor->solve(b);
-  }
-  Eigen::ComputationInfo info() const { return Eigen::Success; }
-};
 
 /// For each stored entry (i, j) of a compressed matrix, the position of its (j, i); empty when
 /// some entry has no transposed partner (a pattern that is not symmetric).
@@ -71,7 +48,6 @@ struct SparseLuSolve::State {
   bool lu_analyzed = false, cholesky_analyzed = false, symmetric_part_analyzed = false;
   int cholesky_solves = 0, krylov_solves = 0, lu_solves = 0;
   bool krylov = true;
-  Eigen::GMRES<Eigen::SparseMatrix<double>, SymmetricPartPreconditioner> gmres;
 
   /// (A + A^T) / 2 in `symmetric`, filled in place: a tangent's pattern is the mesh's, symmetric,
   /// so each entry's transposed partner is found once (`partner`) and every later tangent costs one
@@ -103,7 +79,7 @@ struct SparseLuSolve::State {
   /// False where the symmetric part is not positive definite or GMRES misses the tolerance: the
   /// LU then. The factor is not kept over a step's Newton iterations: stale, it doubled GMRES's
   /// iterations.
-  bool solve_by_symmetric_part(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  bool solve_by_symmetric_part(const BrcMatrix& brc, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     const Eigen::SparseMatrix<double>& a = eigen.matrix();
     const Eigen::SparseMatrix<double>& s = symmetric_part_of(a);
     if (!symmetric_part_analyzed) {
@@ -115,14 +91,14 @@ struct SparseLuSolve::State {
     } catch (const std::runtime_error&) {
       return false;
     }
-    gmres.preconditioner().factor = &symmetric_part;
-    gmres.setTolerance(kKrylovTolerance);
-    gmres.setMaxIterations(kKrylovIterations);
-    gmres.set_restart(kKrylovIterations);
-    gmres.compute(a);
-    x = gmres.solve(b);
-    return gmres.info() == Eigen::Success && x.allFinite() &&
-           (b - a * x).norm() <= 1e3 * kKrylovTolerance * b.norm();
+    x = Eigen::VectorXd::Zero(b.size());
+    const SolveStats stats = flexible_gmres(
+        brc, b, x,
+        [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) { z = symmetric_part.solve(v); },
+        {.tolerance = kKrylovTolerance,
+         .max_iterations = kKrylovIterations,
+         .restart = kKrylovIterations});
+    return x.allFinite() && stats.residual <= 1e3 * kKrylovTolerance;
   }
 };
 
@@ -158,7 +134,8 @@ Eigen::VectorXd SparseLuSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& 
     } catch (const std::runtime_error&) {  // not positive definite: the LU below
     }
   }
-  if (!solved && !symmetric && state_->krylov && (solved = state_->solve_by_symmetric_part(b, x)))
+  if (!solved && !symmetric && state_->krylov &&
+      (solved = state_->solve_by_symmetric_part(a, b, x)))
     ++state_->krylov_solves;
   if (!solved) {
     ++state_->lu_solves;

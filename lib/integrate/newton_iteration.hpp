@@ -22,6 +22,7 @@
 //    current rotations, and a full step from the rest state under a large load inverted half the
 //    bunny's tets and took Newton 225 iterations, against 9 bounded).
 #include <Eigen/Core>
+#include <algorithm>
 #include <functional>
 #include <memory>
 
@@ -70,6 +71,13 @@ struct PotentialValue {
   double value = 0;
   double magnitude = 0;
 };
+
+/// The relative residual to which an iterative solve of a Newton tangent is taken: 1e-2 x the
+/// Newton tolerance (an inexact step leaves that fraction of the last residual), at least 1e-13
+/// (near rounding).
+inline double newton_tangent_tolerance(double newton_tolerance) {
+  return std::max(1e-2 * newton_tolerance, 1e-13);
+}
 
 /// How a Newton iteration solves its linear system J dz = rhs (fixed DOFs already eliminated).
 class NewtonLinearSolve {

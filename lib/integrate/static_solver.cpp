@@ -12,6 +12,7 @@
 #include "fem/edge_stretch.hpp"
 #include "fem/rotation_tangent.hpp"
 #include "integrate/newton_iteration.hpp"
+#include "integrate/preconditioned_gmres_solve.hpp"
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
@@ -144,10 +145,13 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   BrcMatrix jacobian_matrix;
   if (options.newton && options.corotational) {
     tangent = std::make_unique<RotationTangent>(problem, rotate.method());
-    if (options.tangent_by_solver)
+    if (options.tangent_solve == TangentSolve::BySolver)
       linear = std::make_unique<KrylovNewtonSolve>(solver);
-    else if (options.ranks.distributed())  // a part's sparse LU would solve the part alone
-      throw std::logic_error("static Newton on a distributed mesh without tangent_by_solver");
+    else if (options.ranks.distributed())  // a part's own solve would solve the part alone
+      throw std::logic_error("static Newton on a distributed mesh with a serial tangent solve");
+    else if (options.tangent_solve == TangentSolve::PreconditionedBySolver)
+      linear = std::make_unique<PreconditionedGmresSolve>(
+          solver, problem.stiffness, newton_tangent_tolerance(options.tolerance));
     else
       linear = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;

@@ -31,6 +31,12 @@ struct StaticIteration {
   }
 };
 
+/// How static Newton solves its tangent: by the serial sparse factorizations; by `solver` itself,
+/// made for non-symmetric matrices (PETSc's GMRES), on one process or a distributed mesh; or by
+/// flexible GMRES preconditioned by `solver` on the tangent's symmetric part (corofem's multigrid:
+/// integrate/preconditioned_gmres_solve.hpp).
+enum class TangentSolve { Factored, BySolver, PreconditionedBySolver };
+
 struct StaticOptions {
   bool corotational = true;
   int load_steps = 1;
@@ -41,9 +47,8 @@ struct StaticOptions {
   /// count are the whole body's (the solver distributed to match; with Newton, a solver made for
   /// non-symmetric matrices: its GMRES solves the corotated tangent).
   RankView ranks{};
-  /// Newton: the tangent goes to `solver` (made for non-symmetric matrices: PETSc's GMRES), on one
-  /// process or a distributed mesh; otherwise to the serial sparse factorizations.
-  bool tangent_by_solver = false;
+  /// Newton: how the tangent is solved (see TangentSolve).
+  TangentSolve tangent_solve = TangentSolve::Factored;
   /// Called after every iteration and when an increment converges (progress).
   std::function<void(const StaticIteration&)> on_iteration{};
 };

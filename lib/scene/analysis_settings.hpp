@@ -66,18 +66,20 @@ inline bool distributes_mesh(AnalysisType type, Integrator integrator, SolverKin
          is_petsc_solver(solver);
 }
 
-/// Whether a run's Newton tangent goes to its solver (PETSc's GMRES, on one process or over ranks)
-/// instead of the serial sparse factorizations: static corotated Newton on a PETSc solver. The
-/// corotated tangent is not symmetric, so none of corofem's own CG-based solvers takes it, and
-/// dynamic Newton's line search on a potential needs its Cholesky.
+/// Whether a run's Newton tangent goes to its solver instead of the serial sparse factorizations:
+/// static corotated Newton on a PETSc solver (its GMRES, on one process or over ranks) or on
+/// corofem's multigrid (flexible GMRES preconditioned by it on the tangent's symmetric part: the
+/// corotated tangent is not symmetric, so the multigrid's CG does not take it itself). Dynamic
+/// Newton's line search on a potential needs its Cholesky.
 inline bool newton_tangent_by_solver(AnalysisType type, Integrator integrator,
                                      Formulation formulation, SolverKind solver) {
   return type == AnalysisType::Static && integrator == Integrator::Newton &&
-         formulation == Formulation::Corotational && is_petsc_solver(solver);
+         formulation == Formulation::Corotational &&
+         (is_petsc_solver(solver) || is_multigrid_solver(solver));
 }
 
 /// How a run solves a Newton tangent: none (no corotated Newton), factored (the serial sparse
-/// factorizations) or by the PETSc solver's GMRES (newton_tangent_by_solver).
+/// factorizations) or by GMRES on its solver (newton_tangent_by_solver).
 enum class NewtonTangent { None, Factored, ByGmres };
 inline NewtonTangent newton_tangent(AnalysisType type, Integrator integrator,
                                     Formulation formulation, SolverKind solver) {

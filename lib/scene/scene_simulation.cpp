@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "core/errors.hpp"
+#include "integrate/preconditioned_gmres_solve.hpp"
 #include "io/solver_record.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "scene/coarse_meshes.hpp"
@@ -59,7 +60,10 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
   const auto meshing = std::chrono::steady_clock::now();
   const std::vector<TetMesh> coarse = coarse_meshes(scene_, problem_.mesh.num_vertices());
   coarse_meshing_ms_ = ms_since(meshing);
-  solver_ = make_linear_solver(a, problem_, coarse);
+  AnalysisSpec solver_analysis = a;  // the multigrid as static Newton's GMRES preconditioner
+  if (tangent_solve() == TangentSolve::PreconditionedBySolver)
+    solver_analysis.tolerance = kTangentPreconditionerTolerance;
+  solver_ = make_linear_solver(solver_analysis, problem_, coarse);
   setup_ms_ = ms_since(start);
 }
 
@@ -158,19 +162,26 @@ nlohmann::json SceneSimulation::describe_multigrid(const LinearSolver& solver) c
   return s ? to_json(*s) : nlohmann::json(nullptr);
 }
 
+/// How static Newton solves its tangent: the solver's GMRES (PETSc), GMRES preconditioned by the
+/// solver (corofem's multigrid), or the sparse factorizations.
+TangentSolve SceneSimulation::tangent_solve() const {
+  const AnalysisSpec& a = scene_.analysis;
+  if (!newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver))
+    return TangentSolve::Factored;
+  return is_petsc_solver(a.solver) ? TangentSolve::BySolver : TangentSolve::PreconditionedBySolver;
+}
+
 SimulationResult SceneSimulation::run(
     const std::function<void(const StepState&)>& on_step,
     const std::function<void(const StaticIteration&)>& on_iteration) {
   const auto start = std::chrono::steady_clock::now();
   const AnalysisSpec& a = scene_.analysis;
   SimulationResult result =
-      dynamic_
-          ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
-          : solve_static(problem_, *extractor_, *solver_,
-                         {corotational(), a.load_steps, a.tolerance, a.max_iterations,
-                          a.integrator == Integrator::Newton, ranks_,
-                          newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver),
-                          on_iteration});
+      dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
+               : solve_static(
+                     problem_, *extractor_, *solver_,
+                     {corotational(), a.load_steps, a.tolerance, a.max_iterations,
+                      a.integrator == Integrator::Newton, ranks_, tangent_solve(), on_iteration});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

@@ -48,6 +48,7 @@ class SceneSimulation {
   std::unique_ptr<LinearSolver> release_solver() { return std::move(solver_); }
   /// Time spent meshing the multigrid hierarchy's coarse levels (inside the setup time).
   double coarse_meshing_ms() const { return coarse_meshing_ms_; }
+  TangentSolve tangent_solve() const;
   bool corotational() const { return scene_.analysis.formulation == Formulation::Corotational; }
   /// What `solver` (this scene's solver, or the one it wraps) measured, with the coarse meshing
   /// time; none for a solver that is not multigrid.

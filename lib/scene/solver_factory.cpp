@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "integrate/newton_iteration.hpp"
 #include "linalg/preconditioned_cg.hpp"
 #include "solver/petsc_solver.hpp"
 
@@ -45,7 +46,7 @@ std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a,
 
 PetscSolveSettings petsc_solve_settings(const AnalysisSpec& a) {
   if (newton_tangent_by_solver(a.type, a.integrator, a.formulation, a.solver))
-    return {std::max(1e-2 * a.tolerance, 1e-13), 200, true};
+    return {newton_tangent_tolerance(a.tolerance), 200, true};
   return {a.tolerance, 10000, false};
 }
 

@@ -1,0 +1,66 @@
+#include "integrate/preconditioned_gmres_solve.hpp"
+
+#include <stdexcept>
+
+#include "core/errors.hpp"
+#include "linalg/flexible_gmres.hpp"
+
+namespace corofem {
+
+namespace {
+
+/// Most GMRES iterations before the factorizations take the system (as PETSc's GMRES before
+/// MUMPS), and the Krylov basis: 2 x 25 vectors, the 50 the memory estimate counts.
+constexpr int kMaxGmresIterations = 200;
+constexpr int kGmresRestart = 25;
+
+}  // namespace
+
+PreconditionedGmresSolve::PreconditionedGmresSolve(LinearSolver& preconditioner,
+                                                   const BrcMatrix& pattern, double tolerance)
+    : preconditioner_(preconditioner), symmetric_(pattern), tolerance_(tolerance) {
+  transposed_.resize(pattern.col_index.size());
+  for (int i = 0; i < pattern.block_rows; ++i)
+    for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k) {
+      const int t = pattern.find(pattern.col_index[k], i);
+      if (t < 0)
+        throw std::logic_error("PreconditionedGmresSolve: a pattern that is not symmetric");
+      transposed_[k] = t;
+    }
+}
+
+PreconditionedGmresSolve::~PreconditionedGmresSolve() = default;
+
+int PreconditionedGmresSolve::iterations() const {
+  return gmres_iterations_ + factored_solves();
+}
+
+Eigen::VectorXd PreconditionedGmresSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& b,
+                                                bool symmetric) {
+  const BrcMatrix* part = &a;
+  if (!symmetric) {
+    for (std::size_t k = 0; k < transposed_.size(); ++k)
+      symmetric_.block(static_cast<int>(k)) =
+          0.5 * (a.block(static_cast<int>(k)) + a.block(transposed_[k]).transpose());
+    part = &symmetric_;
+  }
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  try {
+    preconditioner_.set_matrix(*part);
+    const SolveStats stats = flexible_gmres(
+        a, b, x,
+        [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
+          z.setZero();
+          preconditioner_.solve(v, z);
+        },
+        {.tolerance = tolerance_, .max_iterations = kMaxGmresIterations, .restart = kGmresRestart});
+    gmres_iterations_ += stats.iterations;
+    if (stats.residual <= tolerance_ && x.allFinite()) return x;
+  } catch (const NotConverged&) {    // the preconditioner's own iterations missed
+  } catch (const NumericalFault&) {  // its coarsest factorization failed: not definite
+  }
+  if (!factored_) factored_ = std::make_unique<SparseLuSolve>(a);
+  return factored_->solve(a, b, symmetric);
+}
+
+}  // namespace corofem

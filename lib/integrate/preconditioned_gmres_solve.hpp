@@ -1,0 +1,49 @@
+#pragma once
+// Static Newton's tangent J dz = rhs by flexible GMRES preconditioned by one of corofem's own SPD
+// solvers (the multigrid: MG-PCG or V-cycles) set to J's symmetric part (J + J^T) / 2. The
+// corotated tangent is nearly symmetric (its skew part is the rotations' derivative), so the
+// preconditioned iterations are few, and the memory is the multigrid's instead of a sparse
+// factor's fill: the route to meshes a factorization does not fit.
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "integrate/newton_iteration.hpp"
+#include "linalg/linear_solver.hpp"
+#include "sparse/brc_matrix.hpp"
+
+namespace corofem {
+
+/// The relative residual to which a scene's multigrid, as the preconditioner, solves the
+/// symmetric part (scene/scene_simulation.cpp sets it). Static Newton on a cantilever bar
+/// (bench/scenes/bar_static_newton_mpi.json at 52k and 240k tets, 10 Newton iterations, one
+/// thread, 2026-12-05): 0.1 took 85 and 89 GMRES iterations in all, 1e-2 63 and 65, 1e-4 59, 1e-8
+/// 58 with the solves twice as long: tighter buys GMRES little.
+constexpr double kTangentPreconditionerTolerance = 1e-2;
+
+class PreconditionedGmresSolve : public NewtonLinearSolve {
+ public:
+  /// `preconditioner` solves the symmetric part (set_matrix at every solve); `tolerance`: GMRES's
+  /// relative residual. `pattern`: the tangent's (symmetric) block pattern.
+  PreconditionedGmresSolve(LinearSolver& preconditioner, const BrcMatrix& pattern,
+                           double tolerance);
+  ~PreconditionedGmresSolve() override;
+  /// Where GMRES misses its tolerance or the preconditioner fails (past a buckling point the
+  /// symmetric part is indefinite and the multigrid's CG breaks down), the sparse factorizations
+  /// of SparseLuSolve take the system.
+  Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric) override;
+  /// GMRES iterations, and one for each solve the factorizations took.
+  int iterations() const override;
+  /// Solves the factorizations took.
+  int factored_solves() const { return factored_ ? factored_->iterations() : 0; }
+
+ private:
+  LinearSolver& preconditioner_;
+  BrcMatrix symmetric_;          ///< (J + J^T) / 2, J's pattern
+  std::vector<int> transposed_;  ///< for each block (i, j), the index of block (j, i)
+  double tolerance_;
+  int gmres_iterations_ = 0;
+  std::unique_ptr<SparseLuSolve> factored_;  ///< made at the first fallback
+};
+
+}  // namespace corofem
