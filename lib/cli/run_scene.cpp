@@ -100,6 +100,8 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
     r["last_solve_residual"] = result.last_solve_residual;
   else
     r["load_increment_cuts"] = result.increment_cuts;
+  if (simulation.tangent_solve() == TangentSolve::PreconditionedBySolver)
+    r["tangent_factored_solves"] = result.tangent_factored_solves;
   r["residual"] = result.residual;
   r["inverted_max"] = result.inverted_max;
   r["timings_ms"] = result.timings_ms;

@@ -14,9 +14,11 @@ struct SimulationResult {
   Eigen::VectorXd displacement;  ///< per DOF
   std::vector<Mat3> rotations;   ///< per element, of the final state
   bool converged = false;
-  int iterations = 0;           ///< static: rotation/solve iterations over all increments
-  int steps = 0;                ///< dynamic: time steps taken; static: load increments converged
-  int increment_cuts = 0;       ///< static Newton: load increments halved after not converging
+  int iterations = 0;      ///< static: rotation/solve iterations over all increments
+  int steps = 0;           ///< dynamic: time steps taken; static: load increments converged
+  int increment_cuts = 0;  ///< static Newton: load increments halved after not converging
+  /// Static Newton by GMRES on the multigrid: tangents the sparse factorizations took instead.
+  int tangent_factored_solves = 0;
   int step_cuts = 0;            ///< dynamic Newton: time steps halved after not converging
   int newton_at_floor = 0;      ///< dynamic Newton: steps converged at the rounding floor
   int newton_halvings = 0;      ///< Newton: step lengths halved by its line search, in all

@@ -28,9 +28,9 @@ class PreconditionedGmresSolve : public NewtonLinearSolve {
   PreconditionedGmresSolve(LinearSolver& preconditioner, const BrcMatrix& pattern,
                            double tolerance);
   ~PreconditionedGmresSolve() override;
-  /// Where GMRES misses its tolerance or the preconditioner fails (past a buckling point the
-  /// symmetric part is indefinite and the multigrid's CG breaks down), the sparse factorizations
-  /// of SparseLuSolve take the system.
+  /// Where GMRES misses its tolerance (by more than its rounding floor, 1e3 x) or the
+  /// preconditioner fails (past a buckling point the symmetric part is indefinite and the
+  /// multigrid's CG breaks down), the sparse factorizations of SparseLuSolve take the system.
   Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric) override;
   /// GMRES iterations, and one for each solve the factorizations took.
   int iterations() const override;
