@@ -6,7 +6,8 @@
 // (SparseLuSolve) where g is a potential's gradient J is its Hessian, factored by Cholesky while it
 // is positive definite; a non-symmetric J by GMRES on its symmetric part's Cholesky factor, or a
 // sparse LU (UMFPACK). With a PETSc solver (KrylovNewtonSolve) its GMRES, on one process or over
-// the ranks' rows of a distributed mesh.
+// the ranks' rows of a distributed mesh; with corofem's multigrid (static:
+// PreconditionedGmresSolve) flexible GMRES preconditioned by the multigrid on J's symmetric part.
 // Step lengths:
 //  - where g is the gradient of a potential (the caller passes it: implicit Euler with polar
 //    rotations, whose force is conservative, is then the minimization of the incremental

@@ -4,7 +4,8 @@
 // Ktilde u = f + f0 - Ktilde x} until |f - f_int(u)| / |f| < tolerance (the rotations are lagged,
 // the standard corotational fixed point; each solve is exact for the current rotations).
 // With `newton`: per increment, Newton iterations on f_int(u) = f with the consistent tangent
-// (fem/rotation_tangent.hpp, sparse LU), converging quadratically where the lagged ones crawl;
+// (fem/rotation_tangent.hpp; solved as TangentSolve says), converging quadratically where the
+// lagged ones crawl;
 // an increment whose full Newton steps do not converge is halved and retried.
 #include <functional>
 #include <string>
