@@ -158,9 +158,10 @@ TuneAxis linear_solver_axis(const Scene& scene) {
   return axis;
 }
 
-/// Static Newton (sparse LU): its convergence tolerance, from the reference's 1e-8 (a relative
-/// residual whose displacement error is far below any target; tighter ones can sit on the
-/// rounding floor: the quadruped at 1e-10 with the exact minimizer stalled at 3e-10) down.
+/// Static Newton (whichever way the scene solves its tangent): its convergence tolerance, from the
+/// reference's 1e-8 (a relative residual whose displacement error is far below any target; tighter
+/// ones can sit on the rounding floor: the quadruped at 1e-10 with the exact minimizer stalled at
+/// 3e-10) down.
 TuneAxis newton_tolerance_axis() {
   TuneAxis axis{.name = "solver"};
   for (double t : {1e-8, 1e-6, 1e-4, 1e-3, 1e-2})
