@@ -24,6 +24,7 @@
 #include "rotation/rotation_extractor.hpp"
 #include "scene/solver_factory.hpp"
 #include "solver/petsc_solver.hpp"
+#include "sparse/brc_symmetric_part.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
@@ -277,11 +278,8 @@ TEST(SparseLuSolve, EveryPathEqualsTheDenseSolution) {
   for (double& v : negated.values) v = -v;
   expect_dense(negated, -dense, false);
   EXPECT_EQ(solve.lu_solves(), 1);
-  BrcMatrix symmetric_part = a;
-  for (int r = 0; r < a.block_rows; ++r)
-    for (int k = a.row_start[r]; k < a.row_start[r + 1]; ++k)
-      symmetric_part.block(k) = 0.5 * (a.block(k) + a.block(a.find(a.col_index[k], r)).transpose());
-  expect_dense(symmetric_part, 0.5 * (dense + dense.transpose()), true);
+  BrcSymmetricPart symmetric_part(a);
+  expect_dense(symmetric_part.of(a), 0.5 * (dense + dense.transpose()), true);
   EXPECT_EQ(solve.cholesky_solves(), 1);
   EXPECT_EQ(solve.krylov_solves(), 1);
 }

@@ -9,29 +9,12 @@
 #include "linalg/blas_turn.hpp"
 #include "linalg/cholmod_factorization.hpp"
 #include "linalg/flexible_gmres.hpp"
+#include "sparse/brc_symmetric_part.hpp"
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
 
 namespace {
-
-/// For each stored entry (i, j) of a compressed matrix, the position of its (j, i); empty when
-/// some entry has no transposed partner (a pattern that is not symmetric).
-std::vector<Eigen::Index> transposed_partners(const Eigen::SparseMatrix<double>& a) {
-  std::vector<Eigen::Index> partner(static_cast<std::size_t>(a.nonZeros()));
-  const auto* outer = a.outerIndexPtr();
-  const auto* inner = a.innerIndexPtr();
-  for (Eigen::Index j = 0; j < a.outerSize(); ++j)
-    for (auto k = outer[j]; k < outer[j + 1]; ++k) {
-      const auto i = inner[k];
-      const auto* first = inner + outer[i];
-      const auto* last = inner + outer[i + 1];
-      const auto* hit = std::lower_bound(first, last, static_cast<int>(j));
-      if (hit == last || *hit != j) return {};
-      partner[static_cast<std::size_t>(k)] = hit - inner;
-    }
-  return partner;
-}
 
 /// A non-symmetric tangent solved to this relative residual by GMRES is as good as the LU's
 /// solution for Newton (whose tolerance is 1e-8 on g).
@@ -41,37 +24,16 @@ constexpr int kKrylovIterations = 40;
 }  // namespace
 
 struct SparseLuSolve::State {
-  explicit State(const BrcMatrix& pattern) : eigen(pattern) {}
+  explicit State(const BrcMatrix& pattern)
+      : eigen(pattern), symmetric(pattern), symmetric_eigen(pattern) {}
   BrcToEigen eigen;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   CholmodFactorization cholesky, symmetric_part;
   bool lu_analyzed = false, cholesky_analyzed = false, symmetric_part_analyzed = false;
   int cholesky_solves = 0, krylov_solves = 0, lu_solves = 0;
   bool krylov = true;
-
-  /// (A + A^T) / 2 in `symmetric`, filled in place: a tangent's pattern is the mesh's, symmetric,
-  /// so each entry's transposed partner is found once (`partner`) and every later tangent costs one
-  /// pass over the values. A pattern that is not symmetric is summed by Eigen each time.
-  Eigen::SparseMatrix<double> symmetric;
-  std::vector<Eigen::Index> partner;
-  bool partner_built = false;
-
-  const Eigen::SparseMatrix<double>& symmetric_part_of(const Eigen::SparseMatrix<double>& a) {
-    if (!partner_built) {
-      partner_built = true;
-      partner = transposed_partners(a);
-      if (!partner.empty()) symmetric = a;
-    }
-    if (partner.empty()) {
-      const Eigen::SparseMatrix<double> at = a.transpose();
-      symmetric = 0.5 * (a + at);
-      return symmetric;
-    }
-    const double* v = a.valuePtr();
-    double* out = symmetric.valuePtr();
-    for (std::size_t k = 0; k < partner.size(); ++k) out[k] = 0.5 * (v[k] + v[partner[k]]);
-    return symmetric;
-  }
+  BrcSymmetricPart symmetric;  ///< (A + A^T) / 2 on A's pattern
+  BrcToEigen symmetric_eigen;  ///< and as CHOLMOD reads it
 
   /// A non-symmetric A by GMRES, preconditioned by the Cholesky factor of its symmetric part
   /// (A + A^T) / 2: a corotated tangent is nearly symmetric (the rotations' derivative is its
@@ -80,8 +42,9 @@ struct SparseLuSolve::State {
   /// LU then. The factor is not kept over a step's Newton iterations: stale, it doubled GMRES's
   /// iterations.
   bool solve_by_symmetric_part(const BrcMatrix& brc, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-    const Eigen::SparseMatrix<double>& a = eigen.matrix();
-    const Eigen::SparseMatrix<double>& s = symmetric_part_of(a);
+    if (!symmetric.pattern_symmetric()) return false;
+    symmetric_eigen.update(symmetric.of(brc));
+    const Eigen::SparseMatrix<double>& s = symmetric_eigen.matrix();
     if (!symmetric_part_analyzed) {
       symmetric_part.analyze(s);
       symmetric_part_analyzed = true;

@@ -25,14 +25,8 @@ constexpr double kFloorSlack = 1e3;
 PreconditionedGmresSolve::PreconditionedGmresSolve(LinearSolver& preconditioner,
                                                    const BrcMatrix& pattern, double tolerance)
     : preconditioner_(preconditioner), symmetric_(pattern), tolerance_(tolerance) {
-  transposed_.resize(pattern.col_index.size());
-  for (int i = 0; i < pattern.block_rows; ++i)
-    for (int k = pattern.row_start[i]; k < pattern.row_start[i + 1]; ++k) {
-      const int t = pattern.find(pattern.col_index[k], i);
-      if (t < 0)
-        throw std::logic_error("PreconditionedGmresSolve: a pattern that is not symmetric");
-      transposed_[k] = t;
-    }
+  if (!symmetric_.pattern_symmetric())
+    throw std::logic_error("PreconditionedGmresSolve: a pattern that is not symmetric");
 }
 
 PreconditionedGmresSolve::~PreconditionedGmresSolve() = default;
@@ -43,16 +37,10 @@ int PreconditionedGmresSolve::iterations() const {
 
 Eigen::VectorXd PreconditionedGmresSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& b,
                                                 bool symmetric) {
-  const BrcMatrix* part = &a;
-  if (!symmetric) {
-    for (std::size_t k = 0; k < transposed_.size(); ++k)
-      symmetric_.block(static_cast<int>(k)) =
-          0.5 * (a.block(static_cast<int>(k)) + a.block(transposed_[k]).transpose());
-    part = &symmetric_;
-  }
+  const BrcMatrix& part = symmetric ? a : symmetric_.of(a);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
   try {
-    preconditioner_.set_matrix(*part);
+    preconditioner_.set_matrix(part);
     const SolveStats stats = flexible_gmres(
         a, b, x,
         [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) {

@@ -6,11 +6,11 @@
 // factor's fill: the route to meshes a factorization does not fit.
 #include <Eigen/Core>
 #include <memory>
-#include <vector>
 
 #include "integrate/newton_iteration.hpp"
 #include "linalg/linear_solver.hpp"
 #include "sparse/brc_matrix.hpp"
+#include "sparse/brc_symmetric_part.hpp"
 
 namespace corofem {
 
@@ -39,8 +39,7 @@ class PreconditionedGmresSolve : public NewtonLinearSolve {
 
  private:
   LinearSolver& preconditioner_;
-  BrcMatrix symmetric_;          ///< (J + J^T) / 2, J's pattern
-  std::vector<int> transposed_;  ///< for each block (i, j), the index of block (j, i)
+  BrcSymmetricPart symmetric_;  ///< (J + J^T) / 2, on J's pattern
   double tolerance_;
   int gmres_iterations_ = 0;
   std::unique_ptr<SparseLuSolve> factored_;  ///< made at the first fallback
