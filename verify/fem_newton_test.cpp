@@ -362,13 +362,13 @@ TEST(PreconditionedGmresSolve,
   const Eigen::VectorXd x = solve.solve(system.a, system.b, false);
   const Eigen::VectorXd ref = dense_solution(dense, system.b);
   EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm());
-  EXPECT_EQ(solve.factored_solves(), 0);
+  EXPECT_EQ(solve.fallback_solves(), 0);
   EXPECT_GT(solve.iterations(), 1);
   BrcMatrix negated = system.a;
   for (double& v : negated.values) v = -v;
   const Eigen::VectorXd y = solve.solve(negated, system.b, false);
   EXPECT_LT((y + ref).norm(), 1e-9 * ref.norm());
-  EXPECT_EQ(solve.factored_solves(), 1);
+  EXPECT_EQ(solve.fallback_solves(), 1);
 }
 
 TEST(StaticNewton, TheMultigridPreconditionedTangentLandsOnTheFactoredSolution) {

@@ -32,7 +32,7 @@ PreconditionedGmresSolve::PreconditionedGmresSolve(LinearSolver& preconditioner,
 PreconditionedGmresSolve::~PreconditionedGmresSolve() = default;
 
 int PreconditionedGmresSolve::iterations() const {
-  return gmres_iterations_ + factored_solves();
+  return gmres_iterations_ + fallback_solves();
 }
 
 Eigen::VectorXd PreconditionedGmresSolve::solve(const BrcMatrix& a, const Eigen::VectorXd& b,

@@ -35,7 +35,7 @@ class PreconditionedGmresSolve : public NewtonLinearSolve {
   /// GMRES iterations, and one for each solve the factorizations took.
   int iterations() const override;
   /// Solves the factorizations took.
-  int factored_solves() const { return factored_ ? factored_->iterations() : 0; }
+  int fallback_solves() const override { return factored_ ? factored_->iterations() : 0; }
 
  private:
   LinearSolver& preconditioner_;

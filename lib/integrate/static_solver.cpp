@@ -142,7 +142,6 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   result.converged = true;
   std::unique_ptr<RotationTangent> tangent;
   std::unique_ptr<NewtonLinearSolve> linear;
-  PreconditionedGmresSolve* preconditioned = nullptr;  // its fallbacks go into the result
   BrcMatrix jacobian_matrix;
   if (options.newton && options.corotational) {
     tangent = std::make_unique<RotationTangent>(problem, rotate.method());
@@ -150,12 +149,10 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       linear = std::make_unique<KrylovNewtonSolve>(solver);
     else if (options.ranks.distributed())  // a part's own solve would solve the part alone
       throw std::logic_error("static Newton on a distributed mesh with a serial tangent solve");
-    else if (options.tangent_solve == TangentSolve::PreconditionedBySolver) {
-      auto gmres = std::make_unique<PreconditionedGmresSolve>(
+    else if (options.tangent_solve == TangentSolve::PreconditionedBySolver)
+      linear = std::make_unique<PreconditionedGmresSolve>(
           solver, problem.stiffness, newton_tangent_tolerance(options.tolerance));
-      preconditioned = gmres.get();
-      linear = std::move(gmres);
-    } else
+    else
       linear = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;
   }
@@ -223,7 +220,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
                   general_number(result.residual) + cuts + ")";
     break;
   }
-  if (preconditioned) result.tangent_factored_solves = preconditioned->factored_solves();
+  if (linear) result.tangent_factored_solves = linear->fallback_solves();
   return result;
 }
 
