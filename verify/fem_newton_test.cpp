@@ -322,13 +322,16 @@ TEST(FlexibleGmres, EqualsTheDenseSolutionThroughRestartsWithAPreconditionerThat
   // that changes at every application (0.5, 1, 1.5): no fixed M^-1, which plain GMRES would need.
   // A basis of 5 vectors, so the iterations run through restarts. Against Eigen's dense LU to
   // 1e-9 (GMRES stops at 1e-12 of the residual; the condition number is below 1e3). Capped at 3
-  // iterations it returns the true residual |b - A x| / |b|, above the tolerance.
+  // iterations it returns the true residual |b - A x| / |b|, above the tolerance. Every
+  // application gets a zero z, the initial guess an inner iterative solve starts from.
   const BentNewtonSystem system;
   const BrcMatrix& a = system.a;
   std::vector<Mat3> inverse(a.block_rows);
   for (int i = 0; i < a.block_rows; ++i) inverse[i] = Mat3(a.block(a.find(i, i))).inverse();
-  int applications = 0;
+  int applications = 0, not_zero_on_arrival = 0;
   const FlexiblePreconditioner scaled_jacobi = [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
+    // The contract an iterative preconditioner starts from: z sized and zero (after a restart too).
+    if (z.size() != v.size() || !z.isZero(0)) ++not_zero_on_arrival;
     const double factor = 0.5 * (1 + applications++ % 3);
     for (int i = 0; i < a.block_rows; ++i)
       z.segment<3>(3 * i) = factor * inverse[i] * v.segment<3>(3 * i);
@@ -339,6 +342,7 @@ TEST(FlexibleGmres, EqualsTheDenseSolutionThroughRestartsWithAPreconditionerThat
   EXPECT_LE(done.residual, 1e-12);
   EXPECT_GT(done.iterations, 5) << "no restart was exercised";
   EXPECT_EQ(applications, done.iterations);
+  EXPECT_EQ(not_zero_on_arrival, 0);
   EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm());
   x.setZero();
   const SolveStats capped = flexible_gmres(a, system.b, x, scaled_jacobi, {1e-12, 3, 5});

@@ -42,11 +42,7 @@ Eigen::VectorXd PreconditionedGmresSolve::solve(const BrcMatrix& a, const Eigen:
   try {
     preconditioner_.set_matrix(part);
     const SolveStats stats = flexible_gmres(
-        a, b, x,
-        [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) {
-          z.setZero();
-          preconditioner_.solve(v, z);
-        },
+        a, b, x, [&](const Eigen::VectorXd& v, Eigen::VectorXd& z) { preconditioner_.solve(v, z); },
         {.tolerance = tolerance_, .max_iterations = kMaxGmresIterations, .restart = kGmresRestart});
     gmres_iterations_ += stats.iterations;
     if (stats.residual <= kFloorSlack * tolerance_ && x.allFinite()) return x;

@@ -28,7 +28,7 @@ SolveStats flexible_gmres(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::V
     int k = 0;  // basis vectors built in this cycle
     double estimate = beta;
     while (k < m && stats.iterations < settings.max_iterations && estimate > target) {
-      z[k] = Eigen::VectorXd::Zero(b.size());
+      z[k].setZero(b.size());  // the preconditioner's contract: z arrives zero
       precondition(v[k], z[k]);
       a.multiply(z[k], w);
       for (int i = 0; i <= k; ++i) {  // modified Gram-Schmidt

@@ -9,7 +9,8 @@
 
 namespace corofem {
 
-/// z = M^{-1} v, any approximate inverse of A (z arrives sized; overwrite it).
+/// z = M^{-1} v, any approximate inverse of A. z arrives sized and zero: an iterative
+/// preconditioner may start from it as its initial guess.
 using FlexiblePreconditioner = std::function<void(const Eigen::VectorXd& v, Eigen::VectorXd& z)>;
 
 struct FlexibleGmresSettings {
