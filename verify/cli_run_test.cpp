@@ -237,6 +237,36 @@ TEST(CliRun, StaticDefaultsConvergeForEveryRotationMethod) {
   }
 }
 
+TEST(CliRun, StaticNewtonOnTheMultigridRecordsTangentsTakenOnTheDefiniteStandIn) {
+  // A soft column bent by tilted gravity (fem_newton_test: its tangent's symmetric part turns
+  // indefinite on the way): on mgpcg the record names the tangent's path and counts the tangents
+  // preconditioned on the corotated stiffness (at least one) and those factored (none).
+  TempDir dir;
+  const nlohmann::json scene = {
+      {"mesh", {{"box", {0.1, 0.1, 1.0}}, {"cells", {3, 3, 30}}}},
+      {"material", {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}}},
+      {"fixed", {{{"box", {{0, 0, 0}, {0.1, 0.1, 0}}}}}},
+      {"gravity", {1, 0, -9.81}},
+      {"analysis",
+       {{"type", "static"},
+        {"rotation", "energy-newton"},
+        {"solver", "mgpcg"},
+        {"hierarchy", "lattice"},
+        {"levels", 3},
+        {"tolerance", 1e-10}}}};
+  write_text(dir / "column.json", scene.dump());
+  const auto r = run_cli("run '" + (dir / "column.json").string() + "' --out '" +
+                         (dir / "r.json").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::read_text(dir / "r.json"));
+  EXPECT_TRUE(j["converged"].get<bool>());
+  EXPECT_GE(j["tangent_standin_solves"].get<int>(), 1);
+  EXPECT_EQ(j["tangent_factored_solves"].get<int>(), 0);
+  EXPECT_NE(j["analysis"]["solver"].get<std::string>().find("corotated stiffness"),
+            std::string::npos)
+      << j["analysis"]["solver"];
+}
+
 TEST(CliRun, RivalSolverRunsWhereBuiltAndIsBadInputWhereNot) {
   // petsc-gamg on the static bar: where this build has PETSc it runs and converges; where it does
   // not (the sanitizer build leaves it out), the scene is bad input naming the solver and the

@@ -52,7 +52,8 @@ std::string newton_solver_name(NewtonTangent tangent, SolverKind kind, const std
       return is_petsc_solver(kind)
                  ? solver + " (GMRES), Newton"
                  : "GMRES preconditioned by " + solver +
-                       " on the symmetric part (the sparse factorizations where it fails), Newton";
+                       " on the symmetric part (where that is indefinite, on the corotated "
+                       "stiffness; the sparse factorizations where both fail), Newton";
     case NewtonTangent::Factored:
       return "sparse LU (UMFPACK), Newton";
     case NewtonTangent::None:
@@ -100,8 +101,10 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
     r["last_solve_residual"] = result.last_solve_residual;
   else
     r["load_increment_cuts"] = result.increment_cuts;
-  if (simulation.tangent_solve() == TangentSolve::PreconditionedBySolver)
-    r["tangent_factored_solves"] = result.tangent_factored_solves;
+  if (simulation.tangent_solve() == TangentSolve::PreconditionedBySolver) {
+    r["tangent_standin_solves"] = result.tangent_fallbacks.standin;
+    r["tangent_factored_solves"] = result.tangent_fallbacks.factored;
+  }
   r["residual"] = result.residual;
   r["inverted_max"] = result.inverted_max;
   r["timings_ms"] = result.timings_ms;

@@ -10,6 +10,14 @@
 
 namespace corofem {
 
+/// Static Newton by GMRES on the multigrid: the tangents whose symmetric part the multigrid could
+/// not take (indefinite: a body in compression), preconditioned instead on the definite stand-in,
+/// and those the sparse factorizations took where that missed too.
+struct TangentFallbacks {
+  int standin = 0;
+  int factored = 0;
+};
+
 struct SimulationResult {
   Eigen::VectorXd displacement;  ///< per DOF
   std::vector<Mat3> rotations;   ///< per element, of the final state
@@ -17,11 +25,10 @@ struct SimulationResult {
   int iterations = 0;      ///< static: rotation/solve iterations over all increments
   int steps = 0;           ///< dynamic: time steps taken; static: load increments converged
   int increment_cuts = 0;  ///< static Newton: load increments halved after not converging
-  /// Static Newton by GMRES on the multigrid: tangents the sparse factorizations took instead.
-  int tangent_factored_solves = 0;
-  int step_cuts = 0;            ///< dynamic Newton: time steps halved after not converging
-  int newton_at_floor = 0;      ///< dynamic Newton: steps converged at the rounding floor
-  int newton_halvings = 0;      ///< Newton: step lengths halved by its line search, in all
+  TangentFallbacks tangent_fallbacks;  ///< static Newton by GMRES on the multigrid
+  int step_cuts = 0;                   ///< dynamic Newton: time steps halved after not converging
+  int newton_at_floor = 0;             ///< dynamic Newton: steps converged at the rounding floor
+  int newton_halvings = 0;             ///< Newton: step lengths halved by its line search, in all
   int potential_fallbacks = 0;  ///< Newton: steps whose search on the potential found no decrease
   double residual = 0;          ///< |f_ext - f_int| / |f_ext| over free DOFs, final state
   int inverted_max = 0;         ///< most elements with det F <= 0 seen at any iteration or step

@@ -89,8 +89,8 @@ class NewtonLinearSolve {
                                 bool symmetric = false) = 0;
   /// The linear iterations of every call so far (a factorization's solve counts one).
   virtual int iterations() const = 0;
-  /// Systems an iterative path handed to the sparse factorizations (0 where it has none).
-  virtual int fallback_solves() const { return 0; }
+  /// The systems an iterative path handed on (none where it has no fallback).
+  virtual TangentFallbacks fallbacks() const { return {}; }
 };
 
 /// The factorizations of the iteration matrices, analyzed once per pattern and refactored each

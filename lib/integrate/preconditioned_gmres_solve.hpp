@@ -5,6 +5,7 @@
 // preconditioned iterations are few, and the memory is the multigrid's instead of a sparse
 // factor's fill: the route to meshes a factorization does not fit.
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 
 #include "integrate/newton_iteration.hpp"
@@ -23,25 +24,38 @@ constexpr double kTangentPreconditionerTolerance = 1e-2;
 
 class PreconditionedGmresSolve : public NewtonLinearSolve {
  public:
+  /// Assembles into its argument (the tangent's pattern, fixed DOFs eliminated) a positive
+  /// definite matrix near the tangent's symmetric part, for the preconditioner where that part
+  /// is indefinite: static Newton's is the corotated stiffness R K R^T at the iterate's rotations.
+  using DefiniteStandIn = std::function<void(BrcMatrix&)>;
   /// `preconditioner` solves the symmetric part (set_matrix at every solve); `tolerance`: GMRES's
   /// relative residual. `pattern`: the tangent's (symmetric) block pattern.
-  PreconditionedGmresSolve(LinearSolver& preconditioner, const BrcMatrix& pattern,
-                           double tolerance);
+  PreconditionedGmresSolve(LinearSolver& preconditioner, const BrcMatrix& pattern, double tolerance,
+                           DefiniteStandIn definite = {});
   ~PreconditionedGmresSolve() override;
   /// Where GMRES misses its tolerance (by more than its rounding floor, 1e3 x) or the
-  /// preconditioner fails (past a buckling point the symmetric part is indefinite and the
-  /// multigrid's CG breaks down), the sparse factorizations of SparseLuSolve take the system.
+  /// preconditioner fails (the symmetric part is indefinite: a body in compression, past a
+  /// buckling point; the multigrid's coarsest Cholesky or its CG breaks down), GMRES again with
+  /// the multigrid on the definite stand-in, where one is given; where that fails too, the sparse
+  /// factorizations of SparseLuSolve take the system.
   Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b, bool symmetric) override;
   /// GMRES iterations, and one for each solve the factorizations took.
   int iterations() const override;
-  /// Solves the factorizations took.
-  int fallback_solves() const override { return factored_ ? factored_->iterations() : 0; }
+  TangentFallbacks fallbacks() const override { return fallbacks_; }
 
  private:
+  /// GMRES on `a` from zero, preconditioned by the multigrid set to `preconditioned`; false where
+  /// it misses or the multigrid fails.
+  bool gmres_on(const BrcMatrix& a, const BrcMatrix& preconditioned, const Eigen::VectorXd& b,
+                Eigen::VectorXd& x);
+
   LinearSolver& preconditioner_;
   BrcSymmetricPart symmetric_;  ///< (J + J^T) / 2, on J's pattern
   double tolerance_;
+  DefiniteStandIn definite_;
+  BrcMatrix standin_;  ///< the stand-in's values, made at its first use
   int gmres_iterations_ = 0;
+  TangentFallbacks fallbacks_;
   std::unique_ptr<SparseLuSolve> factored_;  ///< made at the first fallback
 };
 

@@ -9,6 +9,7 @@
 #include "core/number_text.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
+#include "fem/dirichlet.hpp"
 #include "fem/edge_stretch.hpp"
 #include "fem/rotation_tangent.hpp"
 #include "integrate/newton_iteration.hpp"
@@ -150,8 +151,16 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
     else if (options.ranks.distributed())  // a part's own solve would solve the part alone
       throw std::logic_error("static Newton on a distributed mesh with a serial tangent solve");
     else if (options.tangent_solve == TangentSolve::PreconditionedBySolver)
+      // Where the tangent's symmetric part is indefinite (a body in compression), the multigrid
+      // takes the corotated stiffness R K R^T at the iterate's rotations: positive definite, and
+      // GMRES's iterations stay few enough that no factor's fill is needed.
       linear = std::make_unique<PreconditionedGmresSolve>(
-          solver, problem.stiffness, newton_tangent_tolerance(options.tolerance));
+          solver, problem.stiffness, newton_tangent_tolerance(options.tolerance),
+          [&problem, &result, &u, force = Eigen::VectorXd()](BrcMatrix& standin) mutable {
+            assemble_corotated(problem.elements, problem.mesh, problem.assembly, result.rotations,
+                               u, standin, force);
+            apply_dirichlet_to_matrix(problem.dirichlet, standin);
+          });
     else
       linear = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;
@@ -220,7 +229,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
                   general_number(result.residual) + cuts + ")";
     break;
   }
-  if (linear) result.tangent_factored_solves = linear->fallback_solves();
+  if (linear) result.tangent_fallbacks = linear->fallbacks();
   return result;
 }
 

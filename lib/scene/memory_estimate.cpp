@@ -17,8 +17,17 @@ constexpr double kLibraryBytes = 80e6;
 constexpr double kCholmodBytes = 190e6, kCholmodFill = 115;
 /// Distributed: the whole body rank 0 builds first, and the largest rank's tets over its share.
 constexpr double kWholeBodyBytesPerTet = 150, kHaloFactor = 1.3;
-/// Distributed Newton: GMRES's basis (50 vectors of 3 DOFs on about 0.2 vertices per tet).
-constexpr double kGmresBytesPerTet = 300;
+/// Newton's tangent by GMRES: PETSc's basis (50 vectors of 3 DOFs on about 0.2 vertices per tet);
+/// corofem's flexible GMRES on the multigrid (integrate/preconditioned_gmres_solve.hpp): its basis
+/// of at most 2 x 50 vectors (480 bytes), the tangent's symmetric part and the definite stand-in
+/// (two more matrices of the stiffness's pattern, 15 blocks of 72 bytes a vertex: 430 bytes).
+constexpr double kPetscGmresBytesPerTet = 300, kMultigridGmresBytesPerTet = 900;
+
+/// What Newton's GMRES adds per tet with `solver` (PETSc's or corofem's).
+double gmres_bytes_per_tet(SolverKind solver) {
+  return solver == SolverKind::Multigrid || solver == SolverKind::Mgpcg ? kMultigridGmresBytesPerTet
+                                                                        : kPetscGmresBytesPerTet;
+}
 
 /// Bytes per tet of the solvers whose memory grows with the mesh.
 double linear_bytes_per_tet(SolverKind solver) {
@@ -45,8 +54,8 @@ double linear_bytes_per_tet(SolverKind solver) {
 double run_bytes(SolverKind solver, double tets, int ranks, NewtonTangent tangent) {
   if (solver == SolverKind::Cholmod || tangent == NewtonTangent::Factored)
     return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
-  const double per_tet =
-      linear_bytes_per_tet(solver) + (tangent == NewtonTangent::ByGmres ? kGmresBytesPerTet : 0);
+  const double per_tet = linear_bytes_per_tet(solver) +
+                         (tangent == NewtonTangent::ByGmres ? gmres_bytes_per_tet(solver) : 0);
   if (ranks > 1)
     return kLibraryBytes +
            std::max(kWholeBodyBytesPerTet * tets, per_tet * kHaloFactor * tets / ranks);
@@ -60,7 +69,8 @@ std::string run_bytes_basis(SolverKind solver, int ranks, NewtonTangent tangent)
   if (solver == SolverKind::Cholmod) return name + ": 115 bytes x tets^4/3 (its factor's fill)";
   const bool gmres = tangent == NewtonTangent::ByGmres;
   const std::string per_tet =
-      general_number((linear_bytes_per_tet(solver) + (gmres ? kGmresBytesPerTet : 0)) / 1e3) +
+      general_number((linear_bytes_per_tet(solver) + (gmres ? gmres_bytes_per_tet(solver) : 0)) /
+                     1e3) +
       " kB per tet" + (gmres ? " (with Newton's GMRES)" : "");
   if (ranks > 1)
     return name + ": " + per_tet + " over each rank's share of " + std::to_string(ranks) +
