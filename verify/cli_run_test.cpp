@@ -242,18 +242,17 @@ TEST(CliRun, StaticNewtonOnTheMultigridRecordsTangentsTakenOnTheDefiniteStandIn)
   // indefinite on the way): on mgpcg the record names the tangent's path and counts the tangents
   // preconditioned on the corotated stiffness (at least one) and those factored (none).
   TempDir dir;
-  const nlohmann::json scene = {
-      {"mesh", {{"box", {0.1, 0.1, 1.0}}, {"cells", {3, 3, 30}}}},
-      {"material", {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}}},
-      {"fixed", {{{"box", {{0, 0, 0}, {0.1, 0.1, 0}}}}}},
-      {"gravity", {1, 0, -9.81}},
-      {"analysis",
-       {{"type", "static"},
-        {"rotation", "energy-newton"},
-        {"solver", "mgpcg"},
-        {"hierarchy", "lattice"},
-        {"levels", 3},
-        {"tolerance", 1e-10}}}};
+  const nlohmann::json scene = {{"mesh", {{"box", {0.1, 0.1, 1.0}}, {"cells", {3, 3, 30}}}},
+                                {"material", {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}}},
+                                {"fixed", {{{"box", {{0, 0, 0}, {0.1, 0.1, 0}}}}}},
+                                {"gravity", {1, 0, -9.81}},
+                                {"analysis",
+                                 {{"type", "static"},
+                                  {"rotation", "energy-newton"},
+                                  {"solver", "mgpcg"},
+                                  {"hierarchy", "lattice"},
+                                  {"levels", 3},
+                                  {"tolerance", 1e-10}}}};
   write_text(dir / "column.json", scene.dump());
   const auto r = run_cli("run '" + (dir / "column.json").string() + "' --out '" +
                          (dir / "r.json").string() + "'");
