@@ -4,12 +4,15 @@
 // exact solve, and it refuses a target below the reference's own discretization error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "mesh/box_mesh.hpp"
 #include "scene/scene_simulation.hpp"
 #include "scene/time_step_scaling.hpp"
 #include "test_support.hpp"
+#include "tune/tune_axes.hpp"
 #include "tune/tune_quantity.hpp"
 
 namespace corofem {
@@ -138,6 +141,39 @@ const char* kBentBar = R"({
   "analysis": {"type": "static", "formulation": "corotational", "rotation": "polar",
                "solver": "cholmod", "load_steps": 2, "tolerance": 1e-8}
 })";
+
+TEST(TuneAxes, StaticNewtonOffersTheMultigridTangentWhereTheSceneFactorsIt) {
+  // The bent bar on cholmod factors its Newton tangent: the solver axis holds Newton's tolerances
+  // on the scene's own solver (the reference and the given value first) and on mgpcg. On mgpcg
+  // the scene already solves its tangent on the multigrid: its own family alone.
+  TempDir dir;
+  for (const char* solver : {"cholmod", "mgpcg"}) {
+    SCOPED_TRACE(solver);
+    json raw = json::parse(kBentBar);
+    raw["analysis"]["solver"] = solver;
+    const Scene scene = parse_scene(raw, dir.path(), "bent.json");
+    std::string note;
+    const std::vector<TuneAxis> axes = tune_axes(scene, raw, {.resolution_free = false}, note);
+    const auto axis = std::find_if(axes.begin(), axes.end(),
+                                   [](const TuneAxis& a) { return a.name == "solver"; });
+    ASSERT_NE(axis, axes.end());
+    std::map<std::string, int> families;
+    for (const AxisValue& v : axis->values) ++families[v.family];
+    EXPECT_EQ(families["newton"], 5);
+    EXPECT_EQ(families["newton mgpcg"], std::string(solver) == "cholmod" ? 5 : 0);
+    EXPECT_EQ(axis->reference, 0);
+    EXPECT_EQ(axis->given, 0);
+    for (const AxisValue& v : axis->values)
+      if (v.family == "newton mgpcg") {
+        // Each value is a scene that runs as it is: it parses, on mgpcg, at its tolerance.
+        json patched = raw;
+        patched.merge_patch(v.patch);
+        const Scene s = parse_scene(patched, dir.path(), "bent.json");
+        EXPECT_EQ(s.analysis.solver, SolverKind::Mgpcg) << v.label;
+        EXPECT_EQ(s.analysis.tolerance, v.patch["analysis"]["tolerance"].get<double>());
+      }
+  }
+}
 
 TEST(Tune, RefusesATargetBelowTheReferencesOwnError) {
   TempDir dir;

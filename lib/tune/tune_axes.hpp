@@ -1,8 +1,9 @@
 #pragma once
 // The settings `corofem tune` searches over, as axes of values: the mesh's resolution, the
 // rotation method, the solver with its tolerance, hierarchy and cycle (or static Newton's
-// tolerance and load increments), and the time step. Each value is a change to the scene JSON,
-// so every candidate, and the answer, is a scene `corofem run` runs as it is.
+// tolerance, its tangent factored or on the multigrid, and load increments), and the time step.
+// Each value is a change to the scene JSON, so every candidate, and the answer, is a scene `corofem
+// run` runs as it is.
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
