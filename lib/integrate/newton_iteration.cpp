@@ -3,7 +3,7 @@
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <limits>
-#include <vector>
+#include <memory>
 
 #include "core/errors.hpp"
 #include "linalg/blas_turn.hpp"
@@ -24,16 +24,21 @@ constexpr int kKrylovIterations = 40;
 }  // namespace
 
 struct SparseLuSolve::State {
-  explicit State(const BrcMatrix& pattern)
-      : eigen(pattern), symmetric(pattern), symmetric_eigen(pattern) {}
+  explicit State(const BrcMatrix& pattern) : eigen(pattern) {}
   BrcToEigen eigen;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   CholmodFactorization cholesky, symmetric_part;
   bool lu_analyzed = false, cholesky_analyzed = false, symmetric_part_analyzed = false;
   int cholesky_solves = 0, krylov_solves = 0, lu_solves = 0;
   bool krylov = true;
-  BrcSymmetricPart symmetric;  ///< (A + A^T) / 2 on A's pattern
-  BrcToEigen symmetric_eigen;  ///< and as CHOLMOD reads it
+  /// (A + A^T) / 2 on A's pattern, and as CHOLMOD reads it: made at the first non-symmetric
+  /// solve (a time step's Newton, whose matrices are symmetric, never needs them).
+  struct SymmetricPart {
+    explicit SymmetricPart(const BrcMatrix& pattern) : part(pattern), eigen(pattern) {}
+    BrcSymmetricPart part;
+    BrcToEigen eigen;
+  };
+  std::unique_ptr<SymmetricPart> symmetric;
 
   /// A non-symmetric A by GMRES, preconditioned by the Cholesky factor of its symmetric part
   /// (A + A^T) / 2: a corotated tangent is nearly symmetric (the rotations' derivative is its
@@ -42,9 +47,10 @@ struct SparseLuSolve::State {
   /// LU then. The factor is not kept over a step's Newton iterations: stale, it doubled GMRES's
   /// iterations.
   bool solve_by_symmetric_part(const BrcMatrix& brc, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-    if (!symmetric.pattern_symmetric()) return false;
-    symmetric_eigen.update(symmetric.of(brc));
-    const Eigen::SparseMatrix<double>& s = symmetric_eigen.matrix();
+    if (!symmetric) symmetric = std::make_unique<SymmetricPart>(brc);
+    if (!symmetric->part.pattern_symmetric()) return false;
+    symmetric->eigen.update(symmetric->part.of(brc));
+    const Eigen::SparseMatrix<double>& s = symmetric->eigen.matrix();
     if (!symmetric_part_analyzed) {
       symmetric_part.analyze(s);
       symmetric_part_analyzed = true;
