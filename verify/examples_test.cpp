@@ -25,6 +25,7 @@ struct Example {
 const Example kExamples[] = {
     {"cantilever.json"},
     {"quadruped_static_newton.json"},
+    {"column_static_newton_mgpcg.json"},
     {"block_squash_stability.json"},
     {"box_petsc_gamg_mpi.json", false, true},
     {"bar_static_newton_mpi.json", false, true},
