@@ -158,11 +158,7 @@ void BM_StaticTangentSolve(benchmark::State& state) {
   auto mg = make_multigrid_solver(
       analysis, p, coarse_meshes(spec, analysis.levels, "bar", p.mesh.num_vertices()), true);
   SparseLuSolve factored(a);
-  PreconditionedGmresSolve gmres(*mg, a, 1e-10, [&](BrcMatrix& standin) {
-    Eigen::VectorXd force;
-    assemble_corotated(p.elements, p.mesh, p.assembly, rotations, u, standin, force);
-    apply_dirichlet_to_matrix(p.dirichlet, standin);
-  });
+  PreconditionedGmresSolve gmres(*mg, a, 1e-10, corotated_stiffness_standin(p, rotations));
   factored.solve(a, b);
   gmres.solve(a, b, false);
   const int gmres_before = gmres.iterations();

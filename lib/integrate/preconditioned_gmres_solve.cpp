@@ -4,6 +4,8 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "fem/corotated_assembly.hpp"
+#include "fem/dirichlet.hpp"
 #include "linalg/flexible_gmres.hpp"
 
 namespace corofem {
@@ -25,6 +27,17 @@ constexpr int kGmresRestart = 50;
 constexpr double kFloorSlack = 1e3;
 
 }  // namespace
+
+std::function<void(BrcMatrix&)> corotated_stiffness_standin(const FeProblem& problem,
+                                                            const std::vector<Mat3>& rotations) {
+  return [&problem, &rotations, u = Eigen::VectorXd(Eigen::VectorXd::Zero(problem.num_dofs())),
+          force = Eigen::VectorXd()](BrcMatrix& standin) mutable {
+    // The matrix does not depend on the displacement (only the force, dropped here, does).
+    assemble_corotated(problem.elements, problem.mesh, problem.assembly, rotations, u, standin,
+                       force);
+    apply_dirichlet_to_matrix(problem.dirichlet, standin);
+  };
+}
 
 PreconditionedGmresSolve::PreconditionedGmresSolve(LinearSolver& preconditioner,
                                                    const BrcMatrix& pattern, double tolerance,

@@ -7,7 +7,9 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <vector>
 
+#include "fem/fe_problem.hpp"
 #include "integrate/newton_iteration.hpp"
 #include "linalg/linear_solver.hpp"
 #include "sparse/brc_matrix.hpp"
@@ -21,6 +23,12 @@ namespace corofem {
 /// thread, 2026-12-05): 0.1 took 85 and 89 GMRES iterations in all, 1e-2 63 and 65, 1e-4 59, 1e-8
 /// 58 with the solves twice as long: tighter buys GMRES little.
 constexpr double kTangentPreconditionerTolerance = 1e-2;
+
+/// Static Newton's definite stand-in: the corotated stiffness R K R^T of `problem` at `rotations`
+/// (what the lagged iteration solves), its fixed DOFs eliminated as the tangent's are. Reads
+/// `rotations` when called: pass the ones the iteration keeps current.
+std::function<void(BrcMatrix&)> corotated_stiffness_standin(const FeProblem& problem,
+                                                            const std::vector<Mat3>& rotations);
 
 class PreconditionedGmresSolve : public NewtonLinearSolve {
  public:

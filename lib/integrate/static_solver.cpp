@@ -9,7 +9,6 @@
 #include "core/number_text.hpp"
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
-#include "fem/dirichlet.hpp"
 #include "fem/edge_stretch.hpp"
 #include "fem/rotation_tangent.hpp"
 #include "integrate/newton_iteration.hpp"
@@ -156,11 +155,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
       // GMRES's iterations stay few enough that no factor's fill is needed.
       linear = std::make_unique<PreconditionedGmresSolve>(
           solver, problem.stiffness, newton_tangent_tolerance(options.tolerance),
-          [&problem, &result, &u, force = Eigen::VectorXd()](BrcMatrix& standin) mutable {
-            assemble_corotated(problem.elements, problem.mesh, problem.assembly, result.rotations,
-                               u, standin, force);
-            apply_dirichlet_to_matrix(problem.dirichlet, standin);
-          });
+          corotated_stiffness_standin(problem, result.rotations));
     else
       linear = std::make_unique<SparseLuSolve>(problem.stiffness);
     jacobian_matrix = problem.stiffness;
