@@ -7,7 +7,10 @@
 #include <random>
 
 #include "core/errors.hpp"
+#include "element/material.hpp"
 #include "fem/assembly_map.hpp"
+#include "fem/corotated_assembly.hpp"
+#include "fem/fe_problem.hpp"
 #include "galerkin_oracle.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_mesh.hpp"
@@ -18,6 +21,7 @@
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 #include "multigrid/lattice_level.hpp"
+#include "multigrid/mesh_level.hpp"
 #include "solver/petsc_galerkin.hpp"
 #include "solver/petsc_solver.hpp"
 #include "sparse/brc_to_eigen.hpp"
@@ -268,6 +272,39 @@ TEST(Galerkin, MeshHierarchyUpdateMatchesOraclesOnEveryLevel) {
       EXPECT_LT((p - e).norm(), 1e-12 * e.norm()) << "level " << h << ", round " << round;
     }
   }
+}
+
+TEST(Galerkin, NestedKuhnBoxesGiveTheCoarseMeshesOwnStiffness) {
+  // The variational property of a nested hierarchy: where every coarse tet is a union of fine
+  // ones (Kuhn cells split into 8 Kuhn cells each), the coarse P1 space lies in the fine one, the
+  // transfer's barycentric weights reproduce each coarse hat function exactly, and R K_h R^T is
+  // the coarse mesh's own stiffness K_H, assembled by the element code on the coarse tets. An
+  // oracle independent of the transfer's and the product's code: a point located in a wrong tet,
+  // a wrong weight, a product that drops or doubles a pair, each breaks it.
+  const Vec3 size(1, 0.8, 0.6);
+  const TetMesh fine = make_box_mesh(size, {8, 6, 4}), coarse = make_box_mesh(size, {4, 3, 2});
+  const auto stiffness = [](const TetMesh& mesh) {
+    FeProblem p = make_fe_problem(mesh, materials_per_element(mesh, Material{1e6, 0.3, 1000}, {}));
+    const std::vector<Mat3> identity(mesh.tets.size(), Mat3::Identity());
+    Eigen::VectorXd force;
+    assemble_corotated(p.elements, p.mesh, p.assembly, identity,
+                       Eigen::VectorXd::Zero(p.num_dofs()), p.stiffness, force);
+    return p.stiffness;
+  };
+  MeshLevelFit fit;
+  const CoarseLevel level = make_mesh_level(fine.rest, std::vector<char>(fine.rest.size(), 0),
+                                            coarse, "coarse box", &fit);
+  EXPECT_EQ(fit.outside, 0);
+  EXPECT_EQ(fit.dropped_vertices, 0);  // so the coarse numbering is the mesh's
+  ASSERT_EQ(level.transfer.coarse, coarse.num_vertices());
+  const BrcMatrix a = stiffness(fine);
+  const Eigen::MatrixXd expected = Eigen::MatrixXd(to_eigen(stiffness(coarse)));
+  BrcMatrix e = galerkin_pattern(a, level.transfer);
+  GalerkinStream(a, level.transfer, e, GalerkinStream::Symmetry::Symmetric).apply(a, e);
+  // Weights 1, 1/2 (edge midpoints) and sums of a few dozen products: round-off ~1e-16.
+  EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), expected), 1e-13) << "stream";
+  galerkin_naive(a, level.transfer, e);
+  EXPECT_LT(relative_frobenius(Eigen::MatrixXd(to_eigen(e)), expected), 1e-13) << "naive";
 }
 
 /// The shares of a partition's parts sum to R A R^T, whether each part holds its rows in its own
