@@ -3,7 +3,7 @@
 
 Usage: bench/nested_two_grid.py [--cells N [N ...]] [--poisson NU] [--sweeps S [S ...]]
                                 [--mass-ratio M [M ...]] [--chebyshev DEGREE [DEGREE ...]]
-                                [--lower L] [--drop-face-vertices] [--json FILE]
+                                [--lower L] [--drop-face-vertices] [--pcg TOL] [--json FILE]
                                 (needs python3-scipy)
 
 Issue 36 asks for a default cycle with rho <= 0.3. The best a V-cycle can do is its two-grid cycle
@@ -30,7 +30,9 @@ A0 exported at density 1000 and 2000, 2026-12-05), about 0.05 on the bunny (h^2 
 
 Prints, for every combination, the two-grid error propagation's energy-norm spectral radius (power
 iteration from a random error, 300 steps): the smallest rho any cycle with that smoother and
-these transfers can have. Cross-check with corofem: MultigridSolver.TwoGridEqualsDenseOperator
+these transfers can have; with --pcg TOL, how many CG iterations that cycle takes as the
+preconditioner to a relative residual TOL from zero under a uniform body force (the fewest MG-PCG
+can take on this body). Cross-check with corofem: MultigridSolver.TwoGridEqualsDenseOperator
 builds the same two-grid operator from corofem's own hierarchy on the nested 4^3 box and prints
 its spectral radius (0.5589); this script with --cells 4 gives the same.
 """
@@ -151,53 +153,84 @@ def l1_block_diagonal(a):
 
 
 def gauss_seidel(a, sweeps):
+    """Pre- and post-smoother as maps (x, b) -> x + N (b - A x), repeated `sweeps` times."""
     forward, backward = sl.splu(block_lower(a).tocsc()), sl.splu(block_lower(a).T.tocsc())
 
-    def pre(e):
+    def pre(x, b):
         for _ in range(sweeps):
-            e = e - forward.solve(a @ e)
-        return e
+            x = x + forward.solve(b - a @ x)
+        return x
 
-    def post(e):
+    def post(x, b):
         for _ in range(sweeps):
-            e = e - backward.solve(a @ e)
-        return e
+            x = x + backward.solve(b - a @ x)
+        return x
     return pre, post
 
 
 def chebyshev(a, degree, lower):
-    """The Chebyshev iteration for M^-1 A on [lower, 1] applied to A x = 0 (the error): the same
-    polynomial before and after (M^-1 A is self-adjoint in the M inner product)."""
+    """The Chebyshev iteration for M^-1 A on [lower, 1]: the same polynomial before and after
+    (M^-1 A is self-adjoint in the M inner product)."""
     m = sl.splu(l1_block_diagonal(a))
     theta, delta = (1 + lower) / 2, (1 - lower) / 2
     sigma = theta / delta
 
-    def smooth(e):
+    def smooth(x, b):
         rho = 1 / sigma
-        d = -m.solve(a @ e) / theta
+        d = m.solve(b - a @ x) / theta
         for step in range(degree):
-            e = e + d
+            x = x + d
             if step + 1 == degree:
                 break
             rho_next = 1 / (2 * sigma - rho)
-            d = rho_next * rho * d - 2 * rho_next / delta * m.solve(a @ e)
+            d = rho_next * rho * d + 2 * rho_next / delta * m.solve(b - a @ x)
             rho = rho_next
-        return e
+        return x
     return smooth, smooth
 
 
-def two_grid_factor(a, p, pre, post, steps=300, seed=0):
+def two_grid_cycle(a, p, pre, post):
+    """One two-grid cycle for A x = b from x: (x, b) -> x'."""
     coarse = sl.splu((p.T @ a @ p).tocsc())
+
+    def cycle(x, b):
+        x = pre(x, b)
+        x = x + p @ coarse.solve(p.T @ (b - a @ x))
+        return post(x, b)
+    return cycle
+
+
+def two_grid_factor(a, cycle, steps=300, seed=0):
+    """The energy-norm spectral radius of the cycle's error propagation (power iteration on
+    A e = 0)."""
     e = np.random.default_rng(seed).standard_normal(a.shape[0])
+    zero = np.zeros_like(e)
     rho = 0.0
     for _ in range(steps):
         energy = e @ (a @ e)
-        e = pre(e)
-        e = e - p @ coarse.solve(p.T @ (a @ e))
-        e = post(e)
+        e = cycle(e, zero)
         rho = np.sqrt((e @ (a @ e)) / energy)
         e /= np.sqrt(e @ (a @ e))
     return rho
+
+
+def pcg_iterations(a, cycle, b, tolerance, most=500):
+    """CG on A x = b from x = 0, preconditioned by one cycle from z = 0 (symmetric: the
+    post-smoother is the pre-smoother's adjoint), to |r| <= tolerance |b|."""
+    x, r = np.zeros_like(b), b.copy()
+    z = cycle(np.zeros_like(b), r)
+    d, rz = z.copy(), r @ z
+    for iteration in range(1, most + 1):
+        q = a @ d
+        alpha = rz / (d @ q)
+        x += alpha * d
+        r -= alpha * q
+        if np.linalg.norm(r) <= tolerance * np.linalg.norm(b):
+            return iteration
+        z = cycle(np.zeros_like(b), r)
+        rz, rz_old = r @ z, rz
+        d = z + rz / rz_old * d
+    return None
 
 
 def main():
@@ -209,6 +242,9 @@ def main():
     parser.add_argument("--chebyshev", type=int, nargs="*", default=[])
     parser.add_argument("--lower", type=float, default=0.1)
     parser.add_argument("--drop-face-vertices", action="store_true")
+    parser.add_argument("--pcg", type=float, default=0.0,
+                        help="also count CG iterations to this relative residual, preconditioned "
+                             "by the two-grid cycle, under a uniform body force")
     parser.add_argument("--json", help="also write the rows to this file (via a temporary file)")
     args = parser.parse_args()
     if any(n < 2 or n % 2 for n in args.cells):
@@ -236,15 +272,22 @@ def main():
             smoothers = [(f"Gauss-Seidel V({s},{s})", gauss_seidel(a, s)) for s in args.sweeps]
             smoothers += [(f"Chebyshev-{g} on [{args.lower}, 1]", chebyshev(a, g, args.lower))
                           for g in args.chebyshev]
+            # A uniform body force along -z (gravity): the right-hand side of a sagging body.
+            load = np.tile([0.0, 0.0, -1.0], a.shape[0] // 3)
             for name, (pre, post) in smoothers:
-                rho = two_grid_factor(a, p, pre, post)
+                cycle = two_grid_cycle(a, p, pre, post)
+                rho = two_grid_factor(a, cycle)
+                iterations = pcg_iterations(a, cycle, load, args.pcg) if args.pcg else None
                 row = {"cells": n, "poisson": args.poisson, "mass_ratio": mass, "smoother": name,
                        "fine_dofs": a.shape[0], "coarse_dofs": p.shape[1],
-                       "nested_error": nested_error, "two_grid_rho": rho}
+                       "nested_error": nested_error, "two_grid_rho": rho,
+                       "pcg_tolerance": args.pcg, "pcg_iterations": iterations}
                 rows.append(row)
                 print(f"{n:3d}^3 cells, nu {args.poisson}, mass {mass:g}: {name}: two-grid rho "
                       f"{rho:.3f} ({a.shape[0]} fine DOFs, {p.shape[1]} coarse; max |P^T K P - K_H| / "
-                      f"max |K_H| {nested_error:.1e})", flush=True)
+                      f"max |K_H| {nested_error:.1e})" +
+                      (f"; two-grid PCG to {args.pcg:g}: {iterations} iterations" if args.pcg
+                       else ""), flush=True)
     if args.json:
         record = {"produced_by": "bench/nested_two_grid.py", "arguments": vars(args), "rows": rows}
         temporary = args.json + ".tmp"
