@@ -40,6 +40,8 @@ import argparse
 import itertools
 import json
 import os
+import platform
+import subprocess
 import sys
 
 import numpy as np
@@ -233,6 +235,20 @@ def pcg_iterations(a, cycle, b, tolerance, most=500):
     return None
 
 
+def context():
+    """What produced a record: the checkout's commit, the machine, the libraries."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    try:
+        commit = subprocess.run(["git", "-C", here, "describe", "--always", "--dirty"],
+                                capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        commit = "unknown"
+    import scipy
+    return {"commit": commit, "machine": platform.node(), "processor": platform.machine(),
+            "cpus": os.cpu_count(), "python": platform.python_version(),
+            "numpy": np.__version__, "scipy": scipy.__version__}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--cells", type=int, nargs="+", default=[4, 8, 16])
@@ -289,7 +305,8 @@ def main():
                       (f"; two-grid PCG to {args.pcg:g}: {iterations} iterations" if args.pcg
                        else ""), flush=True)
     if args.json:
-        record = {"produced_by": "bench/nested_two_grid.py", "arguments": vars(args), "rows": rows}
+        record = {"produced_by": "bench/nested_two_grid.py", "context": context(),
+                  "arguments": vars(args), "rows": rows}
         temporary = args.json + ".tmp"
         with open(temporary, "w") as out:
             json.dump(record, out, indent=1)
