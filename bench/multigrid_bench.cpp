@@ -12,9 +12,13 @@
 #include "core/machine_roofs.hpp"
 #include "core/statistics.hpp"
 #include "core/threads.hpp"
+#include "element/material.hpp"
+#include "fem/corotated_assembly.hpp"
+#include "fem/dirichlet.hpp"
 #include "galerkin_oracle.hpp"
 #include "io/solver_record.hpp"
 #include "linalg/preconditioned_cg.hpp"
+#include "mesh/box_mesh.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "single_precision_kernels.hpp"
 #include "solver/petsc_galerkin.hpp"
@@ -475,6 +479,92 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   state.counters["levels"] = params.hierarchy.levels;
   state.counters["operator_complexity"] = d["operator_complexity"].get<double>();
 }
+
+/// Issue 36's floor, on corofem's side: the two-grid cycle (coarse level solved exactly) on the
+/// ideal hierarchy, the unit cube in N^3 Kuhn cells over the cube in (N/2)^3 (nested), clamped
+/// at x = 0, E = 1, nu = 0.3, `mass_permille` / 1000 x the mean stiffness diagonal added as a
+/// lumped mass. bench/nested_two_grid.py builds the same case with no corofem code: its
+/// energy-norm factor and CG iterations are what `rho_<smoother>` and `mgpcg_iterations_<smoother>`
+/// should give (rho here is the residual ratio of the last of 100 cycles on A e = 0).
+void BM_NestedTwoGrid(benchmark::State& state) {
+  const int cells = static_cast<int>(state.range(0));
+  const double mass_ratio = static_cast<double>(state.range(1)) / 1000;
+  const TetMesh fine = make_box_mesh({1, 1, 1}, {cells, cells, cells});
+  const TetMesh coarse = make_box_mesh({1, 1, 1}, {cells / 2, cells / 2, cells / 2});
+  FeProblem problem = make_fe_problem(fine, materials_per_element(fine, Material{1, 0.3, 1}, {}));
+  std::vector<char> fixed_vertices(fine.rest.size(), 0);
+  for (int v = 0; v < fine.num_vertices(); ++v)
+    if (fine.rest[v].x() < 1e-12) {
+      problem.dirichlet.fix_vertex(v);
+      fixed_vertices[v] = 1;
+    }
+  const std::vector<Mat3> identity(fine.tets.size(), Mat3::Identity());
+  Eigen::VectorXd force;
+  assemble_corotated(problem.elements, problem.mesh, problem.assembly, identity,
+                     Eigen::VectorXd::Zero(problem.num_dofs()), problem.stiffness, force);
+  BrcMatrix a = problem.stiffness;
+  double diagonal = 0;
+  int free_dofs = 0;
+  for (int v = 0; v < fine.num_vertices(); ++v)
+    if (!fixed_vertices[v]) {
+      diagonal += a.block(problem.assembly.diagonal[v]).diagonal().sum();
+      free_dofs += 3;
+    }
+  for (int v = 0; v < fine.num_vertices(); ++v)
+    a.block(problem.assembly.diagonal[v]).diagonal().array() += mass_ratio * diagonal / free_dofs;
+  Eigen::VectorXd load = Eigen::VectorXd::Zero(problem.num_dofs());
+  for (int v = 0; v < fine.num_vertices(); ++v) load[3 * v + 2] = -1;  // a uniform body force
+  apply_dirichlet(problem.dirichlet, a, load);
+  HierarchyParams hierarchy;
+  hierarchy.kind = HierarchyKind::Meshes;
+  hierarchy.levels = 2;
+  MultigridParams params;
+  params.tolerance = 1e-4;
+  params.smoother = SmootherOrdering::Sequential;  // natural order, as the script's
+  std::vector<std::pair<std::string, MultigridParams>> smoothers;
+  for (int sweeps : {1, 2, 3}) {
+    MultigridParams p = params;
+    p.pre_smoothing = p.post_smoothing = sweeps;
+    smoothers.emplace_back("gs" + std::to_string(sweeps), p);
+  }
+  for (int degree : {2, 3, 4}) {
+    MultigridParams p = params;
+    p.smoother_kind = SmootherKind::Chebyshev;
+    p.chebyshev_degree = degree;
+    smoothers.emplace_back("chebyshev" + std::to_string(degree), p);
+  }
+  for (auto _ : state) {
+    for (const auto& [name, p] : smoothers) {
+      MultigridSolver cycle(a, build_hierarchy(fine, fixed_vertices, hierarchy, {coarse}), p,
+                            false);
+      MultigridSolver pcg(a, build_hierarchy(fine, fixed_vertices, hierarchy, {coarse}), p, true);
+      cycle.set_matrix(a);
+      pcg.set_matrix(a);
+      Eigen::VectorXd e = Eigen::VectorXd::Random(a.block_rows * 3), r;
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(e.size());
+      for (int d = 0; d < e.size(); ++d)
+        if (problem.dirichlet.fixed[d]) e[d] = 0;
+      double previous = 0, ratio = 0;
+      for (int k = 0; k < 100; ++k) {
+        cycle.vcycle(0, zero, e, false);
+        a.multiply(e, r);
+        ratio = previous > 0 ? r.norm() / previous : 0;
+        previous = r.norm();
+      }
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(load.size());
+      state.counters["rho_" + name] = ratio;
+      state.counters["mgpcg_iterations_" + name] = pcg.solve(load, x).iterations;
+    }
+  }
+  state.counters["fine_dofs"] = 3 * fine.num_vertices();
+}
+BENCHMARK(BM_NestedTwoGrid)
+    ->Args({4, 0})
+    ->Args({16, 0})
+    ->Args({16, 7})
+    ->Args({16, 50})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 #define GALERKIN_CASES(model)                                                                      \
   BENCHMARK_CAPTURE(BM_GalerkinUpdate, naive / model, std::string("naive"), std::string(#model))   \
