@@ -1,6 +1,6 @@
 // Galerkin products: stream = gather = naive = reuse = Eigen = dense on random small hierarchies
 // and a box hierarchy, again after A's values change, and with an entry of A scattered more than
-// 127 times (continuation control bytes).
+// 127 times (continuation control bytes); on nested boxes, the coarse mesh's own stiffness.
 #include <gtest/gtest.h>
 
 #include <limits>
