@@ -25,8 +25,8 @@ Smoothers, before the coarse correction and, transposed, after it:
     for M^-1 A on [--lower, 1], M the l1 block-Jacobi diagonal (linalg/chebyshev_smoother.hpp).
 --mass-ratio M adds M x mean(diag K) to the diagonal: a lumped mass term, as in a time step's
 (1 + dt alpha) M + dt^2 K. In the report's model scenes (dt = 0.01, E = 1e5, density 1000) the
-mass is 0.007 of the stiffness's diagonal on the dragon and 0.009 on the horse (their first step's
-A0 exported at density 1000 and 2000, 2026-12-05), about 0.05 on the bunny (h^2 scaling).
+mass is 0.0068 of the stiffness's diagonal on the dragon, 0.0091 on the horse and 0.051 on the
+bunny (their first step's A0 exported at density 1000 and 2000, 2026-12-05).
 
 Prints, for every combination, the two-grid error propagation's energy-norm spectral radius (power
 iteration from a random error, 300 steps): the smallest rho any cycle with that smoother and
