@@ -533,11 +533,10 @@ void BM_NestedTwoGrid(benchmark::State& state) {
     p.chebyshev_degree = degree;
     smoothers.emplace_back("chebyshev" + std::to_string(degree), p);
   }
+  const BuiltHierarchy built = build_hierarchy(fine, fixed_vertices, hierarchy, {coarse});
   for (auto _ : state) {
     for (const auto& [name, p] : smoothers) {
-      MultigridSolver cycle(a, build_hierarchy(fine, fixed_vertices, hierarchy, {coarse}), p,
-                            false);
-      MultigridSolver pcg(a, build_hierarchy(fine, fixed_vertices, hierarchy, {coarse}), p, true);
+      MultigridSolver cycle(a, built, p, false), pcg(a, built, p, true);
       cycle.set_matrix(a);
       pcg.set_matrix(a);
       Eigen::VectorXd e = Eigen::VectorXd::Random(a.block_rows * 3), r;

@@ -238,24 +238,14 @@ TEST(CliRun, StaticDefaultsConvergeForEveryRotationMethod) {
 }
 
 TEST(CliRun, StaticNewtonOnTheMultigridRecordsTangentsTakenOnTheDefiniteStandIn) {
-  // A soft column bent by tilted gravity (fem_newton_test: its tangent's symmetric part turns
-  // indefinite on the way): on mgpcg the record names the tangent's path and counts the tangents
-  // preconditioned on the corotated stiffness (at least one) and those factored (none).
+  // The gallery's soft column bent by tilted gravity (bench/scenes/column_static_newton_mgpcg.json;
+  // fem_newton_test: its tangent's symmetric part turns indefinite on the way): on mgpcg the record
+  // names the tangent's path and counts the tangents preconditioned on the corotated stiffness (at
+  // least one) and those factored (none).
   TempDir dir;
-  const nlohmann::json scene = {{"mesh", {{"box", {0.1, 0.1, 1.0}}, {"cells", {3, 3, 30}}}},
-                                {"material", {{"young", 1e6}, {"poisson", 0.3}, {"density", 1000}}},
-                                {"fixed", {{{"box", {{0, 0, 0}, {0.1, 0.1, 0}}}}}},
-                                {"gravity", {1, 0, -9.81}},
-                                {"analysis",
-                                 {{"type", "static"},
-                                  {"rotation", "energy-newton"},
-                                  {"solver", "mgpcg"},
-                                  {"hierarchy", "lattice"},
-                                  {"levels", 3},
-                                  {"tolerance", 1e-10}}}};
-  write_text(dir / "column.json", scene.dump());
-  const auto r = run_cli("run '" + (dir / "column.json").string() + "' --out '" +
-                         (dir / "r.json").string() + "'");
+  const auto r = run_cli(
+      "run '" + (test::source_dir() / "bench/scenes/column_static_newton_mgpcg.json").string() +
+      "' --out '" + (dir / "r.json").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(test::read_text(dir / "r.json"));
   EXPECT_TRUE(j["converged"].get<bool>());

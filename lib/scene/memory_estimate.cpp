@@ -49,13 +49,19 @@ double linear_bytes_per_tet(SolverKind solver) {
   return 0;
 }
 
+/// Bytes per tet of a run on `solver` whose memory grows with the mesh, with Newton's GMRES where
+/// the tangent is solved by it.
+double bytes_per_tet(SolverKind solver, NewtonTangent tangent) {
+  return linear_bytes_per_tet(solver) +
+         (tangent == NewtonTangent::ByGmres ? gmres_bytes_per_tet(solver) : 0);
+}
+
 }  // namespace
 
 double run_bytes(SolverKind solver, double tets, int ranks, NewtonTangent tangent) {
   if (solver == SolverKind::Cholmod || tangent == NewtonTangent::Factored)
     return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
-  const double per_tet = linear_bytes_per_tet(solver) +
-                         (tangent == NewtonTangent::ByGmres ? gmres_bytes_per_tet(solver) : 0);
+  const double per_tet = bytes_per_tet(solver, tangent);
   if (ranks > 1)
     return kLibraryBytes +
            std::max(kWholeBodyBytesPerTet * tets, per_tet * kHaloFactor * tets / ranks);
@@ -68,10 +74,8 @@ std::string run_bytes_basis(SolverKind solver, int ranks, NewtonTangent tangent)
   const std::string name = kSolverKinds.name(solver);
   if (solver == SolverKind::Cholmod) return name + ": 115 bytes x tets^4/3 (its factor's fill)";
   const bool gmres = tangent == NewtonTangent::ByGmres;
-  const std::string per_tet =
-      general_number((linear_bytes_per_tet(solver) + (gmres ? gmres_bytes_per_tet(solver) : 0)) /
-                     1e3) +
-      " kB per tet" + (gmres ? " (with Newton's GMRES)" : "");
+  const std::string per_tet = general_number(bytes_per_tet(solver, tangent) / 1e3) + " kB per tet" +
+                              (gmres ? " (with Newton's GMRES)" : "");
   if (ranks > 1)
     return name + ": " + per_tet + " over each rank's share of " + std::to_string(ranks) +
            " and its halo, at least 150 bytes per tet of the whole mesh rank 0 builds first";
