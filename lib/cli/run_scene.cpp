@@ -17,6 +17,7 @@
 #include "io/solver_record.hpp"
 #include "io/vtu_writer.hpp"
 #include "rotation/quaternion.hpp"
+#include "scene/load_schedule.hpp"
 #include "scene/scene_simulation.hpp"
 #include "scene/solver_factory.hpp"
 #include "solver/mpi_launch.hpp"
@@ -88,6 +89,13 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
       {"rotation_params", to_json(a.rotation_params)},
       {"solver", newton_solver_name(newton_tangent(a.type, a.integrator, a.formulation, a.solver),
                                     a.solver, solver->name())}};
+  if (a.type == AnalysisType::Dynamic && a.integrator == Integrator::LinearImplicit) {
+    // What the solves started from: a projection only where it applies (load_schedule.hpp).
+    const int history = projected_start_history(a, simulation.part().has_value());
+    r["analysis"]["start"] = history > 0
+                                 ? nlohmann::json{{"kind", "projection"}, {"history", history}}
+                                 : nlohmann::json{{"kind", "extrapolation"}};
+  }
   if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
     r["analysis"]["multigrid"] = to_json(mg->params());
     r["multigrid"] = simulation.describe_multigrid(*mg);

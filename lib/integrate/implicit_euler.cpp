@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
@@ -9,6 +10,7 @@
 #include "fem/corotated_assembly.hpp"
 #include "fem/corotated_system.hpp"
 #include "fem/rotation_tangent.hpp"
+#include "linalg/projected_start.hpp"
 #include "rotation/polar_decomposition.hpp"
 
 namespace corofem {
@@ -195,6 +197,9 @@ struct LinearStep {
   bool constant;              ///< small strain: K assembled once, A formed when the supports change
   std::vector<char> solver_supports{};   ///< constant: the fixed DOFs of the A the solver holds
   Eigen::VectorXd lifted{}, k_lifted{};  ///< constant: dt u + k_scale w and K times it
+  /// The start projected on the last velocities (DynamicOptions::start_history), and its result.
+  std::optional<ProjectedStart> projection{};
+  Eigen::VectorXd projected{};
 };
 
 /// The small-strain step's right-hand side in one product with K (K constant): f_int(u) = K u,
@@ -214,14 +219,21 @@ void small_strain_rhs(const FeProblem& problem, const DirichletConditions& bc,
 }
 
 /// The linearly implicit step's solve of A v' = s.b, A the matrix the solver holds.
+/// `projected`: s.projected holds the start projected on the last velocities.
 SolveStats solve_from_extrapolation(LinearSolver& solver, LinearStep& s, Eigen::VectorXd& velocity,
-                                    PhaseClock& clock) {
+                                    PhaseClock& clock, bool projected = false) {
   return clock.time("solve", [&] {
     // The iterative solvers start from 2 v_n - v_{n-1}, the velocity extrapolated linearly
-    // (v_n at the first step); they stop at the same |b - A v| <= tolerance |b|, so only
-    // their iteration count changes (it falls: a better start).
-    s.previous_velocity = 2 * velocity - s.previous_velocity;  // coefficient-wise: no aliasing
-    velocity.swap(s.previous_velocity);                        // the start, and v_n kept
+    // (v_n at the first step), or from the projection; they stop at the same
+    // |b - A v| <= tolerance |b|, so only their iteration count changes (it falls: a better
+    // start).
+    if (projected) {
+      s.previous_velocity.swap(velocity);  // v_n kept
+      velocity.swap(s.projected);
+    } else {
+      s.previous_velocity = 2 * velocity - s.previous_velocity;  // coefficient-wise: no aliasing
+      velocity.swap(s.previous_velocity);                        // the start, and v_n kept
+    }
     return solver.solve(s.b, velocity);
   });
 }
@@ -267,8 +279,13 @@ SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
   });
   // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization. A is rebuilt for
   // every call (the solver may take its values by swap).
+  // The projection needs A's products: before the solver may take its values.
+  bool projected = false;
+  if (s.projection)
+    clock.time("solve",
+               [&] { projected = s.projection->compute(s.system, s.b, velocity, s.projected); });
   clock.time("update", [&] { solver.take_matrix(s.system); });
-  return solve_from_extrapolation(solver, s, velocity, clock);
+  return solve_from_extrapolation(solver, s, velocity, clock, projected);
 }
 
 /// Each phase's time in one step (the totals after it less those before), and the whole step's.
@@ -315,6 +332,11 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
                     small_strain_linear};
   if (options.newton && options.ranks.distributed())
     throw InputError("fully implicit Euler (Newton) does not run on a distributed mesh");
+  if (options.start_history > 0 && !options.newton && !linear.constant) {
+    if (options.ranks.distributed())
+      throw InputError("a projected start does not run on a distributed mesh");
+    linear.projection.emplace(options.start_history);
+  }
   std::unique_ptr<NewtonStepper> newton;
   if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.method());
   for (int step = 1; step <= options.steps; ++step) {

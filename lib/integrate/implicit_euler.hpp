@@ -43,6 +43,10 @@ struct DynamicOptions {
   /// moving halfway in the first), at most max_step_cuts halvings deep; then NotConverged.
   NewtonSettings newton_settings{};
   int max_step_cuts = 4;
+  /// Linearly implicit, corotated: the iterative solve starts from the projection on the last
+  /// start_history velocities (linalg/projected_start.hpp; at least 2), not from their linear
+  /// extrapolation (0). Unused by small strain, whose A the solver keeps across steps.
+  int start_history = 0;
   /// Linearly implicit only: the problem is this rank's part of a distributed mesh; the inverted
   /// count and the final residual are the whole body's (the solver distributed to match).
   RankView ranks{};

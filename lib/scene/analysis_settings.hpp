@@ -38,6 +38,15 @@ inline constexpr NameTable<SolverKind, 7> kSolverKinds{{{
     {SolverKind::PetscMg, "petsc-mg"},
 }}};
 
+/// Where a dynamic linearly implicit step's iterative solve starts: the last two velocities
+/// extrapolated linearly, or the projection on the last `start_history` of them
+/// (linalg/projected_start.hpp).
+enum class SolveStart { Extrapolation, Projection };
+inline constexpr NameTable<SolveStart, 2> kSolveStarts{{{
+    {SolveStart::Extrapolation, "extrapolation"},
+    {SolveStart::Projection, "projection"},
+}}};
+
 /// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
 inline bool is_multigrid_solver(SolverKind solver) {
   return solver == SolverKind::Multigrid || solver == SolverKind::Mgpcg ||

@@ -64,6 +64,14 @@ void LoadSchedule::apply(int step, FeProblem& problem) const {
   }
 }
 
+int projected_start_history(const AnalysisSpec& a, bool distributed_mesh) {
+  const bool applies = a.type == AnalysisType::Dynamic &&
+                       a.integrator == Integrator::LinearImplicit &&
+                       a.formulation == Formulation::Corotational &&
+                       a.solver != SolverKind::Cholmod && !distributed_mesh;
+  return applies && a.start == SolveStart::Projection ? a.start_history : 0;
+}
+
 DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem, RankView ranks) {
   const AnalysisSpec& a = scene.analysis;
   DynamicOptions options{a.formulation == Formulation::Corotational,
@@ -76,6 +84,7 @@ DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem, RankView 
   options.newton_settings.tolerance = a.tolerance;
   options.newton_settings.max_iterations = a.max_iterations;
   options.max_step_cuts = a.max_step_cuts;
+  options.start_history = projected_start_history(a, ranks.distributed());
   auto schedule = std::make_shared<const LoadSchedule>(scene, problem, ranks);
   options.ranks = std::move(ranks);
   schedule->apply(1, problem);

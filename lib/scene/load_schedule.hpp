@@ -33,4 +33,10 @@ class LoadSchedule {
 /// `ranks`: as LoadSchedule's, and the options' own.
 DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem, RankView ranks = {});
 
+/// The velocities a dynamic step's solve is projected on (DynamicOptions::start_history), 0 for
+/// the linear extrapolation: `start: projection` where it applies, a linearly implicit corotated
+/// run on an iterative solver and one process's mesh (a direct solver ignores the start; small
+/// strain's solver keeps its A; a distributed mesh's rank holds part of A).
+int projected_start_history(const AnalysisSpec& a, bool distributed_mesh);
+
 }  // namespace corofem

@@ -215,6 +215,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.smoother = smoother.ordering;
   a.chebyshev_degree = integer_in(f, "chebyshev_degree", a.chebyshev_degree, 1, 16);
   a.cycle = one_of(f, "cycle", a.cycle, kCycleShapes);
+  a.start = one_of(f, "start", a.start, kSolveStarts);
+  a.start_history = integer_in(f, "start_history", a.start_history, 2, 16);
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
   a.steps = integer_in(f, "steps", a.steps, 1, 10'000'000);
   a.load_steps = integer_in(f, "load_steps", a.load_steps, 1, 100000);

@@ -105,6 +105,10 @@ struct AnalysisSpec {
   SmootherKind smoother_kind = MultigridParams{}.smoother_kind;
   int chebyshev_degree = MultigridParams{}.chebyshev_degree;
   CycleShape cycle = MultigridParams{}.cycle;  ///< V | W
+  /// Dynamic, linearly implicit, corotated, iterative solvers on one process: the solve's start
+  /// (start_history: the velocities projected on, 2..16).
+  SolveStart start = SolveStart::Extrapolation;
+  int start_history = 4;
   double dt = 0.01;
   int steps = 1;
   int load_steps = 1;
