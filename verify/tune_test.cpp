@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/box_mesh.hpp"
+#include "scene/load_schedule.hpp"
 #include "scene/scene_simulation.hpp"
 #include "scene/time_step_scaling.hpp"
 #include "test_support.hpp"
@@ -172,6 +173,42 @@ TEST(TuneAxes, StaticNewtonOffersTheMultigridTangentWhereTheSceneFactorsIt) {
         EXPECT_EQ(s.analysis.solver, SolverKind::Mgpcg) << v.label;
         EXPECT_EQ(s.analysis.tolerance, v.patch["analysis"]["tolerance"].get<double>());
       }
+  }
+}
+
+TEST(TuneAxes, ProjectedStartsAreCandidatesWhereAStartCounts) {
+  // A dynamic corotated run (linearly implicit) starts each solve from its last velocities: the
+  // solver axis offers the iterative solvers started from their projection, each a scene that
+  // parses to that start (the record's analysis.start then says projection). The lagged static
+  // iteration solves no sequence of steps: no such candidates.
+  TempDir dir;
+  for (const char* type : {"dynamic", "static"}) {
+    SCOPED_TRACE(type);
+    json raw = json::parse(kBentBar);
+    raw["analysis"] = {{"type", type},
+                       {"formulation", "corotational"},
+                       {"solver", "cholmod"},
+                       {"integrator", "linear-implicit"}};
+    if (std::string(type) == "dynamic") raw["analysis"]["steps"] = 4;
+    const Scene scene = parse_scene(raw, dir.path(), "bent.json");
+    std::string note;
+    const std::vector<TuneAxis> axes = tune_axes(scene, raw, {.resolution_free = false}, note);
+    const auto axis = std::find_if(axes.begin(), axes.end(),
+                                   [](const TuneAxis& a) { return a.name == "solver"; });
+    ASSERT_NE(axis, axes.end());
+    std::map<std::string, int> families;
+    for (const AxisValue& v : axis->values) {
+      ++families[v.family];
+      if (v.family.find("projected start") == std::string::npos) continue;
+      json patched = raw;
+      patched.merge_patch(v.patch);
+      const Scene s = parse_scene(patched, dir.path(), "bent.json");
+      EXPECT_EQ(s.analysis.start, SolveStart::Projection) << v.label;
+      EXPECT_GT(projected_start_history(s.analysis, false), 0) << v.label;
+    }
+    const int expected = std::string(type) == "dynamic" ? 3 : 0;
+    EXPECT_EQ(families["mgpcg projected start"], expected);
+    EXPECT_EQ(families["jacobi-pcg projected start"], expected);
   }
 }
 

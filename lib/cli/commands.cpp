@@ -129,7 +129,8 @@ under 300k tets; a surface refined inside), CHOLMOD (static Newton: its sparse L
 the exact rotation minimizer, the scene's time step and integrator. Its own discretization error
 is estimated by Richardson extrapolation from coarser resolutions and counted in every error.
 The search: resolution, rotation method, solver and tolerance (multigrid hierarchy, smoother and
-cycle, Jacobi-PCG; static Newton: its tolerance, with the tangent factored or on mgpcg), static
+cycle, Jacobi-PCG, dynamic: the projected start; static Newton: its tolerance, with the tangent
+factored or on mgpcg), static
 load increments, the time step (dynamic; unstable steps are recorded and left out), each screened
 alone, then their combinations, cheapest predicted first.
   --target E       relative error in (0, 1) of the quantity

@@ -156,6 +156,17 @@ TuneAxis linear_solver_axis(const Scene& scene) {
                     {{"solver", "multigrid"}, {"levels", levels}, {"vcycles", vcycles}}}},
          .family = "multigrid"});
   family("jacobi-pcg", {{"solver", "jacobi-pcg"}}, {1e-6, 1e-4, 1e-3, 1e-2});
+  // Where a solve's start counts (a corotated linearly implicit step): the iterative solvers
+  // started from the projection on the last velocities, which pays where iterations are many
+  // (lib/README, "The solve's start").
+  const AnalysisSpec& a = scene.analysis;
+  if (a.type == AnalysisType::Dynamic && a.integrator == Integrator::LinearImplicit &&
+      a.formulation == Formulation::Corotational) {
+    family("mgpcg projected start",
+           {{"solver", "mgpcg"}, {"levels", levels}, {"start", "projection"}}, {1e-4, 1e-3, 1e-2});
+    family("jacobi-pcg projected start", {{"solver", "jacobi-pcg"}, {"start", "projection"}},
+           {1e-4, 1e-3, 1e-2});
+  }
   return axis;
 }
 
