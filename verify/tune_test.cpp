@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "mesh/box_mesh.hpp"
 #include "scene/load_schedule.hpp"
@@ -143,6 +144,15 @@ const char* kBentBar = R"({
                "solver": "cholmod", "load_steps": 2, "tolerance": 1e-8}
 })";
 
+/// The solver axis `corofem tune` searches for the scene `raw` (resolution fixed), if any.
+std::optional<TuneAxis> solver_axis(const json& raw, const std::filesystem::path& dir) {
+  const Scene scene = parse_scene(raw, dir, "bent.json");
+  std::string note;
+  for (TuneAxis& axis : tune_axes(scene, raw, {.resolution_free = false}, note))
+    if (axis.name == "solver") return axis;
+  return std::nullopt;
+}
+
 TEST(TuneAxes, StaticNewtonOffersTheMultigridTangentWhereTheSceneFactorsIt) {
   // The bent bar on cholmod factors its Newton tangent: the solver axis holds Newton's tolerances
   // on the scene's own solver (the reference and the given value first) and on mgpcg. On mgpcg
@@ -152,12 +162,8 @@ TEST(TuneAxes, StaticNewtonOffersTheMultigridTangentWhereTheSceneFactorsIt) {
     SCOPED_TRACE(solver);
     json raw = json::parse(kBentBar);
     raw["analysis"]["solver"] = solver;
-    const Scene scene = parse_scene(raw, dir.path(), "bent.json");
-    std::string note;
-    const std::vector<TuneAxis> axes = tune_axes(scene, raw, {.resolution_free = false}, note);
-    const auto axis = std::find_if(axes.begin(), axes.end(),
-                                   [](const TuneAxis& a) { return a.name == "solver"; });
-    ASSERT_NE(axis, axes.end());
+    const std::optional<TuneAxis> axis = solver_axis(raw, dir.path());
+    ASSERT_TRUE(axis);
     std::map<std::string, int> families;
     for (const AxisValue& v : axis->values) ++families[v.family];
     EXPECT_EQ(families["newton"], 5);
@@ -190,12 +196,8 @@ TEST(TuneAxes, ProjectedStartsAreCandidatesWhereAStartCounts) {
                        {"solver", "cholmod"},
                        {"integrator", "linear-implicit"}};
     if (std::string(type) == "dynamic") raw["analysis"]["steps"] = 4;
-    const Scene scene = parse_scene(raw, dir.path(), "bent.json");
-    std::string note;
-    const std::vector<TuneAxis> axes = tune_axes(scene, raw, {.resolution_free = false}, note);
-    const auto axis = std::find_if(axes.begin(), axes.end(),
-                                   [](const TuneAxis& a) { return a.name == "solver"; });
-    ASSERT_NE(axis, axes.end());
+    const std::optional<TuneAxis> axis = solver_axis(raw, dir.path());
+    ASSERT_TRUE(axis);
     std::map<std::string, int> families;
     for (const AxisValue& v : axis->values) {
       ++families[v.family];
