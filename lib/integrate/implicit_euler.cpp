@@ -277,13 +277,13 @@ SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
       apply_dirichlet(bc, s.system, s.b);
     }
   });
-  // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization. A is rebuilt for
-  // every call (the solver may take its values by swap).
   // The projection needs A's products: before the solver may take its values.
   bool projected = false;
   if (s.projection)
     clock.time("solve",
                [&] { projected = s.projection->compute(s.system, s.b, velocity, s.projected); });
+  // "update": multigrid hierarchy update, or CHOLMOD's numeric refactorization. A is rebuilt for
+  // every call (the solver may take its values by swap).
   clock.time("update", [&] { solver.take_matrix(s.system); });
   return solve_from_extrapolation(solver, s, velocity, clock, projected);
 }

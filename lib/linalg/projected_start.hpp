@@ -16,7 +16,6 @@ class ProjectedStart {
  public:
   /// `history`: K, the solutions kept (at least 2, so that the span holds the extrapolation).
   explicit ProjectedStart(int history);
-  int history() const { return history_; }
   /// Keeps `latest` (the last step's solution) among the K most recent, then writes the
   /// projection for A x = b into `start`. False, `start` untouched, when the kept solutions span
   /// nothing (all zero) or V^T A V is not positive semi-definite (A not SPD on the span).
