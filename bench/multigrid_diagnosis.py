@@ -2,7 +2,8 @@
 """Where a multigrid hierarchy is weak, by a route independent of corofem's own cycle (issue 36).
 
 Usage: bench/multigrid_diagnosis.py [--spectrum K] [--smoothed-prolongation] [--rigid-enrichment N]
-                                    [--thin-patches K] [--thin-coarse K] DIR [DIR...]
+                                    [--thin-patches K] [--thin-coarse K] [--outside-coarse]
+                                    DIR [DIR...]
                                     (needs python3-scipy)
 
 DIR is what `corofem export-matrices SCENE.json --out DIR` writes: A<h>.mtx and R<h>.mtx (at least
@@ -40,6 +41,9 @@ correction, backward after) and a direct solve on the coarsest level, it prints 
     themselves added to the first coarse space, P = [P_mesh, I_T], T the vertices with at most K
     neighbours (then grown by one ring), the coarse problem solved exactly: the limit of a coarse
     mesh that keeps every thin feature at the fine resolution, and how large its coarse level is;
+  - with --outside-coarse, the same with the vertices outside their coarse tet (the extrapolated
+    ones) added instead: the best two-grid factor any transfer that changes only their rows of P
+    could give (the factor only falls as the coarse space grows);
   - with --spectrum K, the K largest eigenvalues of the V-cycle's error propagation E = I - B A
     (Arnoldi, scipy's eigs): a few isolated ones would be what CG (or a deflation of a few
     vectors) removes in a few iterations; a cluster of many is what bounds MG-PCG's iterations.
@@ -266,7 +270,8 @@ class Hierarchy:
         return float(np.exp(np.mean(np.log(ratios[-8:])))), e
 
 
-def diagnose(folder, smooth_first=False, enrichment=0, patches=0, coarse_thin=0):
+def diagnose(folder, smooth_first=False, enrichment=0, patches=0, coarse_thin=0,
+             coarse_outside=False):
     m = Hierarchy(folder, smooth_first)
     a, n = m.a[0], m.a[0].shape[0] // 3
     levels = len(m.a)
@@ -319,19 +324,32 @@ def diagnose(folder, smooth_first=False, enrichment=0, patches=0, coarse_thin=0)
               f"{covered} vertices, {covered / n:.0%}; {flops / 1e6:.0f} MFlop of factorization): "
               f"two-grid {m.slowest(1)[0]:.3f}, V-cycle over all levels {m.slowest(levels - 1)[0]:.3f}")
         m.before_coarse = m.after_coarse = None
-    if coarse_thin:  # last: it replaces the first transfer
-        r0 = m.r[0]
+    # Last: these replace the first transfer.
+    r0 = m.r[0]
+    if coarse_thin:
         for rings in (0, 1):
             thin = np.flatnonzero(thin_vertices(graph, coarse_thin, rings))
-            dofs = (3 * thin[:, None] + np.arange(3)).ravel()
-            injection = sp.csr_matrix((np.ones(len(dofs)), (np.arange(len(dofs)), dofs)),
-                                      shape=(len(dofs), a.shape[0]))
-            m.replace_first_transfer(sp.vstack([r0, injection]).tocsr())
             print(f"  thin vertices (at most {coarse_thin} neighbours, grown {rings} ring(s): "
-                  f"{len(thin)}, {len(thin) / n:.0%}) added to the first coarse space: "
-                  f"{r0.shape[0]} + {len(dofs)} coarse DOFs, {m.a[1].nnz // 9} coarse blocks (the fine "
-                  f"level's {a.nnz // 9}); two-grid {m.slowest(1)[0]:.3f}, at 2 sweeps "
-                  f"{m.slowest(1, 2)[0]:.3f}")
+                  f"{len(thin)}, {len(thin) / n:.0%}) " + vertices_in_coarse_space(m, r0, thin))
+    if coarse_outside:
+        outside_vertices = np.flatnonzero(outside)
+        print(f"  the vertices outside their coarse tet ({len(outside_vertices)}, "
+              f"{len(outside_vertices) / n:.0%}) " + vertices_in_coarse_space(m, r0, outside_vertices))
+
+
+def vertices_in_coarse_space(m, r0, vertices):
+    """Adds the vertices' own DOFs to the first coarse space, P = [P_mesh, I_V], and says what the
+    two-grid cycle does then. The two-grid factor only falls as the coarse space grows (its
+    symmetrized error propagation S* (I - pi) S is monotone in pi's range), so this is a bound for
+    every transfer that changes only these vertices' rows of P."""
+    a = m.a[0]
+    dofs = (3 * vertices[:, None] + np.arange(3)).ravel()
+    injection = sp.csr_matrix((np.ones(len(dofs)), (np.arange(len(dofs)), dofs)),
+                              shape=(len(dofs), a.shape[0]))
+    m.replace_first_transfer(sp.vstack([r0, injection]).tocsr())
+    return (f"added to the first coarse space: {r0.shape[0]} + {len(dofs)} coarse DOFs, "
+            f"{m.a[1].nnz // 9} coarse blocks (the fine level's {a.nnz // 9}); two-grid "
+            f"{m.slowest(1)[0]:.3f}, at 2 sweeps {m.slowest(1, 2)[0]:.3f}")
 
 
 def spectrum(folder, k):
@@ -349,12 +367,13 @@ def spectrum(folder, k):
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(usage=__doc__)
+    parser = argparse.ArgumentParser(usage=__doc__.replace("%", "%%"))
     parser.add_argument("--spectrum", type=int, default=0, metavar="K")
     parser.add_argument("--smoothed-prolongation", action="store_true")
     parser.add_argument("--rigid-enrichment", type=int, default=0, metavar="N")
     parser.add_argument("--thin-patches", type=int, default=0, metavar="K")
     parser.add_argument("--thin-coarse", type=int, default=0, metavar="K")
+    parser.add_argument("--outside-coarse", action="store_true")
     parser.add_argument("folders", nargs="+", metavar="DIR")
     args = parser.parse_args()
     for folder in args.folders:
@@ -362,4 +381,4 @@ if __name__ == "__main__":
             spectrum(folder, args.spectrum)
         else:
             diagnose(folder, args.smoothed_prolongation, args.rigid_enrichment, args.thin_patches,
-                     args.thin_coarse)
+                     args.thin_coarse, args.outside_coarse)
