@@ -43,7 +43,8 @@ correction, backward after) and a direct solve on the coarsest level, it prints 
     mesh that keeps every thin feature at the fine resolution, and how large its coarse level is;
   - with --outside-coarse, the same with the vertices outside their coarse tet (the extrapolated
     ones) added instead: the best two-grid factor any transfer that changes only their rows of P
-    could give (the factor only falls as the coarse space grows);
+    could give (the factor only falls as the coarse space grows), and the same for as many
+    vertices drawn at random and drawn from those inside their coarse tet (controls);
   - with --spectrum K, the K largest eigenvalues of the V-cycle's error propagation E = I - B A
     (Arnoldi, scipy's eigs): a few isolated ones would be what CG (or a deflation of a few
     vectors) removes in a few iterations; a cluster of many is what bounds MG-PCG's iterations.
@@ -335,6 +336,12 @@ def diagnose(folder, smooth_first=False, enrichment=0, patches=0, coarse_thin=0,
         outside_vertices = np.flatnonzero(outside)
         print(f"  the vertices outside their coarse tet ({len(outside_vertices)}, "
               f"{len(outside_vertices) / n:.0%}) " + vertices_in_coarse_space(m, r0, outside_vertices))
+        # Controls: whether it is these vertices or any as many.
+        draw = np.random.default_rng(3)
+        for name, pool in (("at random", np.arange(n)),
+                           ("from those inside their coarse tet", np.flatnonzero(~outside))):
+            chosen = np.sort(draw.choice(pool, min(len(outside_vertices), len(pool)), replace=False))
+            print(f"  as many vertices drawn {name} " + vertices_in_coarse_space(m, r0, chosen))
 
 
 def vertices_in_coarse_space(m, r0, vertices):
