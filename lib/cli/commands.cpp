@@ -10,6 +10,7 @@
 
 #include "cli/export_matrices.hpp"
 #include "cli/run_scene.hpp"
+#include "compare/comparison_output.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
@@ -39,6 +40,9 @@ Commands:
   tune SCENE.json --target E [--out DIR]
                                      the cheapest settings of a scene that meet an error
                                      target, checked in a re-run
+  compare BASE NEW [--out DIR]       whether NEW is faster, slower or the same as BASE (run
+                                     records, report folders, Google Benchmark JSON), with
+                                     intervals; exit 1 on a regression
   help [COMMAND]                     this text, or a command's
 
 Exit status: 0 success, 1 did not converge or numerical fault, 2 bad input.
@@ -146,6 +150,36 @@ Progress goes to stderr.
 Exit status: 0 the target is met in the re-run; 1 not met (the closest setting and why:
 discretization-limited, where the reference's own error is above the target; the reference not
 converging; the budget); 2 bad input.
+)";
+
+const char* kCompareHelp =
+    R"(Usage: corofem compare BASE NEW [--threshold T] [--alpha A] [--accuracy-factor F]
+                       [--field-tolerance E] [--min-ms M] [--out DIR]
+
+BASE and NEW are each a `corofem run` record, a report folder (tables.json, speed_accuracy.json,
+cache_profile.json), Google Benchmark JSON from corofem_bench, or a folder of such records: records
+of the same case (ci/bench-gate's repetitions) are runs of one row. Rows pair by what was run
+(case and its scene's content, thread count, phase or field); a case run on different scenes is
+refused. Warns where machine, compiler or flags differ.
+  timed rows     (phase times, per step or per repetition) the ratio NEW/BASE as the
+                 Hodges-Lehmann estimate on log times with its distribution-free interval at
+                 1 - A, and the two-sided Mann-Whitney U test; with >= 3 runs a side one
+                 median per run is a sample, else the steps pooled. slower or faster needs
+                 p < A and a ratio beyond 1 +- T; rows whose BASE median is under M ms are
+                 shown, not gated
+  counters       (CG iterations, V-cycles, roofline bytes and flops, level sizes, cachegrind
+                 counts) compared exactly; all are costs, an increase is a regression
+  accuracy       (errors against the oracles, static residuals) worse when grown more than F
+                 times and past 1e-12
+  displacements  the two runs' final fields, |u_new - u_base| / |u_base| above E is a regression
+  --threshold T  default 0.05       --alpha A            default 0.01
+  --accuracy-factor F  default 2    --field-tolerance E  default 1e-6
+  --min-ms M     default 0.05
+  --out DIR      also writes DIR/compare.md, compare.json (the verdict) and compare.svg (the
+                 ratios with their intervals)
+The Markdown table goes to stdout.
+Exit status: 0 nothing regressed, 1 a regression, 2 bad input (unreadable or unpairable records,
+named with the file and row).
 )";
 
 /// Options of the form --key value, plus positional arguments.
@@ -413,6 +447,46 @@ int tune_command(const std::vector<std::string>& args) {
   return outcome.exit_status;
 }
 
+int compare_command(const std::vector<std::string>& args) {
+  ParsedArgs parsed = parse_args(
+      args,
+      {"--threshold", "--alpha", "--accuracy-factor", "--field-tolerance", "--min-ms", "--out"},
+      {});
+  if (parsed.help) {
+    std::cout << kCompareHelp;
+    return 0;
+  }
+  if (parsed.positional.size() != 2) throw InputError("compare needs BASE and NEW (see --help)");
+  CompareOptions options;
+  options.threshold = number_option(parsed, "--threshold", options.threshold);
+  options.alpha = number_option(parsed, "--alpha", options.alpha);
+  options.accuracy_factor = number_option(parsed, "--accuracy-factor", options.accuracy_factor);
+  options.field_tolerance = number_option(parsed, "--field-tolerance", options.field_tolerance);
+  options.min_ms = number_option(parsed, "--min-ms", options.min_ms);
+  if (!(options.threshold >= 0) || !(options.alpha > 0 && options.alpha < 1) ||
+      !(options.accuracy_factor >= 1) || !(options.field_tolerance >= 0) || !(options.min_ms >= 0))
+    throw InputError(
+        "compare: --threshold, --field-tolerance and --min-ms need >= 0, --alpha a number in "
+        "(0, 1), --accuracy-factor >= 1");
+  const std::string& base = parsed.positional[0];
+  const std::string& contender = parsed.positional[1];
+  if (parsed.options.count("--out")) prepare_output_folder(parsed.options["--out"], "compare.json");
+  const Comparison c = compare_records(read_records(base), read_records(contender), options);
+  const std::string markdown = comparison_markdown(c, base, contender);
+  std::cout << markdown;
+  if (parsed.options.count("--out")) {
+    const std::filesystem::path out = parsed.options["--out"];
+    write_file_atomically(out / "compare.md", [&](std::ostream& o) { o << markdown; });
+    write_file_atomically(out / "compare.json", [&](std::ostream& o) {
+      o << comparison_json(c, base, contender).dump(1) << '\n';
+    });
+    write_file_atomically(out / "compare.svg", [&](std::ostream& o) { o << comparison_svg(c); });
+  }
+  for (const std::string& w : c.warnings) std::cerr << "compare: warning: " << w << "\n";
+  std::cerr << "compare: " << (c.regressed() ? "regression" : "no regression") << "\n";
+  return c.regressed() ? 1 : 0;
+}
+
 }  // namespace
 
 int dispatch(const std::vector<std::string>& args) {
@@ -432,6 +506,7 @@ int dispatch(const std::vector<std::string>& args) {
   if (command == "export-matrices") return export_command(rest);
   if (command == "report") return report_command(rest);
   if (command == "tune") return tune_command(rest);
+  if (command == "compare") return compare_command(rest);
   throw InputError("unknown command '" + command + "' (see corofem --help)");
 }
 

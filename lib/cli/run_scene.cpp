@@ -13,6 +13,7 @@
 #include "cli/step_progress.hpp"
 #include "core/memory_usage.hpp"
 #include "core/number_text.hpp"
+#include "core/statistics.hpp"
 #include "io/run_context.hpp"
 #include "io/solver_record.hpp"
 #include "io/vtu_writer.hpp"
@@ -184,11 +185,18 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                      scene.analysis.steps);
   StaticProgress iterations(progress, progress == &std::cerr && isatty(STDERR_FILENO),
                             scene.analysis.tolerance);
-  SimulationResult result =
-      simulation.run([&](const StepState& s) { steps.step_done(s.step); },
-                     [&](const StaticIteration& at) { iterations.iteration_done(at); });
+  // Every step's phase times, the evidence behind timings_ms for `corofem compare`.
+  nlohmann::json step_samples = nlohmann::json::object();
+  SimulationResult result = simulation.run(
+      [&](const StepState& s) {
+        for (const auto& [phase, ms] : s.phase_ms)
+          step_samples[phase].push_back(rounded_sample_ms(ms));
+        steps.step_done(s.step);
+      },
+      [&](const StaticIteration& at) { iterations.iteration_done(at); });
 
   nlohmann::json r = run_summary(simulation, result);
+  if (!step_samples.empty()) r["step_samples_ms"] = std::move(step_samples);
   if (part) {
     r["mesh"]["vertices"] = vertices;
     r["mesh"]["tets"] = tets;

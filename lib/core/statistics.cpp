@@ -1,6 +1,7 @@
 #include "core/statistics.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace corofem {
@@ -10,6 +11,10 @@ double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double rounded_sample_ms(double ms) {
+  return std::round(ms * 1e4) / 1e4;
 }
 
 std::vector<bool> pareto_front(const std::vector<CostAndError>& points) {

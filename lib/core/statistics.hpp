@@ -8,6 +8,10 @@ namespace corofem {
 /// Median of the values (NaN for none).
 double median(std::vector<double> values);
 
+/// A time sample as records keep it: to 0.1 microseconds (finer is below the clock's own noise,
+/// and it keeps a record of a few thousand samples small).
+double rounded_sample_ms(double ms);
+
 struct CostAndError {
   double cost, error;
 };

@@ -124,6 +124,7 @@ json one_thread_columns(const ModelTables& m, const TimedRun& single_run, bool s
   const TimedRun& run = separate ? single_run : m.main;
   json one = phase_medians(run, m.warmup);
   one["roofline"] = run.roofline(m.warmup, m.roofs_one);
+  one["samples_ms"] = run.samples_ms(m.warmup);
   one["separate_run"] = separate;
   one["linear_iterations"] = run.result.linear_iterations;
   // Every kernel gives the same bits at every thread count: so must the whole run.
@@ -183,6 +184,7 @@ json table1_row(ModelTables& m, int threads) {
             {"tets", main.tets},
             {"threads", threads},
             {"phases_ms", phase_medians(main, m.warmup)},
+            {"samples_ms", main.samples_ms(m.warmup)},
             {"one_thread", one_thread_columns(m, single_run, threads > 1)},
             {"vertices", main.vertices},
             {"levels", main.levels},

@@ -109,6 +109,7 @@ struct SceneSweeps {
         record_case({{"sweep", sweep}, {"setting", to_json(variant)}, {"label", label}}, [&] {
           const TimedRun run = timed_run(with_analysis(scene, variant), id, {});
           return json{{"time_per_step_ms", run.median_ms("step", warmup)},
+                      {"step_samples_ms", run.samples_ms(warmup).value("step", json::array())},
                       {"rel_error", finite_or_null(error(run))},
                       {"tets", run.tets},
                       {"iterations_per_step", run.median_iterations(warmup)},

@@ -83,6 +83,20 @@ double TimedRun::median_ms(const std::string& phase, int warmup) const {
   return median(values);
 }
 
+nlohmann::json TimedRun::samples_ms(int warmup) const {
+  nlohmann::json out = nlohmann::json::object();
+  for (const char* phase : {"rotate", "assemble", "update", "solve", "step"}) {
+    nlohmann::json values = nlohmann::json::array();
+    for (std::size_t s = warmup; s < step_ms.size(); ++s) {
+      auto it = step_ms[s].find(phase);
+      if (it != step_ms[s].end() && !step_ms[s].count("checked"))
+        values.push_back(rounded_sample_ms(it->second));
+    }
+    if (!values.empty()) out[phase] = std::move(values);
+  }
+  return out;
+}
+
 double TimedRun::median_iterations(int warmup) const {
   std::vector<double> values;
   for (std::size_t s = warmup; s < solves.size(); ++s) values.push_back(solves[s].iterations);

@@ -56,6 +56,9 @@ struct TimedRun {
 
   /// Median of a phase over the steps after warm-up.
   double median_ms(const std::string& phase, int warmup) const;
+  /// Per phase (rotate, assemble, update, solve, step), its time in every step after warm-up
+  /// but the oracle-checked ones: the evidence behind the medians, for `corofem compare`.
+  nlohmann::json samples_ms(int warmup) const;
   /// Median linear iterations per step after warm-up.
   double median_iterations(int warmup) const;
   /// The roofline record of the step (step_roofline.hpp) under `roofs`; null without traffic.

@@ -1,0 +1,226 @@
+#include "compare/comparison.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/errors.hpp"
+#include "core/statistics.hpp"
+
+namespace corofem {
+namespace {
+
+/// The samples a timed row is tested on: with at least 3 runs (records) on each side, one median
+/// per run, since steps of one run share its machine state and are not independent of each
+/// other; with fewer, the steps pooled (noted: run-to-run noise is then not sampled).
+std::vector<double> test_samples(const RecordRow& row, bool per_run) {
+  std::vector<double> out;
+  for (const auto& run : row.runs) {
+    if (per_run)
+      out.push_back(median(run));
+    else
+      out.insert(out.end(), run.begin(), run.end());
+  }
+  return out;
+}
+
+/// The smallest two-sided p the U test can give for n against m (complete separation).
+double smallest_p(int n, int m) {
+  double arrangements = 1;  // C(n+m, n)
+  for (int i = 1; i <= n; ++i) arrangements = arrangements * (m + i) / i;
+  return std::min(1.0, 2 / arrangements);
+}
+
+RowComparison timed(const RecordRow& b, const RecordRow& n, const CompareOptions& o) {
+  RowComparison c;
+  const bool per_run = b.runs.size() >= 3 && n.runs.size() >= 3;
+  const auto one_sample = [](const RecordRow& r) {
+    return std::all_of(r.runs.begin(), r.runs.end(),
+                       [](const auto& run) { return run.size() == 1; });
+  };
+  c.unit_of_sample = per_run || (one_sample(b) && one_sample(n)) ? "runs" : "steps";
+  const std::vector<double> xs = test_samples(b, per_run), ys = test_samples(n, per_run);
+  c.base_value = median(test_samples(b, false));
+  c.new_value = median(test_samples(n, false));
+  c.test = shift_test(xs, ys, o.alpha);
+  if (!per_run && (b.runs.size() > 1 || n.runs.size() > 1 || xs.size() > 1))
+    c.note = "one run on a side: steps pooled, run-to-run noise not sampled";
+  const bool significant = c.test.p_value < o.alpha;
+  if (smallest_p(c.test.base_count, c.test.new_count) >= o.alpha)
+    c.verdict = "inconclusive";
+  else if (significant && c.test.ratio > 1 + o.threshold)
+    c.verdict = "slower";
+  else if (significant && c.test.ratio < 1 / (1 + o.threshold))
+    c.verdict = "faster";
+  else
+    c.verdict = "same";
+  if (c.base_value < o.min_ms) {
+    c.note = "under --min-ms: shown, not gated";
+    if (c.verdict == "slower") c.verdict = "short";
+  }
+  c.regression = c.verdict == "slower";
+  return c;
+}
+
+RowComparison counter(const RecordRow& b, const RecordRow& n) {
+  RowComparison c;
+  c.base_value = median(b.values);
+  c.new_value = median(n.values);
+  for (const RecordRow* side : {&b, &n})
+    if (std::any_of(side->values.begin(), side->values.end(),
+                    [&](double v) { return v != side->values.front(); }))
+      c.note = "varies between the runs of one side";
+  // Every counter recorded is a cost (iterations, bytes, flops, vertices, misses): more is worse.
+  c.verdict = c.new_value > c.base_value   ? "increased"
+              : c.new_value < c.base_value ? "decreased"
+                                           : "equal";
+  c.regression = c.verdict == "increased";
+  return c;
+}
+
+RowComparison accuracy(const RecordRow& b, const RecordRow& n, const CompareOptions& o) {
+  RowComparison c;
+  c.base_value = *std::max_element(b.values.begin(), b.values.end());
+  c.new_value = *std::max_element(n.values.begin(), n.values.end());
+  if (!std::isfinite(c.new_value) ||
+      (c.new_value > c.base_value * o.accuracy_factor && c.new_value > o.accuracy_floor))
+    c.verdict = "worse";
+  else if (c.new_value * o.accuracy_factor < c.base_value && c.base_value > o.accuracy_floor)
+    c.verdict = "better";
+  else
+    c.verdict = "within tolerance";
+  c.regression = c.verdict == "worse";
+  return c;
+}
+
+RowComparison field(const RecordRow& b, const RecordRow& n, const CompareOptions& o) {
+  RowComparison c;
+  if (b.field.size() != n.field.size()) {
+    c.verdict = "changed";
+    c.note = "sizes differ: " + std::to_string(b.field.size()) + " against " +
+             std::to_string(n.field.size());
+    c.regression = true;
+    return c;
+  }
+  double diff = 0, norm = 0;
+  bool finite = true;
+  for (std::size_t i = 0; i < b.field.size(); ++i) {
+    finite &= std::isfinite(n.field[i]);
+    diff += (n.field[i] - b.field[i]) * (n.field[i] - b.field[i]);
+    norm += b.field[i] * b.field[i];
+  }
+  c.new_value = !finite ? NAN : norm > 0 ? std::sqrt(diff / norm) : std::sqrt(diff);
+  c.verdict = !finite                            ? "changed"
+              : c.new_value == 0                 ? "equal"
+              : c.new_value <= o.field_tolerance ? "within tolerance"
+                                                 : "changed";
+  if (!finite) c.note = "NEW holds values that are not finite";
+  c.regression = c.verdict == "changed";
+  return c;
+}
+
+/// Warnings where the two sides were produced differently.
+std::vector<std::string> context_warnings(const RecordSet& base, const RecordSet& contender) {
+  auto values = [](const RecordSet& set, const char* key) {
+    std::vector<std::string> out;
+    for (const auto& [file, context] : set.contexts)
+      if (context.is_object() && context.contains(key)) {
+        const std::string v =
+            context[key].is_string() ? context[key].get<std::string>() : context[key].dump();
+        if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+      }
+    return out;
+  };
+  std::vector<std::string> warnings;
+  for (const char* key : {"cpu", "host", "compiler", "flags", "build_type", "block_kernels"}) {
+    const std::vector<std::string> b = values(base, key), n = values(contender, key);
+    if (!b.empty() && !n.empty() && b != n)
+      warnings.push_back(std::string(key) + " differs: BASE " + b.front() + ", NEW " + n.front() +
+                         " (timings compare the machines as much as the code)");
+  }
+  return warnings;
+}
+
+nlohmann::json first_context(const RecordSet& set) {
+  for (const auto& [file, context] : set.contexts)
+    if (context.is_object()) return context;
+  return nullptr;
+}
+
+}  // namespace
+
+bool Comparison::regressed() const {
+  return std::any_of(rows.begin(), rows.end(), [](const RowComparison& r) { return r.regression; });
+}
+
+Comparison compare_records(const RecordSet& base, const RecordSet& contender,
+                           const CompareOptions& options) {
+  Comparison out;
+  out.options = options;
+  out.warnings = context_warnings(base, contender);
+  out.base_context = first_context(base);
+  out.new_context = first_context(contender);
+  std::map<std::string, const RecordRow*> new_rows;
+  for (const RecordRow& r : contender.rows) new_rows[r.key()] = &r;
+  // A case both sides ran must be the same scene on both: else its rows say nothing of the code.
+  std::map<std::string, const RecordRow*> new_cases;
+  for (const RecordRow& r : contender.rows) new_cases.emplace(r.case_name, &r);
+  for (const RecordRow& b : base.rows) {
+    auto it = new_cases.find(b.case_name);
+    if (it != new_cases.end() && it->second->scene_digest != b.scene_digest)
+      throw InputError("refusing to pair '" + b.case_name + "': " + b.source + " and " +
+                       it->second->source + " ran different scenes");
+  }
+  int paired = 0;
+  for (const RecordRow& b : base.rows) {
+    auto it = new_rows.find(b.key());
+    RowComparison c;
+    if (it == new_rows.end() || it->second->kind != b.kind) {
+      c.verdict = "missing in new";
+      c.note = b.source;
+      // A case NEW no longer completes is a failure, not a speed-up; a quantity alone (a phase
+      // under the clock's resolution) is only listed.
+      c.regression = !new_cases.count(b.case_name);
+    } else {
+      const RecordRow& n = *it->second;
+      ++paired;
+      switch (b.kind) {
+        case RowKind::Timed:
+          c = timed(b, n, options);
+          break;
+        case RowKind::Counter:
+          c = counter(b, n);
+          break;
+        case RowKind::Accuracy:
+          c = accuracy(b, n, options);
+          break;
+        case RowKind::Field:
+          c = field(b, n, options);
+          break;
+      }
+      new_rows.erase(it);
+    }
+    c.case_name = b.case_name;
+    c.quantity = b.quantity;
+    c.threads = b.threads;
+    c.kind = b.kind;
+    out.rows.push_back(std::move(c));
+  }
+  for (const auto& [key, n] : new_rows) {
+    RowComparison c;
+    c.case_name = n->case_name;
+    c.quantity = n->quantity;
+    c.threads = n->threads;
+    c.kind = n->kind;
+    c.verdict = "new row";
+    c.note = n->source;
+    out.rows.push_back(std::move(c));
+  }
+  if (paired == 0)
+    throw InputError(
+        "no row of BASE pairs with a row of NEW (different cases, thread counts or "
+        "kinds of record)");
+  return out;
+}
+
+}  // namespace corofem

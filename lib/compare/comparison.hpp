@@ -1,0 +1,56 @@
+#pragma once
+// `corofem compare`'s verdicts: rows of two record sets paired by what was run, each timed row
+// tested (shift_test.hpp), each counter compared exactly, each accuracy field against a stated
+// tolerance.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "compare/record_rows.hpp"
+#include "compare/shift_test.hpp"
+
+namespace corofem {
+
+struct CompareOptions {
+  double threshold = 0.05;  ///< a timing verdict needs NEW/BASE beyond 1 +- this (and p < alpha)
+  double alpha = 0.01;      ///< significance of the U test; the intervals are at 1 - alpha
+  /// An accuracy field (an error against an oracle, a residual) regresses when it grows by more
+  /// than this factor and past accuracy_floor: iterative solves move their error within their
+  /// tolerance when operations are reordered, so a doubling is the signal, not a change.
+  double accuracy_factor = 2;
+  double accuracy_floor = 1e-12;  ///< errors below this are rounding, never a regression
+  /// The two runs' final displacements: |u_new - u_base| / |u_base| above this is a regression
+  /// (the same code gives the same bits at every thread count: 0).
+  double field_tolerance = 1e-6;
+  double min_ms = 0.05;  ///< timed rows whose BASE median is shorter are shown, not gated
+};
+
+struct RowComparison {
+  std::string case_name, quantity;
+  int threads = 0;
+  RowKind kind = RowKind::Timed;
+  /// faster, slower, same, inconclusive (too few samples), short (under min_ms); for counters
+  /// equal, increased, decreased; for accuracy better, worse, within tolerance; for fields equal,
+  /// within tolerance, changed; missing in new, new row.
+  std::string verdict;
+  bool regression = false;
+  double base_value = 0, new_value = 0;  ///< medians (timed), values (counters, accuracy), |du|/|u|
+  ShiftTest test;                        ///< timed rows
+  std::string unit_of_sample;  ///< "runs" (medians of >= 3 runs each side) or "steps" (pooled)
+  std::string note;
+};
+
+struct Comparison {
+  CompareOptions options;
+  std::vector<RowComparison> rows;
+  std::vector<std::string> warnings;  ///< machine, compiler or flags that differ
+  nlohmann::json base_context, new_context;
+  bool regressed() const;
+};
+
+/// Pairs the rows by key. Throws InputError where a case of both sides was run on different
+/// scenes (naming both rows), or where no row pairs at all.
+Comparison compare_records(const RecordSet& base, const RecordSet& contender,
+                           const CompareOptions& options);
+
+}  // namespace corofem

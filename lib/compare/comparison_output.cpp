@@ -1,0 +1,231 @@
+#include "compare/comparison_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "core/number_text.hpp"
+
+namespace corofem {
+namespace {
+
+std::string fixed(double v, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+std::string threads_text(int threads) {
+  return std::to_string(threads);
+}
+
+/// Text for an SVG element: the markup characters escaped.
+std::string xml_text(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    if (ch == '<')
+      out += "&lt;";
+    else if (ch == '>')
+      out += "&gt;";
+    else if (ch == '&')
+      out += "&amp;";
+    else
+      out += ch;
+  }
+  return out;
+}
+
+/// Counts of each verdict among the rows.
+std::map<std::string, int> verdict_counts(const Comparison& c) {
+  std::map<std::string, int> counts;
+  for (const RowComparison& r : c.rows) ++counts[r.verdict];
+  return counts;
+}
+
+std::string summary_line(const Comparison& c) {
+  std::string line = c.regressed() ? "**REGRESSION**" : "**no regression**";
+  line += " (";
+  bool first = true;
+  for (const auto& [verdict, count] : verdict_counts(c)) {
+    line += (first ? "" : ", ") + std::to_string(count) + " " + verdict;
+    first = false;
+  }
+  return line + ")";
+}
+
+std::string context_text(const nlohmann::json& context) {
+  if (!context.is_object()) return "no context recorded";
+  auto field = [&](const char* key) {
+    return context.contains(key) && context[key].is_string() ? context[key].get<std::string>()
+                                                             : std::string("?");
+  };
+  return "commit `" + field("commit").substr(0, 9) + "`, " + field("cpu") + ", " +
+         field("compiler") + " `" + field("flags") + "`, " + field("date");
+}
+
+const char* kind_name(RowKind kind) {
+  switch (kind) {
+    case RowKind::Timed:
+      return "timed";
+    case RowKind::Counter:
+      return "counter";
+    case RowKind::Accuracy:
+      return "accuracy";
+    case RowKind::Field:
+      return "field";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::string comparison_markdown(const Comparison& c, const std::string& base,
+                                const std::string& contender) {
+  std::ostringstream md;
+  const CompareOptions& o = c.options;
+  md << "## corofem compare\n\n"
+     << "BASE `" << base << "`: " << context_text(c.base_context) << "  \n"
+     << "NEW `" << contender << "`: " << context_text(c.new_context) << "\n\n"
+     << summary_line(c) << ". A timing is slower or faster when the U test's p < "
+     << general_number(o.alpha) << " and the Hodges-Lehmann ratio is beyond "
+     << general_number(o.threshold * 100) << "%; intervals at "
+     << general_number(100 - 100 * o.alpha) << "%.\n\n";
+  for (const std::string& w : c.warnings) md << "- warning: " << w << "\n";
+  if (!c.warnings.empty()) md << "\n";
+
+  md << "| case | threads | quantity | BASE ms | NEW ms | NEW/BASE | interval | p | samples | "
+        "verdict |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const RowComparison& r : c.rows) {
+    if (r.kind != RowKind::Timed || r.verdict == "missing in new" || r.verdict == "new row")
+      continue;
+    const bool flag = r.verdict == "slower" || r.verdict == "faster";
+    md << "| " << r.case_name << " | " << threads_text(r.threads) << " | " << r.quantity << " | "
+       << general_number(r.base_value) << " | " << general_number(r.new_value) << " | "
+       << fixed(r.test.ratio, 3) << " | " << fixed(r.test.ratio_low, 3) << "-"
+       << fixed(r.test.ratio_high, 3) << " | " << general_number(r.test.p_value) << " | "
+       << r.test.base_count << "/" << r.test.new_count << " " << r.unit_of_sample << " | "
+       << (flag ? "**" + r.verdict + "**" : r.verdict)
+       << (r.note.empty() ? "" : " (" + r.note + ")") << " |\n";
+  }
+  int equal_counters = 0;
+  std::ostringstream changed;
+  for (const RowComparison& r : c.rows) {
+    if (r.kind == RowKind::Counter && r.verdict == "equal") {
+      ++equal_counters;
+    } else if (r.kind != RowKind::Timed || r.verdict == "missing in new" ||
+               r.verdict == "new row") {
+      changed << "| " << r.case_name << " | " << threads_text(r.threads) << " | " << r.quantity
+              << " | " << kind_name(r.kind) << " | "
+              << (r.kind == RowKind::Field ? std::string() : general_number(r.base_value)) << " | "
+              << general_number(r.new_value) << " | "
+              << (r.regression ? "**" + r.verdict + "**" : r.verdict)
+              << (r.note.empty() ? "" : " (" + r.note + ")") << " |\n";
+    }
+  }
+  md << "\nCounters (exact), accuracy fields (worse: grown more than "
+     << general_number(o.accuracy_factor) << "x and past " << general_number(o.accuracy_floor)
+     << "), final displacements (|du|/|u| within " << general_number(o.field_tolerance) << "); "
+     << equal_counters << " counters equal and not listed:\n\n"
+     << "| case | threads | quantity | kind | BASE | NEW | verdict |\n"
+        "|---|---|---|---|---|---|---|\n"
+     << changed.str();
+  return md.str();
+}
+
+nlohmann::json comparison_json(const Comparison& c, const std::string& base,
+                               const std::string& contender) {
+  const CompareOptions& o = c.options;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const RowComparison& r : c.rows) {
+    nlohmann::json row = {{"case", r.case_name},    {"threads", r.threads},
+                          {"quantity", r.quantity}, {"kind", kind_name(r.kind)},
+                          {"verdict", r.verdict},   {"regression", r.regression},
+                          {"base", r.base_value},   {"new", r.new_value}};
+    if (r.kind == RowKind::Timed && !r.unit_of_sample.empty())
+      row["test"] = {{"ratio", r.test.ratio},
+                     {"interval", {r.test.ratio_low, r.test.ratio_high}},
+                     {"p_value", r.test.p_value},
+                     {"u", r.test.u},
+                     {"exact", r.test.exact},
+                     {"samples", {r.test.base_count, r.test.new_count}},
+                     {"unit_of_sample", r.unit_of_sample}};
+    if (!std::isfinite(r.new_value)) row["new"] = nullptr;
+    if (!r.note.empty()) row["note"] = r.note;
+    rows.push_back(std::move(row));
+  }
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& [verdict, count] : verdict_counts(c)) counts[verdict] = count;
+  return {{"producer", "corofem compare"},
+          {"base", base},
+          {"new", contender},
+          {"base_context", c.base_context},
+          {"new_context", c.new_context},
+          {"options",
+           {{"threshold", o.threshold},
+            {"alpha", o.alpha},
+            {"accuracy_factor", o.accuracy_factor},
+            {"accuracy_floor", o.accuracy_floor},
+            {"field_tolerance", o.field_tolerance},
+            {"min_ms", o.min_ms},
+            {"test",
+             "Mann-Whitney U (two-sided) on log times; Hodges-Lehmann ratio and its "
+             "distribution-free interval"}}},
+          {"regression", c.regressed()},
+          {"verdicts", counts},
+          {"warnings", c.warnings},
+          {"rows", rows}};
+}
+
+std::string comparison_svg(const Comparison& c) {
+  std::vector<const RowComparison*> rows;
+  for (const RowComparison& r : c.rows)
+    if (r.kind == RowKind::Timed && !r.unit_of_sample.empty()) rows.push_back(&r);
+  const double row_h = 16, left = 420, plot_w = 360, top = 40;
+  const double height = top + row_h * static_cast<double>(rows.size()) + 40;
+  // Log axis over the intervals and the threshold, at least 0.8-1.25.
+  double lo = std::log(0.8), hi = std::log(1.25);
+  for (const RowComparison* r : rows) {
+    lo = std::min(lo, std::log(std::max(r->test.ratio_low, 1e-3)));
+    hi = std::max(hi, std::log(std::min(r->test.ratio_high, 1e3)));
+  }
+  auto x = [&](double ratio) {
+    const double v = std::clamp(std::log(ratio), lo, hi);
+    return left + (v - lo) / (hi - lo) * plot_w;
+  };
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << left + plot_w + 120 << "\" height=\""
+    << height << "\" font-family=\"sans-serif\" font-size=\"11\">\n"
+    << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    << "<text x=\"8\" y=\"18\" font-size=\"13\">NEW/BASE per timed row, Hodges-Lehmann ratio with "
+    << fixed(100 - 100 * c.options.alpha, 0) << "% interval (log scale); band: +-"
+    << general_number(100 * c.options.threshold) << "%</text>\n";
+  const double band_lo = x(1 / (1 + c.options.threshold)), band_hi = x(1 + c.options.threshold);
+  s << "<rect x=\"" << band_lo << "\" y=\"" << top - 6 << "\" width=\"" << band_hi - band_lo
+    << "\" height=\"" << row_h * static_cast<double>(rows.size()) + 6
+    << "\" fill=\"#e8e8e8\"/>\n<line x1=\"" << x(1) << "\" x2=\"" << x(1) << "\" y1=\"" << top - 6
+    << "\" y2=\"" << top + row_h * static_cast<double>(rows.size()) << "\" stroke=\"#444\"/>\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const RowComparison& r = *rows[i];
+    const double y = top + row_h * static_cast<double>(i) + row_h / 2;
+    const char* colour = r.verdict == "slower"   ? "#c0392b"
+                         : r.verdict == "faster" ? "#27ae60"
+                                                 : "#2c3e50";
+    s << "<text x=\"8\" y=\"" << y + 4 << "\">" << xml_text(r.case_name) << " | " << r.threads
+      << "t | " << xml_text(r.quantity) << "</text>\n"
+      << "<line x1=\"" << x(r.test.ratio_low) << "\" x2=\"" << x(r.test.ratio_high) << "\" y1=\""
+      << y << "\" y2=\"" << y << "\" stroke=\"" << colour << "\" stroke-width=\"2\"/>\n"
+      << "<circle cx=\"" << x(r.test.ratio) << "\" cy=\"" << y << "\" r=\"3.5\" fill=\"" << colour
+      << "\"/>\n<text x=\"" << left + plot_w + 8 << "\" y=\"" << y + 4 << "\">"
+      << fixed(r.test.ratio, 3) << " " << r.verdict << "</text>\n";
+  }
+  const double axis_y = top + row_h * static_cast<double>(rows.size()) + 16;
+  for (double tick : {0.5, 0.8, 0.9, 1.0, 1.1, 1.25, 2.0})
+    if (std::log(tick) >= lo && std::log(tick) <= hi)
+      s << "<text x=\"" << x(tick) - 10 << "\" y=\"" << axis_y << "\">" << general_number(tick)
+        << "</text>\n";
+  s << "</svg>\n";
+  return s.str();
+}
+
+}  // namespace corofem

@@ -1,0 +1,122 @@
+#include "compare/shift_test.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace corofem {
+namespace {
+
+/// Counts of the rank arrangements of n and m values with U = 0 .. nm: the coefficients of the
+/// Gaussian binomial [n+m choose n](q) = prod_{i=1..n} (1 - q^(m+i)) / (1 - q^i). Exact in long
+/// double while C(n+m, n) < 2^64 (n + m <= 60; the callers keep to that).
+std::vector<long double> u_counts(int n, int m) {
+  const int top = n * m;
+  std::vector<long double> c(top + 1, 0.0L);
+  c[0] = 1;
+  for (int i = 1; i <= n; ++i) {
+    for (int k = top; k >= m + i; --k) c[k] -= c[k - (m + i)];  // times (1 - q^(m+i))
+    for (int k = i; k <= top; ++k) c[k] += c[k - i];            // over (1 - q^i)
+  }
+  return c;
+}
+
+/// P(U <= k) under the null for every k, exact.
+std::vector<double> exact_cdf(int n, int m) {
+  const std::vector<long double> c = u_counts(n, m);
+  long double total = 0;
+  for (long double v : c) total += v;
+  std::vector<double> cdf(c.size());
+  long double sum = 0;
+  for (std::size_t k = 0; k < c.size(); ++k) cdf[k] = static_cast<double>((sum += c[k]) / total);
+  return cdf;
+}
+
+bool exact_applies(int n, int m, bool ties) {
+  return !ties && n + m <= 60;
+}
+
+/// z with P(Z > z) = tail, by bisection on erfc (tail in (0, 0.5]).
+double upper_normal_quantile(double tail) {
+  double lo = 0, hi = 40;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(mid / std::sqrt(2.0)) > tail ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+double exact_u_p_value(double u, int n, int m) {
+  const std::vector<double> cdf = exact_cdf(n, m);
+  const int top = n * m;
+  // U is symmetric about nm/2: the smaller tail, doubled.
+  const double low = std::min(u, top - u);
+  const int k = static_cast<int>(std::floor(low + 1e-9));
+  return std::min(1.0, 2 * cdf[std::clamp(k, 0, top)]);
+}
+
+ShiftTest shift_test(const std::vector<double>& base, const std::vector<double>& contender,
+                     double alpha) {
+  if (base.empty() || contender.empty()) throw std::invalid_argument("shift_test: an empty sample");
+  for (const auto* sample : {&base, &contender})
+    for (double v : *sample)
+      if (!(v > 0) || !std::isfinite(v))
+        throw std::invalid_argument("shift_test: a time that is not positive and finite");
+  const int n = static_cast<int>(base.size()), m = static_cast<int>(contender.size());
+  ShiftTest t;
+  t.base_count = n;
+  t.new_count = m;
+  std::vector<double> x(n), y(m), d;
+  std::transform(base.begin(), base.end(), x.begin(), [](double v) { return std::log(v); });
+  std::transform(contender.begin(), contender.end(), y.begin(),
+                 [](double v) { return std::log(v); });
+  d.reserve(static_cast<std::size_t>(n) * m);
+  for (double yj : y)
+    for (double xi : x) {
+      d.push_back(yj - xi);
+      t.u += yj > xi ? 1.0 : yj == xi ? 0.5 : 0.0;
+    }
+  std::sort(d.begin(), d.end());
+  const std::size_t pairs = d.size();
+  const double mid = pairs % 2 ? d[pairs / 2] : 0.5 * (d[pairs / 2 - 1] + d[pairs / 2]);
+  t.ratio = std::exp(mid);
+
+  // Ties (equal values across both samples) for the variance correction.
+  std::vector<double> all(x);
+  all.insert(all.end(), y.begin(), y.end());
+  std::sort(all.begin(), all.end());
+  double tie_sum = 0;
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i;
+    while (j < all.size() && all[j] == all[i]) ++j;
+    const double tied = static_cast<double>(j - i);
+    tie_sum += tied * tied * tied - tied;
+    i = j;
+  }
+  const double nm = static_cast<double>(n) * m, total = n + m;
+  const double variance =
+      nm / 12.0 * ((total + 1) - (total > 1 ? tie_sum / (total * (total - 1)) : 0.0));
+
+  // k: the interval's order statistics d_(k) and d_(nm+1-k), 1-based, with P(U < k) <= alpha/2.
+  int k = 0;
+  if (exact_applies(n, m, tie_sum > 0)) {
+    t.exact = true;
+    t.p_value = exact_u_p_value(t.u, n, m);
+    const std::vector<double> cdf = exact_cdf(n, m);
+    while (k < static_cast<int>(cdf.size()) && cdf[k] <= alpha / 2) ++k;  // P(U <= k-1) <= a/2
+  } else {
+    const double sd = std::sqrt(variance);
+    const double z = sd > 0 ? (std::abs(t.u - nm / 2) - 0.5) / sd : 0.0;
+    t.p_value = sd > 0 ? std::min(1.0, std::erfc(std::max(z, 0.0) / std::sqrt(2.0))) : 1.0;
+    k = static_cast<int>(std::floor(nm / 2 - upper_normal_quantile(alpha / 2) * sd));
+  }
+  // No arrangement is that unlikely (too few samples): the widest interval there is.
+  k = std::clamp(k, 1, static_cast<int>((pairs + 1) / 2));
+  t.ratio_low = std::exp(d[k - 1]);
+  t.ratio_high = std::exp(d[pairs - k]);
+  return t;
+}
+
+}  // namespace corofem

@@ -1,0 +1,196 @@
+// `corofem compare`: pairing by what was run (and its refusal of different scenes), the verdicts
+// of timed rows on samples of known ratio, counters compared exactly, accuracy and displacement
+// changes found, and the CLI's exit codes and outputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "compare/comparison.hpp"
+#include "core/errors.hpp"
+#include "test_support.hpp"
+
+namespace corofem {
+namespace {
+
+using json = nlohmann::json;
+
+/// A `corofem run` record of a 20-step dynamic run: solve and step times log-normal with 3% spread
+/// around the given medians (a planted slowdown scales one), its counters and a final field.
+json run_record(std::mt19937& rng, double solve_ms, double step_ms, int iterations = 100,
+                double young = 1e5, double displacement_scale = 1.0) {
+  std::normal_distribution<double> noise(0, 0.03);
+  json r;
+  r["producer"] = "corofem run";
+  r["context"] = {{"commit", "abc"},
+                  {"cpu", "AMD EPYC"},
+                  {"compiler", "GNU 12.2.0"},
+                  {"flags", "-O3"},
+                  {"threads_used", 2}};
+  r["scene"] = {{"material", {{"young", young}}}, {"analysis", {{"type", "dynamic"}}}};
+  r["scene_file"] = "bar.json";
+  r["analysis"] = {{"type", "dynamic"}};
+  r["timings_ms"] = {{"setup", 50.0}, {"total", 50 + 20 * step_ms}};
+  for (int s = 0; s < 20; ++s) {
+    r["step_samples_ms"]["solve"].push_back(solve_ms * std::exp(noise(rng)));
+    r["step_samples_ms"]["step"].push_back(step_ms * std::exp(noise(rng)));
+  }
+  r["linear_iterations"] = iterations;
+  r["steps"] = 20;
+  r["displacement"] = json::array();
+  for (int v = 0; v < 10; ++v)
+    r["displacement"].push_back({0.01 * v * displacement_scale, 0.0, -0.002 * v});
+  return r;
+}
+
+RecordSet runs_of(std::vector<json> records) {
+  RecordSet set;
+  for (std::size_t i = 0; i < records.size(); ++i)
+    add_record_rows(records[i], "run" + std::to_string(i) + ".json", set);
+  return set;
+}
+
+const RowComparison& row(const Comparison& c, const std::string& quantity) {
+  for (const RowComparison& r : c.rows)
+    if (r.quantity == quantity) return r;
+  throw std::runtime_error("no row " + quantity);
+}
+
+TEST(Compare, RepetitionsBecomeRunsAndAPlantedSlowdownOfOnePhaseIsFound) {
+  std::mt19937 rng(3);
+  std::vector<json> base, slower;
+  for (int k = 0; k < 5; ++k) {
+    base.push_back(run_record(rng, 2.0, 5.0));
+    slower.push_back(run_record(rng, 2.2, 5.2));  // the solve 10% slower, the step 4%
+  }
+  const Comparison c = compare_records(runs_of(base), runs_of(slower), CompareOptions{});
+  const RowComparison& solve = row(c, "solve");
+  EXPECT_EQ(solve.unit_of_sample, "runs");  // 5 records a side: one median per run
+  EXPECT_EQ(solve.test.base_count, 5);
+  EXPECT_EQ(solve.verdict, "slower");
+  EXPECT_NEAR(solve.test.ratio, 1.1, 0.03);
+  // 4% is significant but under the 5% threshold: the same.
+  EXPECT_EQ(row(c, "step").verdict, "same");
+  EXPECT_TRUE(c.regressed());
+}
+
+TEST(Compare, TheSameCodeTwiceIsTheSame) {
+  std::mt19937 rng(5);
+  std::vector<json> a, b;
+  for (int k = 0; k < 5; ++k) {
+    a.push_back(run_record(rng, 2.0, 5.0));
+    b.push_back(run_record(rng, 2.0, 5.0));
+  }
+  const Comparison c = compare_records(runs_of(a), runs_of(b), CompareOptions{});
+  for (const RowComparison& r : c.rows) EXPECT_FALSE(r.regression) << r.quantity << r.verdict;
+  EXPECT_EQ(row(c, "linear_iterations").verdict, "equal");
+  EXPECT_EQ(row(c, "displacement").verdict, "equal");
+}
+
+TEST(Compare, ACounterChangeIsFoundExactly) {
+  std::mt19937 rng(9);
+  const Comparison more = compare_records(runs_of({run_record(rng, 2, 5, 100)}),
+                                          runs_of({run_record(rng, 2, 5, 101)}), CompareOptions{});
+  EXPECT_EQ(row(more, "linear_iterations").verdict, "increased");
+  EXPECT_TRUE(more.regressed());
+  const Comparison fewer = compare_records(runs_of({run_record(rng, 2, 5, 100)}),
+                                           runs_of({run_record(rng, 2, 5, 99)}), CompareOptions{});
+  EXPECT_EQ(row(fewer, "linear_iterations").verdict, "decreased");
+  EXPECT_FALSE(row(fewer, "linear_iterations").regression);
+}
+
+TEST(Compare, DisplacementsBeyondTheToleranceAreARegression) {
+  std::mt19937 rng(13);
+  // 1e-5 relative change in every component of x: |du| / |u| about 1e-5, above 1e-6.
+  const Comparison c =
+      compare_records(runs_of({run_record(rng, 2, 5, 100, 1e5, 1.0)}),
+                      runs_of({run_record(rng, 2, 5, 100, 1e5, 1.00001)}), CompareOptions{});
+  const RowComparison& u = row(c, "displacement");
+  EXPECT_EQ(u.verdict, "changed");
+  EXPECT_NEAR(u.new_value, 1e-5, 3e-6);
+  EXPECT_TRUE(c.regressed());
+  CompareOptions loose;
+  loose.field_tolerance = 1e-4;
+  EXPECT_EQ(row(compare_records(runs_of({run_record(rng, 2, 5, 100, 1e5, 1.0)}),
+                                runs_of({run_record(rng, 2, 5, 100, 1e5, 1.00001)}), loose),
+                "displacement")
+                .verdict,
+            "within tolerance");
+}
+
+TEST(Compare, AnAccuracyFieldThatGrowsBeyondItsFactorIsARegression) {
+  json base, grown;
+  for (json* r : {&base, &grown}) {
+    (*r)["producer"] = "corofem report (tables)";
+    (*r)["context"] = {{"threads_used", 2}};
+  }
+  // The planted fault of the issue: rotations off by 1e-6 rad against the exact minimizer.
+  base["verification"] = {
+      {{"model", "bunny"},
+       {"checks", {{{"quantity", "rotation angle error"}, {"largest", 3e-11}}}}}};
+  grown["verification"] = {
+      {{"model", "bunny"},
+       {"checks", {{{"quantity", "rotation angle error"}, {"largest", 1e-6}}}}}};
+  RecordSet b, n;
+  add_record_rows(base, "base/tables.json", b);
+  add_record_rows(grown, "new/tables.json", n);
+  const Comparison c = compare_records(b, n, CompareOptions{});
+  EXPECT_EQ(row(c, "rotation angle error").verdict, "worse");
+  EXPECT_TRUE(c.regressed());
+}
+
+TEST(Compare, RefusesToPairACaseRunOnDifferentScenes) {
+  std::mt19937 rng(17);
+  try {
+    compare_records(runs_of({run_record(rng, 2, 5, 100, 1e5)}),
+                    runs_of({run_record(rng, 2, 5, 100, 2e5)}), CompareOptions{});
+    FAIL() << "paired different scenes";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("run bar.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("different scenes"), std::string::npos) << e.what();
+  }
+  // Within one side too: repetitions of one case must be of one scene.
+  EXPECT_THROW(runs_of({run_record(rng, 2, 5, 100, 1e5), run_record(rng, 2, 5, 100, 2e5)}),
+               InputError);
+}
+
+TEST(Compare, CliExitCodesAndOutputs) {
+  test::TempDir dir;
+  std::mt19937 rng(19);
+  for (const char* side : {"base", "same", "slow"}) std::filesystem::create_directories(dir / side);
+  for (int k = 0; k < 5; ++k) {
+    const std::string name = "r" + std::to_string(k) + ".json";
+    test::write_text(dir / "base" / name, run_record(rng, 2.0, 5.0).dump());
+    test::write_text(dir / "same" / name, run_record(rng, 2.0, 5.0).dump());
+    test::write_text(dir / "slow" / name, run_record(rng, 2.4, 5.6).dump());
+  }
+  const std::string base = "'" + (dir / "base").string() + "' ";
+  const test::CliResult same = test::run_cli("compare " + base + "'" + (dir / "same").string() +
+                                             "' --out '" + (dir / "out").string() + "'");
+  EXPECT_EQ(same.exit_code, 0) << same.err;
+  EXPECT_NE(same.out.find("| run bar.json | 2 | solve |"), std::string::npos) << same.out;
+  const json verdict = json::parse(test::read_text(dir / "out" / "compare.json"));
+  EXPECT_FALSE(verdict["regression"].get<bool>());
+  EXPECT_NE(test::read_text(dir / "out" / "compare.svg").find("<svg"), std::string::npos);
+
+  const test::CliResult slow =
+      test::run_cli("compare " + base + "'" + (dir / "slow").string() + "'");
+  EXPECT_EQ(slow.exit_code, 1) << slow.err;
+  EXPECT_NE(slow.out.find("**slower**"), std::string::npos) << slow.out;
+
+  test::write_text(dir / "broken.json", "{ not json");
+  const test::CliResult broken =
+      test::run_cli("compare " + base + "'" + (dir / "broken.json").string() + "'");
+  EXPECT_EQ(broken.exit_code, 2);
+  EXPECT_NE(broken.err.find("broken.json"), std::string::npos) << broken.err;
+
+  test::write_text(dir / "other.json", run_record(rng, 2.0, 5.0, 100, 3e5).dump());
+  const test::CliResult unpaired =
+      test::run_cli("compare " + base + "'" + (dir / "other.json").string() + "'");
+  EXPECT_EQ(unpaired.exit_code, 2);
+  EXPECT_NE(unpaired.err.find("different scenes"), std::string::npos) << unpaired.err;
+}
+
+}  // namespace
+}  // namespace corofem
