@@ -14,6 +14,8 @@ import os
 import sys
 import tempfile
 
+from render_since_snapshot import render_since_snapshot
+
 try:
     import matplotlib
 
@@ -967,6 +969,7 @@ def main(argv):
     cache = load(folder, "cache_profile.json")
     scaling = load(folder, "mpi_scaling.json")
     ma = load(folder, "model_accuracy.json")
+    since = load(folder, "since_snapshot.json")
     if not (tables or sa or st or ma):
         print(f"render: no tables.json, speed_accuracy.json or stability.json in {folder}", file=sys.stderr)
         return 2
@@ -977,6 +980,8 @@ def main(argv):
         md.append("(matplotlib was not available: no charts drawn.)\n\n")
     if tables:
         render_tables(tables, folder, md)
+    if tables or sa:
+        render_since_snapshot(since, md, table, num)
     if sa:
         render_speed_accuracy(sa, folder, md)
     if tables or sa:

@@ -411,6 +411,46 @@ int render_golden_fixture(const TempDir& dir, const std::string& options,
                          .c_str());
 }
 
+TEST(Report, SinceTheSnapshotShowsWhatMovedWithItsInterval) {
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  TempDir dir;
+  // A verdict as corofem compare writes it: one phase slower, one counter up, the rest the same.
+  const json verdict = {
+      {"producer", "corofem compare"},
+      {"base_context", {{"commit", "824896a52a2001bbccd"}, {"date", "2026-12-05"}}},
+      {"options", {{"alpha", 0.01}, {"threshold", 0.05}}},
+      {"regression", true},
+      {"verdicts", {{"slower", 1}, {"increased", 1}, {"same", 1}}},
+      {"warnings", {"cpu differs: BASE AMD EPYC, NEW Intel Xeon (timings compare the machines "
+                    "as much as the code)"}},
+      {"rows",
+       {{{"case", "table1 bunny-11k"}, {"threads", 2}, {"quantity", "solve"}, {"kind", "timed"},
+         {"verdict", "slower"}, {"base", 2.5}, {"new", 2.8},
+         {"test", {{"ratio", 1.12}, {"interval", {1.08, 1.16}}}}},
+        {{"case", "table1 bunny-11k"}, {"threads", 2}, {"quantity", "linear_iterations"},
+         {"kind", "counter"}, {"verdict", "increased"}, {"base", 138}, {"new", 140}},
+        {{"case", "table1 bunny-11k"}, {"threads", 2}, {"quantity", "step"}, {"kind", "timed"},
+         {"verdict", "same"}, {"base", 4.9}, {"new", 4.95},
+         {"test", {{"ratio", 1.01}, {"interval", {0.98, 1.04}}}}}}}};
+  ASSERT_EQ(render_golden_fixture(dir, "", "/dev/null",
+                                  [&](json&) { test::write_text(dir / "since_snapshot.json",
+                                                                verdict.dump()); }),
+            0);
+  const std::string md = read_text(dir / "REPORT.md");
+  // Hand-written expectations, not the renderer's own output captured once.
+  EXPECT_NE(md.find("## Since the last published snapshot"), std::string::npos);
+  EXPECT_NE(md.find("snapshot of commit `824896a52` (2026-12-05): **a regression**"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- warning: cpu differs: BASE AMD EPYC, NEW Intel Xeon"), std::string::npos);
+  EXPECT_NE(md.find("| table1 bunny-11k | 2 | solve | timed | 2.5 | 2.8 | 1.12 | 1.08-1.16 | "
+                    "slower |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| linear_iterations | counter | 138 | 140 |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| step | timed"), std::string::npos) << "a row that did not move is listed";
+}
+
 TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
   if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
   // verify/golden/report: JSON records of a smoke run and the REPORT.md drawn from them with

@@ -1,0 +1,44 @@
+"""The report's section "Since the last published snapshot", drawn from since_snapshot.json:
+`corofem compare reports/ NEW_REPORT` as ci/report runs it (lib/docs/comparing.md). A reader sees
+what changed and whether it is signal: the timings beyond the threshold with their intervals, the
+counters and accuracy fields that moved."""
+
+
+def render_since_snapshot(verdict, md, table, num):
+    md.append("## Since the last published snapshot\n\n")
+    if verdict is None:
+        md.append("Not compared (ci/report compares a new report with reports/, the published "
+                  "snapshot, when both ran the same scenes).\n\n")
+        return
+    if "error" in verdict:
+        md.append(f"Not compared: {verdict['error']}\n\n")
+        return
+    base = verdict.get("base_context") or {}
+    counts = ", ".join(f"{n} {v}" for v, n in sorted(verdict.get("verdicts", {}).items()))
+    options = verdict.get("options", {})
+    md.append(f"`corofem compare` of this report against the snapshot of commit "
+              f"`{str(base.get('commit', '?'))[:9]}` ({base.get('date', '?')}): "
+              f"**{'a regression' if verdict.get('regression') else 'no regression'}** ({counts}). "
+              f"A timing is slower or faster only with p < {options.get('alpha')} (Mann-Whitney U) "
+              f"and a ratio beyond {100 * options.get('threshold', 0):g}%; the full table is "
+              f"since_snapshot/compare.md.\n\n")
+    for w in verdict.get("warnings", []):
+        md.append(f"- warning: {w}\n")
+    if verdict.get("warnings"):
+        md.append("\n")
+    moved = [r for r in verdict.get("rows", [])
+             if r["verdict"] in ("slower", "faster", "increased", "decreased", "worse", "better",
+                                 "changed", "missing in new")]
+    if not moved:
+        md.append("Nothing moved beyond noise: every timing the same within its interval or "
+                  "the threshold, every counter equal, every accuracy field within tolerance.\n\n")
+        return
+    rows = []
+    for r in moved:
+        test = r.get("test")
+        interval = f"{num(test['interval'][0])}-{num(test['interval'][1])}" if test else ""
+        rows.append([r["case"], r["threads"], r["quantity"], r["kind"], num(r.get("base")),
+                     num(r.get("new")), num(test["ratio"]) if test else "", interval, r["verdict"]])
+    md.append(table(["case", "threads", "quantity", "kind", "snapshot", "now", "ratio",
+                     "interval", "verdict"], rows))
+    md.append("\n")
