@@ -60,14 +60,20 @@ const RowComparison& row(const Comparison& c, const std::string& quantity) {
 TEST(Compare, RepetitionsBecomeRunsAndAPlantedSlowdownOfOnePhaseIsFound) {
   std::mt19937 rng(3);
   std::vector<json> base, slower;
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < 8; ++k) {
     base.push_back(run_record(rng, 2.0, 5.0));
     slower.push_back(run_record(rng, 2.2, 5.2));  // the solve 10% slower, the step 4%
   }
   const Comparison c = compare_records(runs_of(base), runs_of(slower), CompareOptions{});
   const RowComparison& solve = row(c, "solve");
-  EXPECT_EQ(solve.unit_of_sample, "runs");  // 5 records a side: one median per run
-  EXPECT_EQ(solve.test.base_count, 5);
+  EXPECT_EQ(solve.unit_of_sample, "runs");  // 8 records a side: one median per run
+  EXPECT_EQ(solve.test.base_count, 8);
+  // Complete separation of 8 against 8: p = 2 / C(16, 8). Holm over the 4 gated timed rows
+  // (solve, step, run setup, run total): the first or second smallest p, so 3 or 4 times it (the
+  // run totals, tied within each side, separate with a smaller p of the normal approximation).
+  EXPECT_NEAR(solve.test.p_value, 2.0 / 12870, 1e-12);
+  EXPECT_GE(solve.p_adjusted, 3 * solve.test.p_value);
+  EXPECT_LE(solve.p_adjusted, 4 * solve.test.p_value);
   EXPECT_EQ(solve.verdict, "slower");
   EXPECT_NEAR(solve.test.ratio, 1.1, 0.03);
   // 4% is significant but under the 5% threshold: the same.
@@ -86,6 +92,35 @@ TEST(Compare, TheSameCodeTwiceIsTheSame) {
   for (const RowComparison& r : c.rows) EXPECT_FALSE(r.regression) << r.quantity << r.verdict;
   EXPECT_EQ(row(c, "linear_iterations").verdict, "equal");
   EXPECT_EQ(row(c, "displacement").verdict, "equal");
+}
+
+TEST(Compare, ManyRowsWithoutAChangeRarelyAlarmTogether) {
+  // 40 phases, 10 runs a side, all from one distribution: at alpha = 0.01 per row, about a third
+  // of such comparisons would alarm somewhere; Holm's adjustment holds the family at 1%.
+  std::mt19937 rng(23);
+  std::normal_distribution<double> noise(0, 0.1);
+  int alarms = 0;
+  const int trials = 100;
+  CompareOptions no_threshold;
+  no_threshold.threshold = 0;  // every significant row counts
+  for (int trial = 0; trial < trials; ++trial) {
+    RecordSet sides[2];
+    for (RecordSet& side : sides)
+      for (int k = 0; k < 10; ++k) {
+        json r = run_record(rng, 2.0, 5.0);
+        for (int phase = 0; phase < 40; ++phase)
+          for (int s = 0; s < 5; ++s)
+            r["step_samples_ms"]["phase" + std::to_string(phase)].push_back(std::exp(noise(rng)));
+        add_record_rows(r, "r" + std::to_string(k) + ".json", side);
+      }
+    alarms += compare_records(sides[0], sides[1], no_threshold).regressed() || [&] {
+      for (const RowComparison& r : compare_records(sides[0], sides[1], no_threshold).rows)
+        if (r.verdict == "faster") return true;
+      return false;
+    }();
+  }
+  // Expected at most 1 (alpha); 5 leaves binomial room (P(>= 5 | 1%) < 0.4%).
+  EXPECT_LE(alarms, 4) << alarms << " of " << trials;
 }
 
 TEST(Compare, ACounterChangeIsFoundExactly) {
@@ -159,7 +194,7 @@ TEST(Compare, CliExitCodesAndOutputs) {
   test::TempDir dir;
   std::mt19937 rng(19);
   for (const char* side : {"base", "same", "slow"}) std::filesystem::create_directories(dir / side);
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < 8; ++k) {
     const std::string name = "r" + std::to_string(k) + ".json";
     test::write_text(dir / "base" / name, run_record(rng, 2.0, 5.0).dump());
     test::write_text(dir / "same" / name, run_record(rng, 2.0, 5.0).dump());

@@ -43,23 +43,52 @@ RowComparison timed(const RecordRow& b, const RecordRow& n, const CompareOptions
   c.base_value = median(test_samples(b, false));
   c.new_value = median(test_samples(n, false));
   c.test = shift_test(xs, ys, o.alpha);
-  if (!per_run && (b.runs.size() > 1 || n.runs.size() > 1 || xs.size() > 1))
-    c.note = "one run on a side: steps pooled, run-to-run noise not sampled";
-  const bool significant = c.test.p_value < o.alpha;
+  c.p_adjusted = c.test.p_value;
+  if (c.unit_of_sample == "steps")
+    c.note = "fewer than 3 runs a side: steps pooled, run-to-run noise not sampled";
   if (smallest_p(c.test.base_count, c.test.new_count) >= o.alpha)
     c.verdict = "inconclusive";
-  else if (significant && c.test.ratio > 1 + o.threshold)
-    c.verdict = "slower";
-  else if (significant && c.test.ratio < 1 / (1 + o.threshold))
-    c.verdict = "faster";
-  else
-    c.verdict = "same";
-  if (c.base_value < o.min_ms) {
-    c.note = "under --min-ms: shown, not gated";
-    if (c.verdict == "slower") c.verdict = "short";
-  }
-  c.regression = c.verdict == "slower";
+  else if (c.base_value < o.min_ms)
+    c.note += std::string(c.note.empty() ? "" : "; ") + "under --min-ms: shown, not gated";
+  // Else gated: the verdict waits for the family's adjusted p (holm_verdicts).
   return c;
+}
+
+/// The gated timed rows are one family of tests: a gate over 80 rows at alpha = 0.01 each would
+/// alarm on half of its A/A runs. Holm's step-down procedure (Holm 1979) holds the chance of any
+/// false "slower" or "faster" among them at alpha, and is uniformly more powerful than Bonferroni:
+/// the i-th smallest p is multiplied by (m - i + 1), the products made monotone. Rows under
+/// --min-ms, and those whose samples cannot reach alpha, are left out of the family.
+void holm_verdicts(std::vector<RowComparison>& rows, const CompareOptions& o) {
+  std::vector<RowComparison*> family;
+  for (RowComparison& r : rows)
+    if (r.kind == RowKind::Timed && !r.unit_of_sample.empty() && r.verdict != "inconclusive")
+      family.push_back(&r);
+  std::sort(family.begin(), family.end(), [](const RowComparison* a, const RowComparison* b) {
+    return a->test.p_value < b->test.p_value;
+  });
+  std::vector<RowComparison*> gated;
+  for (RowComparison* r : family)
+    if (r->note.find("not gated") == std::string::npos) gated.push_back(r);
+  double running = 0;
+  const double m = static_cast<double>(gated.size());
+  for (std::size_t i = 0; i < gated.size(); ++i) {
+    running =
+        std::max(running, std::min(1.0, (m - static_cast<double>(i)) * gated[i]->test.p_value));
+    gated[i]->p_adjusted = running;
+  }
+  for (RowComparison* r : family) {
+    const bool significant = r->p_adjusted < o.alpha;
+    if (significant && r->test.ratio > 1 + o.threshold)
+      r->verdict = "slower";
+    else if (significant && r->test.ratio < 1 / (1 + o.threshold))
+      r->verdict = "faster";
+    else
+      r->verdict = "same";
+    if (r->verdict == "slower" && r->note.find("not gated") != std::string::npos)
+      r->verdict = "short";
+    r->regression = r->verdict == "slower";
+  }
 }
 
 RowComparison counter(const RecordRow& b, const RecordRow& n) {
@@ -216,6 +245,7 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
     c.note = n->source;
     out.rows.push_back(std::move(c));
   }
+  holm_verdicts(out.rows, options);
   if (paired == 0)
     throw InputError(
         "no row of BASE pairs with a row of NEW (different cases, thread counts or "

@@ -13,7 +13,9 @@ namespace corofem {
 
 struct CompareOptions {
   double threshold = 0.05;  ///< a timing verdict needs NEW/BASE beyond 1 +- this (and p < alpha)
-  double alpha = 0.01;      ///< significance of the U test; the intervals are at 1 - alpha
+  /// The chance of any false timing verdict among the gated rows (family-wise, Holm); the
+  /// intervals are each at 1 - alpha.
+  double alpha = 0.01;
   /// An accuracy field (an error against an oracle, a residual) regresses when it grows by more
   /// than this factor and past accuracy_floor: iterative solves move their error within their
   /// tolerance when operations are reordered, so a doubling is the signal, not a change.
@@ -36,6 +38,8 @@ struct RowComparison {
   bool regression = false;
   double base_value = 0, new_value = 0;  ///< medians (timed), values (counters, accuracy), |du|/|u|
   ShiftTest test;                        ///< timed rows
+  /// Timed rows: the test's p adjusted for the family of gated rows (Holm); the verdict's p.
+  double p_adjusted = 1;
   std::string unit_of_sample;  ///< "runs" (medians of >= 3 runs each side) or "steps" (pooled)
   std::string note;
 };

@@ -87,15 +87,15 @@ std::string comparison_markdown(const Comparison& c, const std::string& base,
   md << "## corofem compare\n\n"
      << "BASE `" << base << "`: " << context_text(c.base_context) << "  \n"
      << "NEW `" << contender << "`: " << context_text(c.new_context) << "\n\n"
-     << summary_line(c) << ". A timing is slower or faster when the U test's p < "
-     << general_number(o.alpha) << " and the Hodges-Lehmann ratio is beyond "
-     << general_number(o.threshold * 100) << "%; intervals at "
-     << general_number(100 - 100 * o.alpha) << "%.\n\n";
+     << summary_line(c) << ". A timing is slower or faster when the U test's p, adjusted over "
+     << "the gated rows (Holm), is under " << general_number(o.alpha)
+     << " and the Hodges-Lehmann ratio is beyond " << general_number(o.threshold * 100)
+     << "%; intervals at " << general_number(100 - 100 * o.alpha) << "%.\n\n";
   for (const std::string& w : c.warnings) md << "- warning: " << w << "\n";
   if (!c.warnings.empty()) md << "\n";
 
-  md << "| case | threads | quantity | BASE ms | NEW ms | NEW/BASE | interval | p | samples | "
-        "verdict |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| case | threads | quantity | BASE ms | NEW ms | NEW/BASE | interval | p | p (Holm) | "
+        "samples | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const RowComparison& r : c.rows) {
     if (r.kind != RowKind::Timed || r.verdict == "missing in new" || r.verdict == "new row")
       continue;
@@ -104,8 +104,8 @@ std::string comparison_markdown(const Comparison& c, const std::string& base,
        << general_number(r.base_value) << " | " << general_number(r.new_value) << " | "
        << fixed(r.test.ratio, 3) << " | " << fixed(r.test.ratio_low, 3) << "-"
        << fixed(r.test.ratio_high, 3) << " | " << general_number(r.test.p_value) << " | "
-       << r.test.base_count << "/" << r.test.new_count << " " << r.unit_of_sample << " | "
-       << (flag ? "**" + r.verdict + "**" : r.verdict)
+       << general_number(r.p_adjusted) << " | " << r.test.base_count << "/" << r.test.new_count
+       << " " << r.unit_of_sample << " | " << (flag ? "**" + r.verdict + "**" : r.verdict)
        << (r.note.empty() ? "" : " (" + r.note + ")") << " |\n";
   }
   int equal_counters = 0;
@@ -146,6 +146,7 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
       row["test"] = {{"ratio", r.test.ratio},
                      {"interval", {r.test.ratio_low, r.test.ratio_high}},
                      {"p_value", r.test.p_value},
+                     {"p_adjusted", r.p_adjusted},
                      {"u", r.test.u},
                      {"exact", r.test.exact},
                      {"samples", {r.test.base_count, r.test.new_count}},
@@ -169,8 +170,8 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
             {"field_tolerance", o.field_tolerance},
             {"min_ms", o.min_ms},
             {"test",
-             "Mann-Whitney U (two-sided) on log times; Hodges-Lehmann ratio and its "
-             "distribution-free interval"}}},
+             "Mann-Whitney U (two-sided) on log times, p adjusted over the gated rows (Holm); "
+             "Hodges-Lehmann ratio and its distribution-free interval"}}},
           {"regression", c.regressed()},
           {"verdicts", counts},
           {"warnings", c.warnings},
