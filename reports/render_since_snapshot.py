@@ -11,7 +11,10 @@ def render_since_snapshot(verdict, md, table, num):
                   "snapshot, when both ran the same scenes).\n\n")
         return
     if "error" in verdict:
-        md.append(f"Not compared: {verdict['error']}\n\n")
+        reason = verdict["error"].removeprefix("corofem: error: ")
+        md.append(f"Not compared: {reason}. The snapshot and this report ran other scenes (the "
+                  "snapshot is published from the models; a default report runs the procedural "
+                  "scenes) or other thread counts.\n\n")
         return
     base = verdict.get("base_context") or {}
     counts = ", ".join(f"{n} {v}" for v, n in sorted(verdict.get("verdicts", {}).items()))

@@ -104,6 +104,62 @@ TEST(ShiftTest, NoShiftIsFoundAtMostAsOftenAsAlphaAllows) {
   EXPECT_LE(significant, 22) << significant << " of " << trials;
 }
 
+/// `count` per-run medians as these VMs give them: 3% spread, and a third of the runs in a slow
+/// mode 1.5x the fast one (measured: the cantilever's solve at one thread, 0.195 or 0.29 ms).
+std::vector<double> bimodal_runs(std::mt19937& rng, int count, double scale) {
+  std::bernoulli_distribution slow(1.0 / 3);
+  std::vector<double> out = runs(rng, count, scale);
+  for (double& v : out) v *= slow(rng) ? 1.5 : 1.0;
+  return out;
+}
+
+TEST(StratifiedShiftTest, OneStratumIsTheStandardizedU) {
+  // van Elteren's statistic of a single stratum is U standardized by its null mean and variance
+  // (no continuity correction): for 20 against 20 without ties, sd = sqrt(400 * 41 / 12).
+  std::mt19937 rng(31);
+  const std::vector<double> x = runs(rng, 20, 1.0), y = runs(rng, 20, 1.02);
+  const ShiftTest single = shift_test(x, y, 0.01);
+  const ShiftTest stratified = stratified_shift_test({{x, y}}, 0.01);
+  const double z = (single.u - 200) / std::sqrt(400.0 * 41 / 12);
+  EXPECT_NEAR(stratified.u, z, 1e-12);
+  EXPECT_NEAR(stratified.p_value, std::erfc(std::abs(z) / std::sqrt(2.0)), 1e-12);
+  EXPECT_DOUBLE_EQ(stratified.ratio, single.ratio);  // the same pairs
+}
+
+TEST(StratifiedShiftTest, EightCasesFindATenPercentShiftThatOneCaseMisses) {
+  // The gate's situation: 8 cases (scenes x thread counts) of 10 runs a side, bimodal runs.
+  std::mt19937 rng(37);
+  int found = 0, single_found = 0, covered = 0;
+  const int trials = 100;
+  for (int trial = 0; trial < trials; ++trial) {
+    std::vector<Stratum> strata;
+    for (int c = 0; c < 8; ++c)
+      strata.push_back({bimodal_runs(rng, 10, 1.0 + c), bimodal_runs(rng, 10, 1.1 * (1.0 + c))});
+    const ShiftTest t = stratified_shift_test(strata, 0.01);
+    // Holm over the gate's ~60 rows asks the smallest p for 0.01 / 60.
+    found += t.p_value < 0.01 / 60 && t.ratio > 1.05;
+    covered += t.ratio_low <= 1.1 && 1.1 <= t.ratio_high;
+    single_found += shift_test(strata[0].base, strata[0].contender, 0.01).p_value < 0.01 / 60;
+  }
+  EXPECT_GE(found, 95) << found << " of " << trials;
+  EXPECT_LE(single_found, 20) << "one case alone should rarely reach it: " << single_found;
+  EXPECT_GE(covered, 95) << covered << " of " << trials;
+}
+
+TEST(StratifiedShiftTest, NoShiftIsFoundAtMostAsOftenAsAlphaAllows) {
+  std::mt19937 rng(41);
+  int significant = 0;
+  const int trials = 500;
+  for (int trial = 0; trial < trials; ++trial) {
+    std::vector<Stratum> strata;
+    for (int c = 0; c < 8; ++c)
+      strata.push_back({bimodal_runs(rng, 10, 1.0 + c), bimodal_runs(rng, 10, 1.0 + c)});
+    significant += stratified_shift_test(strata, 0.01).p_value < 0.01;
+  }
+  // Expected 5 (alpha), binomial sd 2.2: 14 is four of them above.
+  EXPECT_LE(significant, 14) << significant << " of " << trials;
+}
+
 TEST(ShiftTest, LargeSamplesUseTheNormalApproximationConsistently) {
   std::mt19937 rng(11);
   const ShiftTest t = shift_test(runs(rng, 100, 1.0), runs(rng, 100, 1.02), 0.01);

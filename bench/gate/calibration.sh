@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The gate's calibration as lib/docs/comparing.md reports it: pools of alternated runs of one
 # commit against itself (built twice) and against planted faults (bench/gate/plant.py patches,
-# applied in bench-gate's worktree only), then 20 trials of a 10-run gate drawn from each pool
-# (bench/gate/calibrate.py). About 50 minutes on 2 cores, builds included.
+# applied in bench-gate's worktree only), then 20 trials of a 10-run gate drawn from each pool,
+# and of 15 (bench/gate/calibrate.py). About 50 minutes on 2 cores, builds included.
 # Usage: bench/gate/calibration.sh [REF] [OUT]   (default HEAD, out/calibration)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -16,9 +16,11 @@ pool() {  # NAME RUNS [PATCH]
   ci/bench-gate "$ref" "$ref" --runs "$runs" --out "$out/$name" ${patch:+--patch "$patch"} \
     >"$out/$name.md" 2>"$out/$name.log" || (($? == 1))
 }
-trials() {  # NAME [PHASE]
-  python3 bench/gate/calibrate.py "$out/$1" --trials 20 --runs 10 ${2:+--phase "$2"} \
-    --json "$out/$1-trials.json" >/dev/null 2>>"$out/$1.log"
+trials() {  # NAME [PHASE]: gates of 10 runs and of 15 (bench-gate's default)
+  for runs in 10 15; do
+    python3 bench/gate/calibrate.py "$out/$1" --trials 20 --runs "$runs" ${2:+--phase "$2"} \
+      --json "$out/$1-trials-$runs.json" >/dev/null 2>>"$out/$1.log"
+  done
 }
 pool aa 40 && trials aa
 for plant in "solve 10" "update 10" "assemble 10" "solve 3"; do

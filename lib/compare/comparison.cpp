@@ -201,6 +201,8 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
                        it->second->source + " ran different scenes");
   }
   int paired = 0;
+  std::map<std::string, std::vector<Stratum>> strata;       // per quantity: its gated cases
+  std::map<std::string, std::pair<double, double>> totals;  // per quantity: summed medians
   for (const RecordRow& b : base.rows) {
     auto it = new_rows.find(b.key());
     RowComparison c;
@@ -216,6 +218,13 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
       switch (b.kind) {
         case RowKind::Timed:
           c = timed(b, n, options);
+          if (c.unit_of_sample == "runs" && c.test.base_count >= 3 && c.test.new_count >= 3 &&
+              c.note.find("not gated") == std::string::npos) {
+            const bool per_run = b.runs.size() >= 3 && n.runs.size() >= 3;
+            strata[b.quantity].push_back({test_samples(b, per_run), test_samples(n, per_run)});
+            totals[b.quantity].first += c.base_value;
+            totals[b.quantity].second += c.new_value;
+          }
           break;
         case RowKind::Counter:
           c = counter(b, n);
@@ -243,6 +252,21 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
     c.kind = n->kind;
     c.verdict = "new row";
     c.note = n->source;
+    out.rows.push_back(std::move(c));
+  }
+  // A phase's code runs in every case: its shift tested across them at once (stratified).
+  for (const auto& [quantity, cases] : strata) {
+    if (cases.size() < 2) continue;
+    RowComparison c;
+    c.case_name = "all cases";
+    c.quantity = quantity;
+    c.kind = RowKind::Timed;
+    c.unit_of_sample = "runs";
+    c.test = stratified_shift_test(cases, options.alpha);
+    c.p_adjusted = c.test.p_value;
+    c.base_value = totals[quantity].first;
+    c.new_value = totals[quantity].second;
+    c.note = std::to_string(cases.size()) + " cases stratified (van Elteren); ms summed";
     out.rows.push_back(std::move(c));
   }
   holm_verdicts(out.rows, options);

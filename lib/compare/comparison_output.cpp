@@ -16,8 +16,9 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
+/// A stratified row spans every thread count: "all".
 std::string threads_text(int threads) {
-  return std::to_string(threads);
+  return threads > 0 ? std::to_string(threads) : "all";
 }
 
 /// Text for an SVG element: the markup characters escaped.
@@ -212,8 +213,8 @@ std::string comparison_svg(const Comparison& c) {
     const char* colour = r.verdict == "slower"   ? "#c0392b"
                          : r.verdict == "faster" ? "#27ae60"
                                                  : "#2c3e50";
-    s << "<text x=\"8\" y=\"" << y + 4 << "\">" << xml_text(r.case_name) << " | " << r.threads
-      << "t | " << xml_text(r.quantity) << "</text>\n"
+    s << "<text x=\"8\" y=\"" << y + 4 << "\">" << xml_text(r.case_name) << " | "
+      << threads_text(r.threads) << "t | " << xml_text(r.quantity) << "</text>\n"
       << "<line x1=\"" << x(r.test.ratio_low) << "\" x2=\"" << x(r.test.ratio_high) << "\" y1=\""
       << y << "\" y2=\"" << y << "\" stroke=\"" << colour << "\" stroke-width=\"2\"/>\n"
       << "<circle cx=\"" << x(r.test.ratio) << "\" cy=\"" << y << "\" r=\"3.5\" fill=\"" << colour

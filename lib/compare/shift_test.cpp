@@ -46,7 +46,94 @@ double upper_normal_quantile(double tail) {
   return 0.5 * (lo + hi);
 }
 
+std::vector<double> logs(const std::vector<double>& values) {
+  if (values.empty()) throw std::invalid_argument("shift_test: an empty sample");
+  std::vector<double> out;
+  for (double v : values) {
+    if (!(v > 0) || !std::isfinite(v))
+      throw std::invalid_argument("shift_test: a time that is not positive and finite");
+    out.push_back(std::log(v));
+  }
+  return out;
+}
+
+/// Sum over values tied within the pooled sample of t^3 - t (the variance's tie correction).
+double tie_sum_of(std::vector<double> all) {
+  std::sort(all.begin(), all.end());
+  double sum = 0;
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i;
+    while (j < all.size() && all[j] == all[i]) ++j;
+    const double tied = static_cast<double>(j - i);
+    sum += tied * tied * tied - tied;
+    i = j;
+  }
+  return sum;
+}
+
+/// A stratum in logs, with its weight and null variance of U (tie-corrected).
+struct LogStratum {
+  std::vector<double> x, y;
+  double weight = 0, variance = 0;
+};
+
+/// van Elteren's standardized statistic with NEW shifted down by `shift` (in logs).
+double stratified_z(const std::vector<LogStratum>& strata, double shift) {
+  double t = 0, mean = 0, variance = 0;
+  for (const LogStratum& s : strata) {
+    double u = 0;
+    for (double yj : s.y)
+      for (double xi : s.x) u += yj - shift > xi ? 1.0 : yj - shift == xi ? 0.5 : 0.0;
+    const double nm = static_cast<double>(s.x.size() * s.y.size());
+    t += s.weight * u;
+    mean += s.weight * nm / 2;
+    variance += s.weight * s.weight * s.variance;
+  }
+  return variance > 0 ? (t - mean) / std::sqrt(variance) : 0.0;
+}
+
 }  // namespace
+
+ShiftTest stratified_shift_test(const std::vector<Stratum>& strata, double alpha) {
+  if (strata.empty()) throw std::invalid_argument("stratified_shift_test: no strata");
+  std::vector<LogStratum> logged;
+  std::vector<double> d;
+  ShiftTest t;
+  for (const Stratum& s : strata) {
+    LogStratum l{logs(s.base), logs(s.contender)};
+    const double n = static_cast<double>(l.x.size()), m = static_cast<double>(l.y.size());
+    std::vector<double> all(l.x);
+    all.insert(all.end(), l.y.begin(), l.y.end());
+    const double total = n + m;
+    l.weight = 1 / (total + 1);
+    l.variance =
+        n * m / 12 * ((total + 1) - (total > 1 ? tie_sum_of(all) / (total * (total - 1)) : 0.0));
+    for (double yj : l.y)
+      for (double xi : l.x) d.push_back(yj - xi);
+    t.base_count += static_cast<int>(n);
+    t.new_count += static_cast<int>(m);
+    logged.push_back(std::move(l));
+  }
+  std::sort(d.begin(), d.end());
+  const std::size_t pairs = d.size();
+  t.ratio = std::exp(pairs % 2 ? d[pairs / 2] : 0.5 * (d[pairs / 2 - 1] + d[pairs / 2]));
+  const double z = stratified_z(logged, 0);
+  t.u = z;  // the standardized statistic, in place of a single U
+  t.p_value = std::min(1.0, std::erfc(std::abs(z) / std::sqrt(2.0)));
+  // The interval: the shifts whose z lies within +-z_crit; z falls as the shift grows.
+  const double crit = upper_normal_quantile(alpha / 2);
+  const auto shift_where = [&](double target) {
+    double lo = d.front() - 1, hi = d.back() + 1;  // z(lo) at its top, z(hi) at its bottom
+    for (int i = 0; i < 100; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (stratified_z(logged, mid) > target ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  t.ratio_low = std::exp(shift_where(crit));
+  t.ratio_high = std::exp(shift_where(-crit));
+  return t;
+}
 
 double exact_u_p_value(double u, int n, int m) {
   const std::vector<double> cdf = exact_cdf(n, m);
@@ -59,19 +146,12 @@ double exact_u_p_value(double u, int n, int m) {
 
 ShiftTest shift_test(const std::vector<double>& base, const std::vector<double>& contender,
                      double alpha) {
-  if (base.empty() || contender.empty()) throw std::invalid_argument("shift_test: an empty sample");
-  for (const auto* sample : {&base, &contender})
-    for (double v : *sample)
-      if (!(v > 0) || !std::isfinite(v))
-        throw std::invalid_argument("shift_test: a time that is not positive and finite");
+  const std::vector<double> x = logs(base), y = logs(contender);
   const int n = static_cast<int>(base.size()), m = static_cast<int>(contender.size());
   ShiftTest t;
   t.base_count = n;
   t.new_count = m;
-  std::vector<double> x(n), y(m), d;
-  std::transform(base.begin(), base.end(), x.begin(), [](double v) { return std::log(v); });
-  std::transform(contender.begin(), contender.end(), y.begin(),
-                 [](double v) { return std::log(v); });
+  std::vector<double> d;
   d.reserve(static_cast<std::size_t>(n) * m);
   for (double yj : y)
     for (double xi : x) {
@@ -86,15 +166,7 @@ ShiftTest shift_test(const std::vector<double>& base, const std::vector<double>&
   // Ties (equal values across both samples) for the variance correction.
   std::vector<double> all(x);
   all.insert(all.end(), y.begin(), y.end());
-  std::sort(all.begin(), all.end());
-  double tie_sum = 0;
-  for (std::size_t i = 0; i < all.size();) {
-    std::size_t j = i;
-    while (j < all.size() && all[j] == all[i]) ++j;
-    const double tied = static_cast<double>(j - i);
-    tie_sum += tied * tied * tied - tied;
-    i = j;
-  }
+  const double tie_sum = tie_sum_of(all);
   const double nm = static_cast<double>(n) * m, total = n + m;
   const double variance =
       nm / 12.0 * ((total + 1) - (total > 1 ? tie_sum / (total * (total - 1)) : 0.0));
