@@ -18,6 +18,7 @@ const char* build_commit() { return \"${commit}\"; }
 const char* build_compiler() { return \"${COMPILER}\"; }
 const char* build_flags() { return \"${FLAGS}\"; }
 const char* build_type() { return \"${BUILD_TYPE}\"; }
+const char* build_version() { return \"${VERSION}\"; }
 }  // namespace corofem
 ")
 if(EXISTS "${OUTPUT}")

@@ -1,6 +1,7 @@
 #include "exact_rotation.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <random>
 
 namespace corofem::reference {
@@ -26,6 +27,12 @@ Eigen::Quaterniond rotation_factor_horn(const Eigen::Matrix3d& m) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(n);
   const Eigen::Vector4d top = eig.eigenvectors().col(3);
   return Eigen::Quaterniond(top[0], top[1], top[2], top[3]).normalized();
+}
+
+Eigen::Matrix3d rotation_factor_svd(const Eigen::Matrix3d& m) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Vector3d signs(1, 1, (svd.matrixU() * svd.matrixV().transpose()).determinant());
+  return svd.matrixU() * signs.asDiagonal() * svd.matrixV().transpose();
 }
 
 Eigen::Matrix3d brute_force_minimize(const std::function<double(const Eigen::Matrix3d&)>& energy,

@@ -2,7 +2,8 @@
 // Exact minimizers of the paper's rotation energy (PAPER_NOTES section 2): for a linear tet,
 // E_e(Q) = const - 2 tr(Q^T S) with S = F C, so the minimizer is the proper rotation factor of S.
 // The production path takes the SVD route (rotation/rotation_factor.hpp); the oracles here are
-// Horn's quaternion route and a brute-force search that assumes nothing about the energy.
+// Eigen's Jacobi SVD, Horn's quaternion route and a brute-force search that assumes nothing
+// about the energy.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <functional>
@@ -14,6 +15,11 @@ namespace corofem::reference {
 /// eigenvector of N's largest eigenvalue. N is built here by polarization from quaternion
 /// products, not from Horn's table.
 Eigen::Quaterniond rotation_factor_horn(const Eigen::Matrix3d& m);
+
+/// argmax over proper rotations of tr(R^T M) by Eigen's two-sided Jacobi SVD, M = U S V^T:
+/// R = U diag(1, 1, det(U V^T)) V^T (the smallest singular value's direction flipped when M's
+/// determinant is negative). Shares no code with rotation/: the oracle of its rotation_factor.
+Eigen::Matrix3d rotation_factor_svd(const Eigen::Matrix3d& m);
 
 /// Global minimizer of an arbitrary energy over SO(3): `samples` uniformly random rotations
 /// (Shoemake's method, fixed seed), then pattern search around the best one with the step halved

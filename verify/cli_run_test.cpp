@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <vector>
 
 #include "fem/corotated_assembly.hpp"
@@ -33,6 +34,15 @@ const char* kScene = R"({
                "load_steps": 4, "tolerance": 1e-9},
   "output": {"rotations": true, "vtu": "bar.vtu"}
 })";
+
+TEST(CliRun, VersionNamesTheReleaseAndTheCommit) {
+  const auto r = run_cli("--version");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  // "corofem 0.1.0 (commit <40 hex digits>[-dirty], <compiler>, <build type> <flags>)"
+  EXPECT_TRUE(std::regex_search(
+      r.out, std::regex(R"(^corofem [0-9]+\.[0-9]+\.[0-9]+ \(commit [0-9a-f]{40}(-dirty)?, )")))
+      << r.out;
+}
 
 TEST(CliRun, WritesTheDocumentedRecord) {
   TempDir dir;
@@ -434,6 +444,9 @@ TEST(CliRun, AProjectedStartIsRecordedAndSolvesTheSameSteps) {
     }
   ASSERT_GT(largest, 0);
   EXPECT_LT(difference, 1e-6 * largest);
+  // And it did start from the projection: a record that says so but extrapolated would take as
+  // many CG iterations as the default.
+  EXPECT_LT(records[1]["linear_iterations"].get<int>(), records[0]["linear_iterations"].get<int>());
 }
 
 TEST(CliRun, BadCoarseMeshIsBadInput) {

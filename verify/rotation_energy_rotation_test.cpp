@@ -20,6 +20,7 @@ namespace {
 
 using reference::brute_force_minimize;
 using reference::rotation_factor_horn;
+using reference::rotation_factor_svd;
 
 Mat3 random_rotation(std::mt19937& rng) {
   std::normal_distribution<double> n;
@@ -137,7 +138,7 @@ TEST(RotationEnergy, NewtonExactSvdHornAndBruteForceAgree) {
         Eigen::AngleAxisd(0.3, Vec3::Random().normalized()).toRotationMatrix() * exact;
     const NewtonOutcome newton = energy_newton_rotation(s, a, warm, 1e-14, 30);
     newton_fallbacks += newton.fell_back;
-    const Mat3 svd = rotation_factor(s);
+    const Mat3 svd = rotation_factor_svd(s);  // the oracle's SVD, not rotation/'s
     const Mat3 horn = rotation_factor_horn(s).toRotationMatrix();
     auto energy = [&](const Mat3& q) { return rotation_energy(q, rest, deformed); };
     const Mat3 brute = brute_force_minimize(energy, 4000, rng());
@@ -317,10 +318,12 @@ TEST(RotationEnergy, NewtonDetectsSingularHessianAndFallsBack) {
   // so a whole circle of rotations minimizes E; Newton must not divide by zero.
   const Mat3 s = Vec3(1.5, 0.5, -0.5).asDiagonal();
   const NewtonOutcome out = energy_newton_rotation(s, 2.75, Mat3::Identity(), 1e-12, 20);
+  EXPECT_TRUE(out.fell_back) << "Newton went on through a singular Hessian";
   EXPECT_TRUE(out.rotation.allFinite());
   EXPECT_NEAR(out.rotation.determinant(), 1.0, 1e-12);
-  EXPECT_NEAR((out.rotation.transpose() * s).trace(), (rotation_factor(s).transpose() * s).trace(),
-              1e-12);
+  // A maximizer of tr(Q^T S) (any point of the circle): the oracle's, from Eigen's SVD.
+  EXPECT_NEAR((out.rotation.transpose() * s).trace(),
+              (rotation_factor_svd(s).transpose() * s).trace(), 1e-12);
 }
 
 }  // namespace

@@ -154,6 +154,37 @@ TEST(Scene, MultigridKeysOfAnotherSolverAreIgnoredWithAWarning) {
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;  // one line
 }
 
+TEST(Scene, PetscMgRefusesTheSettingsItCannotHonour) {
+  // PETSc's PCMG takes our levels, hierarchy and smoothing count; its own smoother, cycle and
+  // Galerkin product are not ours to choose: a scene that asks for them is refused, naming the key.
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, nlohmann::json>>{{"smoother", "chebyshev"},
+                                                           {"cycle", "W"},
+                                                           {"galerkin", "stream"},
+                                                           {"vcycles", 20},
+                                                           {"chebyshev_degree", 3}}) {
+    auto j = minimal();
+    j["analysis"] = {{"solver", "petsc-mg"}, {"levels", 2}, {key, value}};
+    try {
+      parse_scene(j, "/", "s.json");
+      ADD_FAILURE() << "analysis." << key << " accepted with petsc-mg";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("analysis." + key), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("petsc-mg"), std::string::npos) << e.what();
+    }
+    // A tool that switches a multigrid scene to petsc-mg drops them instead.
+    nlohmann::json analysis = {{"solver", "petsc-mg"}, {"levels", 2}, {key, value}};
+    drop_unused_multigrid_keys(analysis);
+    EXPECT_FALSE(analysis.contains(key)) << key;
+    EXPECT_EQ(analysis["levels"], 2);
+  }
+  // What it honours still parses.
+  auto j = minimal();
+  j["analysis"] = {
+      {"solver", "petsc-mg"}, {"levels", 2}, {"smoothing", 2}, {"hierarchy", "lattice"}};
+  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.smoothing, 2);
+}
+
 TEST(Scene, CoarseMeshesAndHierarchy) {
   auto j = minimal();
   j["mesh"]["levels"] = {{{"box", {1, 0.1, 0.1}}, {"cells", {2, 1, 1}}}, {{"file", "c.msh"}}};

@@ -12,6 +12,7 @@
 #include "cli/run_scene.hpp"
 #include "compare/comparison_output.hpp"
 #include "core/atomic_file.hpp"
+#include "core/build_info.hpp"
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
 #include "core/threads.hpp"
@@ -44,6 +45,7 @@ Commands:
                                      records, report folders, Google Benchmark JSON), with
                                      intervals; exit 1 on a regression
   help [COMMAND]                     this text, or a command's
+  --version                          the version, commit, compiler and flags of this binary
 
 Exit status: 0 success, 1 did not converge or numerical fault, 2 bad input.
 )";
@@ -173,7 +175,7 @@ refused. Warns where machine, compiler or flags differ.
                  times and past 1e-12
   displacements  the two runs' final fields, |u_new - u_base| / |u_base| above E is a regression
   --threshold T  default 0.05       --alpha A            default 0.01
-  --accuracy-factor F  default 2    --field-tolerance E  default 1e-6
+  --accuracy-factor F  default 2    --field-tolerance E  default 1e-8
   --min-ms M     default 0.05
   --out DIR      also writes DIR/compare.md, compare.json (the verdict) and compare.svg (the
                  ratios with their intervals)
@@ -494,6 +496,11 @@ int dispatch(const std::vector<std::string>& args) {
       (args[0] == "help" && args.size() == 1)) {
     std::cout << kToolHelp;
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version" || args[0] == "version") {
+    std::cout << "corofem " << build_version() << " (commit " << build_commit() << ", "
+              << build_compiler() << ", " << build_type() << " " << build_flags() << ")\n";
+    return 0;
   }
   const std::string& command = args[0] == "help" ? args[1] : args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());

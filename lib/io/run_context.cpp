@@ -56,6 +56,7 @@ nlohmann::json run_context() {
   char host[256] = {0};
   gethostname(host, sizeof host - 1);
   return {{"commit", build_commit()},
+          {"version", build_version()},
           {"compiler", build_compiler()},
           {"flags", build_flags()},
           {"build_type", build_type()},

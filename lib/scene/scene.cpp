@@ -215,6 +215,16 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.smoother = smoother.ordering;
   a.chebyshev_degree = integer_in(f, "chebyshev_degree", a.chebyshev_degree, 1, 16);
   a.cycle = one_of(f, "cycle", a.cycle, kCycleShapes);
+  if (a.solver == SolverKind::PetscMg)
+    // PETSc's PCMG on our transfers: its own V-cycle of Chebyshev-Jacobi smoothing (as many steps
+    // as `smoothing`) and its coarse operators by MatPtAP. A setting it cannot honour is refused,
+    // not ignored.
+    for (const char* key : kKeysPetscMgCannotHonour)
+      if (f.has(key))
+        f.fail(key,
+               "left out with solver 'petsc-mg' (PETSc's PCMG runs its own V-cycle of "
+               "Chebyshev-Jacobi smoothing, `smoothing` steps, and its own Galerkin product; it "
+               "cannot honour this setting)");
   a.start = one_of(f, "start", a.start, kSolveStarts);
   a.start_history = integer_in(f, "start_history", a.start_history, 2, 16);
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
@@ -291,6 +301,8 @@ void drop_unused_multigrid_keys(nlohmann::json& analysis) {
       kSolverKinds.find(analysis.value("solver", kSolverKinds.name(SolverKind::Cholmod)));
   if (solver && !is_multigrid_solver(*solver))
     for (const char* key : kMultigridAnalysisKeys) analysis.erase(key);
+  if (solver == SolverKind::PetscMg)
+    for (const char* key : kKeysPetscMgCannotHonour) analysis.erase(key);
 }
 
 Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const std::string& name) {

@@ -72,6 +72,12 @@ inline constexpr const char* kMultigridAnalysisKeys[] = {"levels",
                                                          "chebyshev_degree",
                                                          "cycle"};
 
+/// The multigrid keys solver 'petsc-mg' cannot honour (PETSc's PCMG runs its own V-cycle of
+/// Chebyshev-Jacobi smoothing and its own Galerkin product): refused in a scene, dropped by
+/// drop_unused_multigrid_keys.
+inline constexpr const char* kKeysPetscMgCannotHonour[] = {"vcycles", "galerkin", "smoother",
+                                                           "chebyshev_degree", "cycle"};
+
 struct AnalysisSpec {
   AnalysisType type = AnalysisType::Static;
   Formulation formulation = Formulation::Corotational;
@@ -143,7 +149,8 @@ struct Scene {
 };
 
 /// Erases the multigrid keys from a scene's `analysis` JSON unless its solver (cholmod where
-/// unset) is a multigrid one, which would warn about them: for tools that switch a scene's solver.
+/// unset) is a multigrid one, which would warn about them, and those petsc-mg cannot honour (which
+/// it refuses) for petsc-mg: for tools that switch a scene's solver.
 void drop_unused_multigrid_keys(nlohmann::json& analysis);
 
 /// Parses and validates; relative paths resolve against `base_dir`. Throws InputError naming
