@@ -167,6 +167,16 @@ TEST(Compare, ACounterChangeIsFoundExactly) {
                                            runs_of({run_record(rng, 2, 5, 99)}), CompareOptions{});
   EXPECT_EQ(row(fewer, "linear_iterations").verdict, "decreased");
   EXPECT_FALSE(row(fewer, "linear_iterations").regression);
+  // The hierarchy's size per level, as a multigrid run records it.
+  json coarse = run_record(rng, 2, 5, 100), denser = coarse;
+  coarse["multigrid"]["levels"] = {{{"level", 0}, {"vertices", 2954}, {"blocks", 34858}},
+                                   {{"level", 1}, {"vertices", 831}, {"blocks", 25773}}};
+  denser["multigrid"]["levels"] = {{{"level", 0}, {"vertices", 2954}, {"blocks", 34858}},
+                                   {{"level", 1}, {"vertices", 831}, {"blocks", 25774}}};
+  const Comparison levels = compare_records(runs_of({coarse}), runs_of({denser}), CompareOptions{});
+  EXPECT_EQ(row(levels, "level 1 blocks").verdict, "increased");
+  EXPECT_EQ(row(levels, "level 0 blocks").verdict, "equal");
+  EXPECT_TRUE(levels.regressed());
 }
 
 TEST(Compare, DisplacementsBeyondTheToleranceAreARegression) {

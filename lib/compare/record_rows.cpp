@@ -122,6 +122,14 @@ void run_rows(const json& r, const std::string& file, RowSink& sink) {
   for (const char* counter : {"linear_iterations", "iterations", "steps", "inverted_max"})
     if (r.contains(counter))
       sink.value(name, scene, threads, counter, RowKind::Counter, r[counter], counter);
+  // The hierarchy's size: vertices and nonzero 3x3 blocks per level.
+  if (r.contains("multigrid") && r["multigrid"].is_object())
+    for (const json& level : r["multigrid"].value("levels", json::array()))
+      for (const char* what : {"vertices", "blocks"})
+        if (level.contains(what))
+          sink.value(name, scene, threads,
+                     "level " + std::to_string(level.value("level", 0)) + " " + what,
+                     RowKind::Counter, level[what], "multigrid.levels");
   if (r.value("analysis", json::object()).value("type", "") == "static" && r.contains("residual"))
     sink.value(name, scene, threads, "equilibrium residual", RowKind::Accuracy, r["residual"],
                "residual");
