@@ -92,6 +92,14 @@ double stratified_z(const std::vector<LogStratum>& strata, double shift) {
   return variance > 0 ? (t - mean) / std::sqrt(variance) : 0.0;
 }
 
+/// Two-sided p of U from its null distribution's CDF (U is symmetric about nm/2: the smaller
+/// tail, doubled).
+double p_from_cdf(const std::vector<double>& cdf, double u) {
+  const int top = static_cast<int>(cdf.size()) - 1;
+  const int k = static_cast<int>(std::floor(std::min(u, top - u) + 1e-9));
+  return std::min(1.0, 2 * cdf[std::clamp(k, 0, top)]);
+}
+
 }  // namespace
 
 ShiftTest stratified_shift_test(const std::vector<Stratum>& strata, double alpha) {
@@ -136,12 +144,7 @@ ShiftTest stratified_shift_test(const std::vector<Stratum>& strata, double alpha
 }
 
 double exact_u_p_value(double u, int n, int m) {
-  const std::vector<double> cdf = exact_cdf(n, m);
-  const int top = n * m;
-  // U is symmetric about nm/2: the smaller tail, doubled.
-  const double low = std::min(u, top - u);
-  const int k = static_cast<int>(std::floor(low + 1e-9));
-  return std::min(1.0, 2 * cdf[std::clamp(k, 0, top)]);
+  return p_from_cdf(exact_cdf(n, m), u);
 }
 
 ShiftTest shift_test(const std::vector<double>& base, const std::vector<double>& contender,
@@ -175,8 +178,8 @@ ShiftTest shift_test(const std::vector<double>& base, const std::vector<double>&
   int k = 0;
   if (exact_applies(n, m, tie_sum > 0)) {
     t.exact = true;
-    t.p_value = exact_u_p_value(t.u, n, m);
-    const std::vector<double> cdf = exact_cdf(n, m);
+    const std::vector<double> cdf = exact_cdf(n, m);  // once: the p and the interval's k
+    t.p_value = p_from_cdf(cdf, t.u);
     while (k < static_cast<int>(cdf.size()) && cdf[k] <= alpha / 2) ++k;  // P(U <= k-1) <= a/2
   } else {
     const double sd = std::sqrt(variance);

@@ -74,24 +74,24 @@ double total_volume(const TetMesh& mesh, const std::vector<Vec3>& x) {
 
 }  // namespace
 
-double TimedRun::median_ms(const std::string& phase, int warmup) const {
+std::vector<double> TimedRun::phase_ms(const std::string& phase, int warmup) const {
   std::vector<double> values;
   for (std::size_t s = warmup; s < step_ms.size(); ++s) {
     auto it = step_ms[s].find(phase);
     if (it != step_ms[s].end() && !step_ms[s].count("checked")) values.push_back(it->second);
   }
-  return median(values);
+  return values;
+}
+
+double TimedRun::median_ms(const std::string& phase, int warmup) const {
+  return median(phase_ms(phase, warmup));
 }
 
 nlohmann::json TimedRun::samples_ms(int warmup) const {
   nlohmann::json out = nlohmann::json::object();
   for (const char* phase : {"rotate", "assemble", "update", "solve", "step"}) {
     nlohmann::json values = nlohmann::json::array();
-    for (std::size_t s = warmup; s < step_ms.size(); ++s) {
-      auto it = step_ms[s].find(phase);
-      if (it != step_ms[s].end() && !step_ms[s].count("checked"))
-        values.push_back(rounded_sample_ms(it->second));
-    }
+    for (double ms : phase_ms(phase, warmup)) values.push_back(rounded_sample_ms(ms));
     if (!values.empty()) out[phase] = std::move(values);
   }
   return out;

@@ -54,6 +54,8 @@ struct TimedRun {
   std::map<std::string, Traffic> update_traffic;  ///< the update phase's parts
   double working_set_bytes = 0;
 
+  /// A phase's time in every step after warm-up but the oracle-checked ones.
+  std::vector<double> phase_ms(const std::string& phase, int warmup) const;
   /// Median of a phase over the steps after warm-up.
   double median_ms(const std::string& phase, int warmup) const;
   /// Per phase (rotate, assemble, update, solve, step), its time in every step after warm-up
