@@ -47,7 +47,8 @@ void add_iteration_counters(benchmark::State& state, const ExtractionStats& stat
 
 void BM_Rotation(benchmark::State& state, const std::string& method, bool warm) {
   const std::string model = "dragon";
-  auto extractor = make_rotation_extractor(kRotationMethods.at(method), paper_problem(model).mesh);
+  auto extractor =
+      make_rotation_extractor(rotation_method_named(method), paper_problem(model).mesh);
   Prepared prep = prepare(model, *extractor);
   std::vector<Mat3> rotations;
   for (auto _ : state) {

@@ -223,7 +223,7 @@ TEST(CliRun, StaticDefaultsConvergeForEveryRotationMethod) {
   // halved where its full steps do not converge) reaches the default tolerance, 1e-8, for every
   // method. (The lagged iteration ran out of iterations here for energy-newton; one increment
   // of full Newton steps diverges for qr.)
-  for (const std::string& method : kRotationMethods.names()) {
+  for (const std::string& method : rotation_method_names()) {
     if (method == "none") continue;
     SCOPED_TRACE(method);
     TempDir dir;

@@ -61,11 +61,11 @@ Measured measure(const std::string& name) {
   params.newton_max_iterations = 100;
   params.mueller_tolerance = 1e-15;
   params.mueller_iterations = 200;
-  auto method = make_rotation_extractor(kRotationMethods.at(name), p.mesh, params);
+  auto method = make_rotation_extractor(rotation_method_named(name), p.mesh, params);
   const Eigen::VectorXd u = large_displacement(p);
   std::vector<Mat3> r(p.mesh.tets.size(), Mat3::Identity());
   for (int pass = 0; pass < 3; ++pass) method->extract(p.positions(u), r);  // warm starts settle
-  const RotationTangent tangent(p, kRotationMethods.at(name));
+  const RotationTangent tangent(p, rotation_method_named(name));
   BrcMatrix j = p.stiffness;
   tangent.assemble(p.positions(u), r, j);
   const Eigen::MatrixXd analytic = Eigen::MatrixXd(to_eigen(j));
@@ -119,7 +119,7 @@ TEST_P(ConsistentTangent, EqualsFiniteDifferencesOfTheForce) {
     EXPECT_GT(m.ktilde_error, 1e-2)
         << name << ": the deformation no longer tests the rotation's terms";
   }
-  if (RotationTangent(p, kRotationMethods.at(name)).exact()) {
+  if (RotationTangent(p, rotation_method_named(name)).exact()) {
     // The differences' truncation (~1e-12) and rounding (~1e-10) bound what they can resolve.
     EXPECT_LT(m.fd_error, 1e-6) << name;
   } else {

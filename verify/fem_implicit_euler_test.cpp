@@ -119,13 +119,16 @@ TEST(ImplicitEuler, AProjectedStartIsNearerTheSolutionThanTheExtrapolation) {
     for (std::size_t n = 0; n < judge.given.size(); ++n) {
       EXPECT_LE(judge.given[n], judge.extrapolated[n] * (1 + 1e-8))
           << "history " << history << ", step " << n + 1;
-      if (history == 0)
+      if (history == 0) {
         EXPECT_NEAR(judge.given[n], judge.extrapolated[n], 1e-8 * judge.extrapolated[n]);
+      }
       given += judge.given[n];
       extrapolated += judge.extrapolated[n];
     }
     // the bar falls and swings: its starts are strictly nearer, not merely as near
-    if (history > 0) EXPECT_LT(given, 0.9 * extrapolated);
+    if (history > 0) {
+      EXPECT_LT(given, 0.9 * extrapolated);
+    }
   }
 }
 

@@ -40,7 +40,7 @@ test::Cantilever soft_cantilever() {
 SimulationResult static_solve(const std::string& method, bool newton, double tolerance,
                               int max_iterations) {
   FeProblem p = soft_cantilever().build(2);
-  auto rotation = make_rotation_extractor(kRotationMethods.at(method), p.mesh);
+  auto rotation = make_rotation_extractor(rotation_method_named(method), p.mesh);
   auto solver = make_cholmod_solver();
   return solve_static(p, *rotation, *solver, {true, 20, tolerance, max_iterations, newton});
 }
@@ -51,7 +51,7 @@ TEST_P(StaticNewton, ReachesTenToMinusTenInFewerThanTenIterationsPerIncrement) {
   // polar-smoothed's tangent leaves out the smoothing's coupling: Newton converges linearly there
   // (7.7 iterations per increment on average, 10 at the worst), so it gets 20.
   FeProblem p = soft_cantilever().build(2);
-  const bool exact = RotationTangent(p, kRotationMethods.at(GetParam())).exact();
+  const bool exact = RotationTangent(p, rotation_method_named(GetParam())).exact();
   const SimulationResult r = static_solve(GetParam(), true, 1e-10, exact ? 9 : 20);
   EXPECT_TRUE(r.converged) << r.message;
   EXPECT_LT(r.residual, 1e-10);
@@ -104,8 +104,8 @@ TEST(StaticNewton, TheWholeLoadInOneIncrementByBoundedSteps) {
 class RoughPolar : public RotationExtractor {
  public:
   explicit RoughPolar(const TetMesh& mesh)
-      : polar_(make_rotation_extractor(RotationMethod::Polar, mesh)) {}
-  RotationMethod method() const override { return RotationMethod::Polar; }
+      : RotationExtractor(RotationMethod::Polar),
+        polar_(make_rotation_extractor(RotationMethod::Polar, mesh)) {}
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override {
     polar_->extract(positions, rotations);
     const Mat3 turn =
@@ -174,7 +174,7 @@ EnergyTrace free_vibration(const std::string& method, bool newton) {
   test::Cantilever c = soft_cantilever();
   FeProblem p = c.build(1);
   const Eigen::VectorXd gravity = p.external_force;
-  auto rotation = make_rotation_extractor(kRotationMethods.at(method), p.mesh);
+  auto rotation = make_rotation_extractor(rotation_method_named(method), p.mesh);
   auto solver = make_cholmod_solver();
   const int release = 20;
   DynamicOptions options;

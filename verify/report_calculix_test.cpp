@@ -17,7 +17,7 @@ namespace corofem {
 namespace {
 
 Eigen::VectorXd corofem_static(FeProblem& p, const std::string& method, bool corotational) {
-  auto rotation = make_rotation_extractor(kRotationMethods.at(method), p.mesh);
+  auto rotation = make_rotation_extractor(rotation_method_named(method), p.mesh);
   auto solver = make_cholmod_solver();
   const SimulationResult r =
       solve_static(p, *rotation, *solver, {corotational, 20, 1e-10, 30, true});

@@ -25,7 +25,7 @@ TEST(Stability, EnergyMethodsStayStableOnEverySmallScene) {
     const json scene =
         stability_scene(id, SceneSize::Small, quick.stability_ramp(), quick.stability_hold());
     for (const char* method : {"energy-newton", "energy-exact"}) {
-      const json run = run_stability_case(scene, id, {kRotationMethods.at(method)},
+      const json run = run_stability_case(scene, id, {rotation_method_named(method)},
                                           quick.stability_ramp(), quick.stability_hold());
       SCOPED_TRACE(id + " " + method);
       ASSERT_TRUE(run["completed"].get<bool>()) << run.dump();

@@ -17,7 +17,7 @@ namespace {
 
 std::vector<std::string> corotated_methods() {
   std::vector<std::string> m;
-  for (const auto& n : kRotationMethods.names())
+  for (const auto& n : rotation_method_names())
     if (n != "none") m.push_back(n);
   return m;
 }
@@ -30,7 +30,7 @@ TEST_P(EachExtractor, RecoversRigidMotions) {
   params.mueller_iterations = 200;  // cold start from identity to an arbitrary rotation
   params.mueller_tolerance = 1e-15;
   params.newton_tolerance = 1e-14;
-  auto extractor = make_rotation_extractor(kRotationMethods.at(GetParam()), mesh, params);
+  auto extractor = make_rotation_extractor(rotation_method_named(GetParam()), mesh, params);
   std::mt19937 rng(13);
   std::normal_distribution<double> n;
   for (int trial = 0; trial < 5; ++trial) {
@@ -48,7 +48,7 @@ TEST_P(EachExtractor, RecoversRigidMotions) {
 
 TEST_P(EachExtractor, ReturnsProperRotationsUnderLargeDeformation) {
   TetMesh mesh = make_box_mesh({1, 1, 1}, {3, 3, 3});
-  auto extractor = make_rotation_extractor(kRotationMethods.at(GetParam()), mesh);
+  auto extractor = make_rotation_extractor(rotation_method_named(GetParam()), mesh);
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(-0.4, 0.4);
   std::vector<Vec3> positions;
@@ -100,7 +100,7 @@ TEST_P(EachExtractor, ReturnsProperRotationsUnderLargeDeformation) {
 TEST_P(EachExtractor, SolvesTheLargeLoadCantilever) {
   const test::Cantilever bar;
   FeProblem p = bar.build(1, 4.0);
-  auto extractor = make_rotation_extractor(kRotationMethods.at(GetParam()), p.mesh);
+  auto extractor = make_rotation_extractor(rotation_method_named(GetParam()), p.mesh);
   auto solver = make_cholmod_solver();
   const SimulationResult r = solve_static(p, *extractor, *solver, {true, 10, 1e-8, 500});
   EXPECT_TRUE(r.converged) << r.message;
@@ -129,7 +129,7 @@ TEST(Continuity, FlatteningThroughZeroVolume) {
   const Mat3 r = Eigen::AngleAxisd(0.7, Vec3(1, 1, 0).normalized()).toRotationMatrix();
   const int steps = 400;
   for (const auto& method : corotated_methods()) {
-    auto extractor = make_rotation_extractor(kRotationMethods.at(method), mesh);
+    auto extractor = make_rotation_extractor(rotation_method_named(method), mesh);
     std::vector<Mat3> rotations(1, Mat3::Identity()), previous;
     double largest = 0;
     for (int k = 0; k <= steps; ++k) {

@@ -112,9 +112,9 @@ TEST_F(ThreadsTest, RotationsAssemblyAndForcesAreTheOneThreadBits) {
     const std::vector<Vec3> x = deformed(p.mesh, 3);
     Eigen::VectorXd u(p.num_dofs());
     for (int v = 0; v < p.mesh.num_vertices(); ++v) u.segment<3>(3 * v) = x[v] - p.mesh.rest[v];
-    for (const std::string& method : kRotationMethods.names()) {
+    for (const std::string& method : rotation_method_names()) {
       std::vector<Mat3> r(p.mesh.tets.size(), Mat3::Identity());
-      make_rotation_extractor(kRotationMethods.at(method), p.mesh)->extract(x, r);
+      make_rotation_extractor(rotation_method_named(method), p.mesh)->extract(x, r);
       if (n == 1) rotations_one[method] = r;
       const std::vector<Mat3>& one = rotations_one[method];
       for (std::size_t e = 0; e < r.size(); ++e)

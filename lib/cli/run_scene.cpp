@@ -86,7 +86,7 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
       {"type", kAnalysisTypes.name(a.type)},
       {"formulation", kFormulations.name(a.formulation)},
       {"integrator", kIntegrators.name(a.integrator)},
-      {"rotation", kRotationMethods.name(corotational ? a.rotation : RotationMethod::None)},
+      {"rotation", (corotational ? a.rotation : RotationMethod::None).name()},
       {"rotation_params", to_json(a.rotation_params)},
       {"solver", newton_solver_name(newton_tangent(a.type, a.integrator, a.formulation, a.solver),
                                     a.solver, solver->name())}};

@@ -53,32 +53,11 @@ double asymmetry(const Mat12& j) {
   return n > 0 ? (j - j.transpose()).norm() / n : 0.0;
 }
 
-/// Which closed form differentiates a method's rotation.
-static RotationTangent::Family tangent_family(RotationMethod method) {
-  using M = RotationMethod;
-  switch (method) {
-    case M::Polar:
-    case M::PolarFixed:
-    case M::Mueller2016:
-    case M::PolarSmoothed:
-      return RotationTangent::Family::PolarOfF;
-    case M::EnergyNewton:
-    case M::EnergyExact:
-      return RotationTangent::Family::MomentFactor;
-    case M::Qr:
-      return RotationTangent::Family::GramSchmidt;
-    case M::None:
-      return RotationTangent::Family::Identity;
-  }
-  throw std::logic_error("tangent_family: unhandled method");
-}
-
 RotationTangent::RotationTangent(const FeProblem& problem, RotationMethod method)
-    : problem_(problem), family_(tangent_family(method)) {
+    : problem_(problem), family_(method.traits().tangent), exact_(method.traits().tangent_exact) {
   const TetMesh& mesh = problem.mesh;
-  if (family_ == Family::PolarOfF) {
+  if (family_ == TangentFamily::PolarOfF) {
     model_ = "rotation factor of F";
-    exact_ = method != RotationMethod::PolarSmoothed;
     h_.resize(mesh.tets.size());
     for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
       // F = sum_b (x_b - x_0) B.row(b-1), B = Dm^{-1}.
@@ -86,13 +65,13 @@ RotationTangent::RotationTangent(const FeProblem& problem, RotationMethod method
       h_[e][0] = -(b.row(0) + b.row(1) + b.row(2)).transpose();
       for (int v = 1; v < 4; ++v) h_[e][v] = b.row(v - 1).transpose();
     }
-  } else if (family_ == Family::MomentFactor) {
+  } else if (family_ == TangentFamily::MomentFactor) {
     model_ = "rotation factor of S = F C (eq. 3)";
     // S = sum_v p_v h_v^T: dS/dp_v = h_v, the moment arms (element_quadrature.hpp).
     const std::vector<MomentArms> rest = rest_moment_arms(mesh);
     h_.resize(mesh.tets.size());
     for (std::size_t e = 0; e < mesh.tets.size(); ++e) h_[e] = rest[e].h;
-  } else if (family_ == Family::GramSchmidt) {
+  } else if (family_ == TangentFamily::GramSchmidt) {
     model_ = "Gram-Schmidt frame of edges 0-1, 0-2";
     for (const Tet& t : mesh.tets)
       rest_frame_.push_back(edge_frame(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]]));
@@ -105,10 +84,10 @@ void RotationTangent::rotation_jacobian(int e, const std::vector<Vec3>& position
                                         RotationJacobian& dq) const {
   const Tet& t = problem_.mesh.tets[e];
   switch (family_) {
-    case Family::Identity:
+    case TangentFamily::Identity:
       for (Mat3& d : dq) d.setZero();
       return;
-    case Family::GramSchmidt: {
+    case TangentFamily::GramSchmidt: {
       const Vec3 d1 = positions[t[1]] - positions[t[0]], d2 = positions[t[2]] - positions[t[0]];
       for (int a = 0; a < 4; ++a)
         for (int c = 0; c < 3; ++c) {
@@ -118,8 +97,8 @@ void RotationTangent::rotation_jacobian(int e, const std::vector<Vec3>& position
         }
       return;
     }
-    case Family::PolarOfF:
-    case Family::MomentFactor: {
+    case TangentFamily::PolarOfF:
+    case TangentFamily::MomentFactor: {
       Mat3 l = Mat3::Zero();  // L = sum_v p_v h_v^T (F, or S: both linear in the positions)
       for (int v = 0; v < 4; ++v) l.noalias() += positions[t[v]] * h_[e][v].transpose();
       for (int a = 0; a < 4; ++a)

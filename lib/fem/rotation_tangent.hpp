@@ -25,13 +25,12 @@ using RotationJacobian = std::array<Mat3, 12>;
 /// derivative does not exist; it returns zero there.
 Mat3 rotation_factor_derivative(const Mat3& q, const Mat3& l, const Mat3& dl);
 
-/// Whether the corotated force with this method's rotations is the gradient of elastic_energy:
-/// with Q the rotation factor of F itself (polar; polar-fixed, its reflection moved into the
-/// stretch) the rotation's variation does no work (an asymmetry of 1e-16 measured); the identity
-/// trivially. Mueller2016 and polar-smoothed only approach it.
-constexpr bool force_has_potential(RotationMethod method) {
-  return method == RotationMethod::Polar || method == RotationMethod::PolarFixed ||
-         method == RotationMethod::None;
+/// Whether the corotated force with this method's rotations is the gradient of elastic_energy
+/// (its traits): with Q the rotation factor of F itself (polar; polar-fixed, its reflection moved
+/// into the stretch) the rotation's variation does no work (an asymmetry of 1e-16 measured); the
+/// identity trivially. Mueller2016 and polar-smoothed only approach it.
+inline bool force_has_potential(RotationMethod method) {
+  return method.traits().force_has_potential;
 }
 
 /// |J - J^T|_F / |J|_F of an element force Jacobian: 0 for a conservative force.
@@ -39,15 +38,13 @@ double asymmetry(const Mat12& j);
 
 class RotationTangent {
  public:
-  enum class Family { PolarOfF, MomentFactor, GramSchmidt, Identity };
-
   /// For the rotation `method` on problem's mesh.
   RotationTangent(const FeProblem& problem, RotationMethod method);
 
-  /// Whether dQ is the derivative of the method's own rotation. polar-smoothed averages over
-  /// neighbours, a coupling left out here: its tangent is the one of polar (Newton converges
-  /// linearly, not quadratically). mueller2016 and energy-newton iterate to polar(F) and the
-  /// energy minimizer: their tangent is the one of that limit.
+  /// Whether dQ is the derivative of the method's own rotation (its traits' tangent_exact).
+  /// polar-smoothed averages over neighbours, a coupling left out here: its tangent is the one of
+  /// polar (Newton converges linearly, not quadratically). mueller2016 and energy-newton iterate to
+  /// polar(F) and the energy minimizer: their tangent is the one of that limit.
   bool exact() const { return exact_; }
   /// "polar of F", "rotation factor of S = F C", "Gram-Schmidt frame", "identity".
   const std::string& model() const { return model_; }
@@ -64,7 +61,7 @@ class RotationTangent {
 
  private:
   const FeProblem& problem_;
-  Family family_;
+  TangentFamily family_;
   bool exact_ = true;
   std::string model_;
   /// dL/dx_{a,c} = e_c h_a^T: h_a per element and vertex (PolarOfF: shape gradients; MomentFactor:

@@ -7,7 +7,7 @@ namespace corofem {
 nlohmann::json to_json(const AnalysisVariant& v) {
   nlohmann::json j = nlohmann::json::object();
   if (v.solver) j["solver"] = kSolverKinds.name(*v.solver);
-  if (v.rotation) j["rotation"] = kRotationMethods.name(*v.rotation);
+  if (v.rotation) j["rotation"] = v.rotation->name();
   if (v.formulation) j["formulation"] = kFormulations.name(*v.formulation);
   if (v.galerkin) j["galerkin"] = kGalerkinMethods.name(*v.galerkin);
   if (v.hierarchy) j["hierarchy"] = kHierarchyKinds.name(*v.hierarchy);

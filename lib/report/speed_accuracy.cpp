@@ -207,11 +207,9 @@ json scene_sweeps(const ReportConfig& config, const std::string& model,
   for (const AnalysisVariant& setting : solver_settings(config, levels))
     s.point("solver", setting, against(u_ref));
   s.point("solver", {.solver = SolverKind::Cholmod}, against(u_ref), true);
-  for (const auto& [method, name] : kRotationMethods.entries) {
-    if (method == RotationMethod::None) continue;
-    if (config.mode == ReportConfig::Mode::Smoke && method != RotationMethod::EnergyNewton &&
-        method != RotationMethod::Polar)
-      continue;
+  for (RotationMethod method : rotation_methods()) {
+    if (!method.traits().compared) continue;
+    if (config.mode == ReportConfig::Mode::Smoke && !method.traits().in_smoke) continue;
     s.point("rotation", {.rotation = method}, against(u_exact));
   }
   s.resolution_sweep();

@@ -126,7 +126,7 @@ json pose_record(const StabilityMonitor& monitor, const TimedRun& run, const std
   }
   for (const auto& t : surface.triangles) triangles.push_back(t);
   return {{"scene", scene_id},
-          {"method", kRotationMethods.name(spec.method)},
+          {"method", spec.method.name()},
           {"integrator", kIntegrators.name(spec.integrator)},
           {"status", status},
           {"rest_points", rest},
@@ -145,7 +145,7 @@ double FlutterThresholds::blowup_displacement(const std::vector<Vec3>& rest) con
 json run_stability_case(const json& scene, const std::string& scene_id, const StabilityRun& spec,
                         int ramp_steps, int hold_steps, json* pose,
                         const std::filesystem::path& vtu_dir) {
-  const std::string method = kRotationMethods.name(spec.method);
+  const std::string method = spec.method.name();
   const std::string integrator = kIntegrators.name(spec.integrator);
   json s = *time_step_scaled(scene, 1, spec.refinement);  // always whole
   s["analysis"]["rotation"] = method;
@@ -385,10 +385,9 @@ MethodRuns run_method_on_scene(const json& scene, const std::string& id, Rotatio
       *plan.progress << plan.progress_prefix << ", " << integrator << ", dt 0.01/"
                      << spec.refinement << std::endl;
     json pose;
-    const auto vtu_dir =
-        plan.vtu_dir.empty() || !keep_pose
-            ? std::filesystem::path()
-            : plan.vtu_dir / (std::string(kRotationMethods.name(method)) + "-" + integrator);
+    const auto vtu_dir = plan.vtu_dir.empty() || !keep_pose
+                             ? std::filesystem::path()
+                             : plan.vtu_dir / (method.name() + "-" + integrator);
     json record = run_stability_case(scene, id, spec, plan.ramp_steps, plan.hold_steps,
                                      keep_pose ? &pose : nullptr, vtu_dir);
     if (!pose.is_null()) out.poses.push_back(std::move(pose));
@@ -431,9 +430,9 @@ std::vector<std::vector<MethodRuns>> run_groups(const ReportConfig& config,
   std::vector<Group> plan_of;
   std::vector<std::vector<MethodRuns>> groups(scenes.size());
   for (std::size_t k = 0; k < scenes.size(); ++k)
-    for (const auto& entry : kRotationMethods.entries)
-      if (entry.first != RotationMethod::None) {
-        plan_of.push_back({k, groups[k].size(), entry.first});
+    for (RotationMethod method : rotation_methods())
+      if (method.traits().compared) {
+        plan_of.push_back({k, groups[k].size(), method});
         groups[k].emplace_back();
       }
   const int total = static_cast<int>(plan_of.size());
@@ -451,7 +450,7 @@ std::vector<std::vector<MethodRuns>> run_groups(const ReportConfig& config,
     plan.smaller_step_always = config.mode == ReportConfig::Mode::Full;
     plan.smaller_step = config.mode != ReportConfig::Mode::Smoke;
     plan.refined_reference = config.mode != ReportConfig::Mode::Smoke;
-    plan.progress_prefix = progress.begin(id + ": " + kRotationMethods.name(method));
+    plan.progress_prefix = progress.begin(id + ": " + method.name());
     if (config.progress) {
       lines.emplace(*config.progress, line_lock);
       plan.progress = &*lines;

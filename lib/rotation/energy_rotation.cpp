@@ -180,7 +180,10 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
 }
 
 EnergyNewtonExtractor::EnergyNewtonExtractor(const TetMesh& mesh, const RotationParams& params)
-    : mesh_(mesh), params_(params), rest_(rest_moment_arms(mesh)) {}
+    : RotationExtractor(RotationMethod::EnergyNewton),
+      mesh_(mesh),
+      params_(params),
+      rest_(rest_moment_arms(mesh)) {}
 
 void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
                                     std::vector<Mat3>& rotations) {
@@ -204,7 +207,7 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
 }
 
 EnergyExactExtractor::EnergyExactExtractor(const TetMesh& mesh)
-    : mesh_(mesh), rest_(rest_moment_arms(mesh)) {}
+    : RotationExtractor(RotationMethod::EnergyExact), mesh_(mesh), rest_(rest_moment_arms(mesh)) {}
 
 void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
                                    std::vector<Mat3>& rotations) {
@@ -218,6 +221,20 @@ void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
     rotations[e] = energy_exact_rotation(s);
   }
   stats_.inverted = inverted;
+}
+
+RotationMethodTraits energy_newton_traits() {
+  return {.name = "energy-newton",
+          .make = extractor_maker<EnergyNewtonExtractor>(),
+          .tangent = TangentFamily::MomentFactor,
+          .looser = {{"newton_tolerance", {1e-6, 1e-3}}},
+          .in_smoke = true};
+}
+
+RotationMethodTraits energy_exact_traits() {
+  return {.name = "energy-exact",
+          .make = extractor_maker<EnergyExactExtractor>(),
+          .tangent = TangentFamily::MomentFactor};
 }
 
 }  // namespace corofem

@@ -122,7 +122,6 @@ Mat3 energy_exact_rotation(const Mat3& s);
 class EnergyNewtonExtractor : public RotationExtractor {
  public:
   EnergyNewtonExtractor(const TetMesh& mesh, const RotationParams& params);
-  RotationMethod method() const override { return RotationMethod::EnergyNewton; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
@@ -134,12 +133,15 @@ class EnergyNewtonExtractor : public RotationExtractor {
 class EnergyExactExtractor : public RotationExtractor {
  public:
   explicit EnergyExactExtractor(const TetMesh& mesh);
-  RotationMethod method() const override { return RotationMethod::EnergyExact; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
   const TetMesh& mesh_;
   std::vector<MomentArms> rest_;
 };
+
+/// The registration of these methods (rotation/rotation_method.hpp).
+RotationMethodTraits energy_newton_traits();
+RotationMethodTraits energy_exact_traits();
 
 }  // namespace corofem

@@ -13,7 +13,8 @@ Mat3 edge_frame(const Vec3& x0, const Vec3& x1, const Vec3& x2) {
   return g;
 }
 
-GramSchmidtFrameExtractor::GramSchmidtFrameExtractor(const TetMesh& mesh) : mesh_(mesh) {
+GramSchmidtFrameExtractor::GramSchmidtFrameExtractor(const TetMesh& mesh)
+    : RotationExtractor(RotationMethod::Qr), mesh_(mesh) {
   rest_frame_.reserve(mesh.tets.size());
   for (const Tet& t : mesh.tets)
     rest_frame_.push_back(edge_frame(mesh.rest[t[0]], mesh.rest[t[1]], mesh.rest[t[2]]));
@@ -34,6 +35,12 @@ void GramSchmidtFrameExtractor::extract(const std::vector<Vec3>& positions,
     rotations[e] = g * rest_frame_[e].transpose();
   }
   stats_.fallbacks = fallbacks;
+}
+
+RotationMethodTraits qr_traits() {
+  return {.name = "qr",
+          .make = extractor_maker<GramSchmidtFrameExtractor>(),
+          .tangent = TangentFamily::GramSchmidt};
 }
 
 }  // namespace corofem

@@ -14,12 +14,14 @@ Mat3 edge_frame(const Vec3& x0, const Vec3& x1, const Vec3& x2);
 class GramSchmidtFrameExtractor : public RotationExtractor {
  public:
   explicit GramSchmidtFrameExtractor(const TetMesh& mesh);
-  RotationMethod method() const override { return RotationMethod::Qr; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
   const TetMesh& mesh_;
   std::vector<Mat3> rest_frame_;
 };
+
+/// The registration of this method (rotation/rotation_method.hpp).
+RotationMethodTraits qr_traits();
 
 }  // namespace corofem

@@ -29,7 +29,10 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, d
 }
 
 Mueller2016Extractor::Mueller2016Extractor(const TetMesh& mesh, const RotationParams& params)
-    : mesh_(mesh), params_(params), rest_edge_inverse_(rest_edge_inverses(mesh)) {}
+    : RotationExtractor(RotationMethod::Mueller2016),
+      mesh_(mesh),
+      params_(params),
+      rest_edge_inverse_(rest_edge_inverses(mesh)) {}
 
 void Mueller2016Extractor::extract(const std::vector<Vec3>& positions,
                                    std::vector<Mat3>& rotations) {
@@ -42,6 +45,13 @@ void Mueller2016Extractor::extract(const std::vector<Vec3>& positions,
         params_.mueller_iterations, params_.mueller_tolerance, iterations);
     stats_.iterations[e] = static_cast<std::uint8_t>(iterations);
   }
+}
+
+RotationMethodTraits mueller2016_traits() {
+  return {.name = "mueller2016",
+          .make = extractor_maker<Mueller2016Extractor>(),
+          .tangent = TangentFamily::PolarOfF,  // that of the limit it iterates to
+          .looser = {{"mueller_iterations", {3, 1}}}};
 }
 
 }  // namespace corofem

@@ -14,7 +14,6 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, d
 class Mueller2016Extractor : public RotationExtractor {
  public:
   Mueller2016Extractor(const TetMesh& mesh, const RotationParams& params);
-  RotationMethod method() const override { return RotationMethod::Mueller2016; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
@@ -22,5 +21,8 @@ class Mueller2016Extractor : public RotationExtractor {
   RotationParams params_;
   std::vector<Mat3> rest_edge_inverse_;
 };
+
+/// The registration of this method (rotation/rotation_method.hpp).
+RotationMethodTraits mueller2016_traits();
 
 }  // namespace corofem

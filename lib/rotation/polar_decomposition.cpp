@@ -37,7 +37,9 @@ Mat3 polar_rotation(const Mat3& f, const Mat3& fallback, int* iterations) {
 }
 
 PolarExtractor::PolarExtractor(const TetMesh& mesh)
-    : mesh_(mesh), rest_edge_inverse_(rest_edge_inverses(mesh)) {}
+    : RotationExtractor(RotationMethod::Polar),
+      mesh_(mesh),
+      rest_edge_inverse_(rest_edge_inverses(mesh)) {}
 
 void PolarExtractor::extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) {
   stats_.iterations.resize(mesh_.tets.size());
@@ -57,6 +59,24 @@ void PolarExtractor::extract(const std::vector<Vec3>& positions, std::vector<Mat
 void IdentityExtractor::extract(const std::vector<Vec3>&, std::vector<Mat3>& rotations) {
   stats_.iterations.assign(rotations.size(), 0);
   for (Mat3& q : rotations) q.setIdentity();
+}
+
+RotationMethodTraits polar_traits() {
+  return {.name = "polar",
+          .make = extractor_maker<PolarExtractor>(),
+          .tangent = TangentFamily::PolarOfF,
+          .force_has_potential = true,
+          .in_smoke = true};
+}
+
+RotationMethodTraits identity_traits() {
+  return {.name = "none",
+          .make = [](const TetMesh&, const RotationParams&) -> std::unique_ptr<RotationExtractor> {
+            return std::make_unique<IdentityExtractor>();
+          },
+          .tangent = TangentFamily::Identity,
+          .force_has_potential = true,
+          .compared = false};
 }
 
 }  // namespace corofem

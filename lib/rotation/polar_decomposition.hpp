@@ -15,7 +15,6 @@ Mat3 polar_rotation(const Mat3& f, const Mat3& fallback, int* iterations = nullp
 class PolarExtractor : public RotationExtractor {
  public:
   explicit PolarExtractor(const TetMesh& mesh);
-  RotationMethod method() const override { return RotationMethod::Polar; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
@@ -26,8 +25,12 @@ class PolarExtractor : public RotationExtractor {
 /// Small strain: Q = I for every element.
 class IdentityExtractor : public RotationExtractor {
  public:
-  RotationMethod method() const override { return RotationMethod::None; }
+  IdentityExtractor() : RotationExtractor(RotationMethod::None) {}
   void extract(const std::vector<Vec3>&, std::vector<Mat3>& rotations) override;
 };
+
+/// The registration of these methods (rotation/rotation_method.hpp).
+RotationMethodTraits polar_traits();
+RotationMethodTraits identity_traits();
 
 }  // namespace corofem

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "element/element_rest.hpp"
@@ -33,10 +34,11 @@ struct ExtractionStats {
 
 class RotationExtractor {
  public:
+  explicit RotationExtractor(RotationMethod method) : method_(method) {}
   virtual ~RotationExtractor() = default;
-  virtual RotationMethod method() const = 0;
+  RotationMethod method() const { return method_; }
   /// The method's scene name.
-  std::string name() const { return kRotationMethods.name(method()); }
+  const std::string& name() const { return method_.name(); }
   /// Rotations Qhat_e taking each rest element to its deformed shape at `positions`.
   /// On entry `rotations` holds the previous step's values (warm start; identity at first).
   virtual void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) = 0;
@@ -44,12 +46,27 @@ class RotationExtractor {
 
  protected:
   ExtractionStats stats_;
+
+ private:
+  RotationMethod method_;
 };
 
 /// Builds the extractor of `method` for `mesh` (rest data precomputed once; the mesh must outlive
-/// it).
+/// it): the method's registered make.
 std::unique_ptr<RotationExtractor> make_rotation_extractor(RotationMethod method,
                                                            const TetMesh& mesh,
                                                            const RotationParams& params = {});
+
+/// A traits record's make for an extractor built from (mesh, params) or from (mesh) alone.
+template <class Extractor>
+auto extractor_maker() {
+  return
+      [](const TetMesh& mesh, const RotationParams& params) -> std::unique_ptr<RotationExtractor> {
+        if constexpr (std::is_constructible_v<Extractor, const TetMesh&, const RotationParams&>)
+          return std::make_unique<Extractor>(mesh, params);
+        else
+          return std::make_unique<Extractor>(mesh);
+      };
+}
 
 }  // namespace corofem

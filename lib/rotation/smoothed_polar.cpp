@@ -8,7 +8,8 @@
 namespace corofem {
 
 SmoothedPolarExtractor::SmoothedPolarExtractor(const TetMesh& mesh, const RotationParams& params)
-    : mesh_(mesh),
+    : RotationExtractor(RotationMethod::PolarSmoothed),
+      mesh_(mesh),
       params_(params),
       rest_edge_inverse_(rest_edge_inverses(mesh)),
       rings_(element_one_rings(mesh)) {
@@ -43,6 +44,14 @@ void SmoothedPolarExtractor::extract(const std::vector<Vec3>& positions,
   }
 #pragma omp parallel for schedule(static) num_threads(threads_for(nt))
   for (int e = 0; e < nt; ++e) rotations[e] = Eigen::Quaterniond(q[e]).toRotationMatrix();
+}
+
+RotationMethodTraits polar_smoothed_traits() {
+  return {.name = "polar-smoothed",
+          .make = extractor_maker<SmoothedPolarExtractor>(),
+          .tangent = TangentFamily::PolarOfF,
+          .tangent_exact = false,  // the neighbours' coupling is left out
+          .halo_rings = [](const RotationParams& params) { return params.smoothing_passes; }};
 }
 
 }  // namespace corofem

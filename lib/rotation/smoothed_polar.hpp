@@ -13,7 +13,6 @@ namespace corofem {
 class SmoothedPolarExtractor : public RotationExtractor {
  public:
   SmoothedPolarExtractor(const TetMesh& mesh, const RotationParams& params);
-  RotationMethod method() const override { return RotationMethod::PolarSmoothed; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
@@ -23,5 +22,8 @@ class SmoothedPolarExtractor : public RotationExtractor {
   std::vector<double> volume_;
   ElementRings rings_;
 };
+
+/// The registration of this method (rotation/rotation_method.hpp).
+RotationMethodTraits polar_smoothed_traits();
 
 }  // namespace corofem

@@ -15,7 +15,9 @@ std::vector<Mat3> rest_edge_inverses(const TetMesh& mesh) {
 }
 
 InversionAwareSvdExtractor::InversionAwareSvdExtractor(const TetMesh& mesh)
-    : mesh_(mesh), rest_edge_inverse_(rest_edge_inverses(mesh)) {}
+    : RotationExtractor(RotationMethod::PolarFixed),
+      mesh_(mesh),
+      rest_edge_inverse_(rest_edge_inverses(mesh)) {}
 
 void InversionAwareSvdExtractor::extract(const std::vector<Vec3>& positions,
                                          std::vector<Mat3>& rotations) {
@@ -24,6 +26,13 @@ void InversionAwareSvdExtractor::extract(const std::vector<Vec3>& positions,
   for (int e = 0; e < mesh_.num_tets(); ++e)
     rotations[e] =
         rotation_factor(deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]));
+}
+
+RotationMethodTraits polar_fixed_traits() {
+  return {.name = "polar-fixed",
+          .make = extractor_maker<InversionAwareSvdExtractor>(),
+          .tangent = TangentFamily::PolarOfF,
+          .force_has_potential = true};  // its reflection moved into the stretch
 }
 
 }  // namespace corofem

@@ -9,7 +9,6 @@ namespace corofem {
 class InversionAwareSvdExtractor : public RotationExtractor {
  public:
   explicit InversionAwareSvdExtractor(const TetMesh& mesh);
-  RotationMethod method() const override { return RotationMethod::PolarFixed; }
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
@@ -19,5 +18,8 @@ class InversionAwareSvdExtractor : public RotationExtractor {
 
 /// Dm^{-1} of every element (shared by the extractors that need F).
 std::vector<Mat3> rest_edge_inverses(const TetMesh& mesh);
+
+/// The registration of this method (rotation/rotation_method.hpp).
+RotationMethodTraits polar_fixed_traits();
 
 }  // namespace corofem

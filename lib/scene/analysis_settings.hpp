@@ -1,6 +1,6 @@
 #pragma once
 // The scene's `analysis` choices that are not a numerical component's own (those keep their
-// tables beside the component: kRotationMethods, kGalerkinMethods, kHierarchyKinds,
+// tables beside the component: the rotation registry, kGalerkinMethods, kHierarchyKinds,
 // kSmootherChoices): one enum and one name table each, used to parse and to write.
 #include "core/name_table.hpp"
 #include "solver/petsc_solver.hpp"

@@ -197,7 +197,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
       one_of(f, "integrator",
              a.type == AnalysisType::Static ? Integrator::Newton : Integrator::LinearImplicit,
              kIntegrators);
-  a.rotation = one_of(f, "rotation", a.rotation, kRotationMethods);
+  a.rotation =
+      *find_rotation_method(one_of(f, "rotation", a.rotation.name(), rotation_method_names()));
   a.solver = one_of(f, "solver", a.solver, kSolverKinds);
   a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
   a.hierarchy = one_of(f, "hierarchy", a.hierarchy, kHierarchyKinds);

@@ -126,10 +126,9 @@ RankShare SceneSimulation::share_out_body(int ranks) {
   }
   broadcast_status(status, message);
   if (failure) std::rethrow_exception(failure);
-  // polar-smoothed averages over a ring of tets per pass: a part holds as many more rings.
-  const int rings = corotational() && a.rotation == RotationMethod::PolarSmoothed
-                        ? a.rotation_params.smoothing_passes
-                        : 0;
+  // An averaging method (polar-smoothed: a ring of tets per pass) needs that many more rings.
+  const RotationMethodTraits& method = a.rotation.traits();
+  const int rings = corotational() && method.halo_rings ? method.halo_rings(a.rotation_params) : 0;
   std::vector<int> scene_vertex(new_index.size());
   for (std::size_t v = 0; v < new_index.size(); ++v)
     scene_vertex[new_index[v]] = static_cast<int>(v);

@@ -97,28 +97,31 @@ TuneAxis resolution_axis(const Scene& scene, const json& raw, const TuneAxesOpti
 /// increments 256-fold and ran 6 minutes without converging.
 TuneAxis rotation_axis(bool stopped_earlier) {
   TuneAxis axis{.name = "rotation"};
-  axis.values.push_back({.label = kRotationMethods.name(RotationMethod::EnergyExact),
-                         .patch = {{"analysis", {{"rotation", "energy-exact"}}}},
-                         .family = "energy-exact"});
-  for (const auto& [method, name] : kRotationMethods.entries)
-    if (method != RotationMethod::None && method != RotationMethod::EnergyExact)
-      axis.values.push_back(
-          {.label = name, .patch = {{"analysis", {{"rotation", name}}}}, .family = name});
+  const std::string& exact = RotationMethod::EnergyExact.name();
+  axis.values.push_back(
+      {.label = exact, .patch = {{"analysis", {{"rotation", exact}}}}, .family = exact});
+  for (RotationMethod method : rotation_methods())
+    if (method.traits().compared && method != RotationMethod::EnergyExact)
+      axis.values.push_back({.label = method.name(),
+                             .patch = {{"analysis", {{"rotation", method.name()}}}},
+                             .family = method.name()});
   if (!stopped_earlier) return axis;
-  const std::string newton = kRotationMethods.name(RotationMethod::EnergyNewton);
-  for (double tolerance : {1e-6, 1e-3})
-    axis.values.push_back({.label = newton + " newton_tolerance=" + general_number(tolerance),
-                           .patch = {{"analysis",
-                                      {{"rotation", newton},
-                                       {"rotation_params", {{"newton_tolerance", tolerance}}}}}},
-                           .family = newton});
-  const std::string mueller = kRotationMethods.name(RotationMethod::Mueller2016);
-  for (int iterations : {3, 1})
-    axis.values.push_back({.label = mueller + " mueller_iterations=" + std::to_string(iterations),
-                           .patch = {{"analysis",
-                                      {{"rotation", mueller},
-                                       {"rotation_params", {{"mueller_iterations", iterations}}}}}},
-                           .family = mueller});
+  for (RotationMethod method : rotation_methods()) {
+    if (!method.traits().compared) continue;
+    for (const LooserSetting& setting : method.traits().looser)
+      for (double value : setting.values) {
+        // An integral value stays an integer: the scene reads iteration counts as integers.
+        const json number = value == std::trunc(value) && std::abs(value) < 1e9
+                                ? json(static_cast<long long>(value))
+                                : json(value);
+        axis.values.push_back(
+            {.label = method.name() + " " + setting.param + "=" + general_number(value),
+             .patch = {{"analysis",
+                        {{"rotation", method.name()},
+                         {"rotation_params", {{setting.param, number}}}}}},
+             .family = method.name()});
+      }
+  }
   return axis;
 }
 
