@@ -17,6 +17,7 @@
 #include "fem/dirichlet.hpp"
 #include "galerkin_oracle.hpp"
 #include "io/solver_record.hpp"
+#include "linalg/gauss_seidel.hpp"
 #include "linalg/preconditioned_cg.hpp"
 #include "mesh/box_mesh.hpp"
 #include "multigrid/multigrid_solver.hpp"
@@ -260,7 +261,7 @@ void BM_UpdateSolveOverlap(benchmark::State& state, const std::string& model) {
   MultigridParams params;
   params.hierarchy.levels = hierarchy_levels(model, HierarchyKind::Meshes);
   params.tolerance = 1e-4;
-  params.smoother = SmootherOrdering::Hybrid;
+  params.smoother = "hybrid";
   std::vector<std::unique_ptr<MultigridSolver>> solvers;
   for (const bool overlap : {false, true}) {
     params.overlap_factorization = overlap;
@@ -426,7 +427,7 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
   for (const SmootherOrdering ordering :
        {SmootherOrdering::Multicolour, SmootherOrdering::Domains, SmootherOrdering::Hybrid}) {
     MultigridParams p = params;
-    p.smoother = ordering;
+    p.smoother = kSmootherOrderings.name(ordering);
     variants.emplace_back(kSmootherOrderings.name(ordering), p);
   }
   MultigridParams w_cycle = params, v22 = params;
@@ -520,7 +521,7 @@ void BM_NestedTwoGrid(benchmark::State& state) {
   hierarchy.levels = 2;
   MultigridParams params;
   params.tolerance = 1e-4;
-  params.smoother = SmootherOrdering::Sequential;  // natural order, as the script's
+  params.smoother = "sequential";  // natural order, as the script's
   std::vector<std::pair<std::string, MultigridParams>> smoothers;
   for (int sweeps : {1, 2, 3}) {
     MultigridParams p = params;
@@ -529,8 +530,8 @@ void BM_NestedTwoGrid(benchmark::State& state) {
   }
   for (int degree : {2, 3, 4}) {
     MultigridParams p = params;
-    p.smoother_kind = SmootherKind::Chebyshev;
-    p.chebyshev_degree = degree;
+    p.smoother = "chebyshev";
+    p.smoother_settings.chebyshev_degree = degree;
     smoothers.emplace_back("chebyshev" + std::to_string(degree), p);
   }
   const BuiltHierarchy built = build_hierarchy(fine, fixed_vertices, hierarchy, {coarse});

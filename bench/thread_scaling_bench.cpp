@@ -30,7 +30,7 @@ void BM_ThreadScaling(benchmark::State& state, const std::string& model) {
   const PaperSystem& system = paper_system(model);
   MultigridParams params;
   params.hierarchy.levels = hierarchy_levels(model, HierarchyKind::Meshes);
-  params.smoother = SmootherOrdering::Domains;  // the default ordering
+  params.smoother = "domains";  // exact Gauss-Seidel inside the domains
   MultigridSolver solver(system.matrix, paper_transfers(model, HierarchyKind::Meshes), params,
                          true);
   solver.set_matrix(system.matrix);

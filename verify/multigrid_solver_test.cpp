@@ -289,7 +289,7 @@ TEST(MultigridSolver, ChebyshevSmoothedSolutionsEqualCholmod) {
     for (const char* hierarchy : {"meshes", "lattice"})
       for (const int degree : {1, 2, 3}) {
         AnalysisSpec a = analysis(name, 1e-10, hierarchy);
-        a.smoother_kind = SmootherKind::Chebyshev;
+        a.smoother = "chebyshev";
         a.chebyshev_degree = degree;
         auto mg = make_linear_solver(a, p, c.coarse());
         const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
@@ -399,8 +399,7 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     for (int k = 0; k < 4; ++k) {
       AnalysisSpec a = analysis("multigrid", 1e-10, k == 1 ? "lattice" : "meshes");
       a.vcycles = 12;
-      if (k == 2)
-        a.smoother = SmootherOrdering::Multicolour;  // the other threaded ordering, against hybrid
+      if (k == 2) a.smoother = "multicolour";  // the other threaded ordering, against hybrid
       if (k == 3) a.cycle = CycleShape::W;
       auto solver = make_linear_solver(a, p, coarse);
       solver->set_matrix(system);
@@ -408,9 +407,9 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
       rho[k] = solver->solve(b, x).convergence_factor;
       if (k == 3) levels = dynamic_cast<const MultigridSolver&>(*solver).hierarchy().num_levels();
       std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, "
-                << kHierarchyKinds.name(a.hierarchy) << " hierarchy, "
-                << kSmootherOrderings.name(a.smoother) << " Gauss-Seidel, rho = " << rho[k]
-                << " over 12 " << kCycleShapes.name(a.cycle) << "(1,1) cycles\n";
+                << kHierarchyKinds.name(a.hierarchy) << " hierarchy, " << a.smoother
+                << " Gauss-Seidel, rho = " << rho[k] << " over 12 " << kCycleShapes.name(a.cycle)
+                << "(1,1) cycles\n";
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius
     // of 0.51 (nu = 0) to 0.57 (nu = 0.3) even on nested meshes (TwoGridEqualsDenseOperator);

@@ -101,6 +101,34 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
                    t.at("update").bytes + t.at("solve").bytes);
 }
 
+TEST(StepRoofline, ChebyshevSmoothingCountsItsOwnProducts) {
+  // The smoother counts its own traffic (linalg/smoother.hpp): Chebyshev of degree 3 reads the
+  // fine matrix three times a smoothing (from x = 0: twice, and the V-cycle's residual once
+  // more), so an iteration reads it 2 x 3 + 1 times with CG's product; Gauss-Seidel's sweeps read
+  // it about 2.5 times, which the roofline once counted for every smoother.
+  nlohmann::json scene = box_scene();
+  scene["analysis"]["smoother"] = "chebyshev";
+  scene["analysis"]["chebyshev_degree"] = 3;
+  SceneSimulation sim(parse_scene(scene, ".", "box"));
+  sim.run();
+  const auto& solver = dynamic_cast<const MultigridSolver&>(sim.solver());
+  EXPECT_EQ(solver.smoother(0).describe()["kind"], "chebyshev");
+  const FeProblem& problem = sim.problem();
+  const double v = problem.mesh.num_vertices(), n = 3 * v;
+  const double blocks = static_cast<double>(problem.stiffness.col_index.size());
+  const double fine_matrix = 76 * blocks + 4 * (v + 1);
+  const double per_iteration = step_traffic(problem, solver, 2.0, 6.0).at("solve").bytes -
+                               step_traffic(problem, solver, 2.0, 5.0).at("solve").bytes;
+  const MultigridHierarchy& h = solver.hierarchy();
+  const double coarsest =
+      16 * solver.coarsest_factor_nonzeros() + 32 * 3.0 * h.matrix(1).block_rows;
+  EXPECT_GE(per_iteration, 7 * fine_matrix + 15 * 8 * n + 16 * solver.coarsest_factor_nonzeros());
+  // At most: besides, each of the 6 Chebyshev steps' inverse diagonal and 8 vector passes, the
+  // transfers (under 200 B a DOF); two levels, so no coarse level smooths.
+  EXPECT_LE(per_iteration,
+            7 * fine_matrix + 15 * 8 * n + 6 * (72 * v + 64 * n) + 200 * n + coarsest);
+}
+
 TEST(StepRoofline, RecordComparesEachPhaseWithItsFloor) {
   const std::map<std::string, Traffic> traffic = {{"rotate", {2e9, 1e9}}, {"solve", {1e9, 4e10}}};
   const auto record = roofline_record(

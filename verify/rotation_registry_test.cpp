@@ -24,9 +24,9 @@ namespace {
 using nlohmann::json;
 
 TEST(RotationRegistry, BuiltInsKeepTheirPlacesAndMakeThemselves) {
-  const std::vector<std::string> expected = {"energy-newton", "energy-exact",   "polar",
-                                             "polar-fixed",   "polar-smoothed", "qr",
-                                             "mueller2016",   "none"};
+  const std::vector<std::string> expected = {
+      "energy-newton",  "energy-exact", "polar",       "polar-fixed",
+      "polar-smoothed", "qr",           "mueller2016", "none"};
   ASSERT_GE(rotation_method_names().size(), expected.size());
   for (std::size_t k = 0; k < expected.size(); ++k)
     EXPECT_EQ(rotation_method_names()[k], expected[k]);
@@ -50,8 +50,7 @@ TEST(RotationRegistry, BuiltInsKeepTheirPlacesAndMakeThemselves) {
 /// from every built-in's and the test can tell whose extractor ran.
 class TurnedPolar : public RotationExtractor {
  public:
-  TurnedPolar(const TetMesh& mesh, RotationMethod self)
-      : RotationExtractor(self), polar_(mesh) {}
+  TurnedPolar(const TetMesh& mesh, RotationMethod self) : RotationExtractor(self), polar_(mesh) {}
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override {
     polar_.extract(positions, rotations);
     for (Mat3& q : rotations) q = q * turn();
@@ -68,7 +67,8 @@ class TurnedPolar : public RotationExtractor {
 void register_and_use_a_method_of_ones_own() {
   const RotationMethod turned = register_rotation_method(
       {.name = "turned-polar",
-       .make = [](const TetMesh& mesh, const RotationParams&) -> std::unique_ptr<RotationExtractor> {
+       .make = [](const TetMesh& mesh,
+                  const RotationParams&) -> std::unique_ptr<RotationExtractor> {
          return std::make_unique<TurnedPolar>(mesh, rotation_method_named("turned-polar"));
        },
        .tangent = TangentFamily::PolarOfF,
@@ -90,8 +90,8 @@ void register_and_use_a_method_of_ones_own() {
   for (std::size_t e = 0; e < mine.size(); ++e)
     EXPECT_LT((mine[e] - polar[e] * TurnedPolar::turn()).norm(), 1e-14) << "element " << e;
   // A make that builds another method's extractor is refused.
-  const RotationMethod liar = register_rotation_method(
-      {.name = "liar", .make = RotationMethod::Polar.traits().make});
+  const RotationMethod liar =
+      register_rotation_method({.name = "liar", .make = RotationMethod::Polar.traits().make});
   EXPECT_THROW(make_rotation_extractor(liar, mesh), std::logic_error);
 
   // Scenes name it; an unknown name lists it among the allowed.

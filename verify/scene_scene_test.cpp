@@ -56,13 +56,15 @@ TEST(Scene, SmootherNamesAnOrderingOrChebyshev) {
   auto j = minimal();
   j["analysis"] = {{"solver", "mgpcg"}, {"smoother", "domains"}};
   Scene s = parse_scene(j, "/base", "s.json");
-  EXPECT_EQ(s.analysis.smoother_kind, SmootherKind::GaussSeidel);
-  EXPECT_EQ(s.analysis.smoother, SmootherOrdering::Domains);
+  EXPECT_EQ(s.analysis.smoother, "domains");
   j["analysis"] = {{"solver", "mgpcg"}, {"smoother", "chebyshev"}, {"chebyshev_degree", 3}};
   s = parse_scene(j, "/base", "s.json");
-  EXPECT_EQ(s.analysis.smoother_kind, SmootherKind::Chebyshev);
+  EXPECT_EQ(s.analysis.smoother, "chebyshev");
   EXPECT_EQ(s.analysis.chebyshev_degree, 3);
-  EXPECT_EQ(multigrid_params(s.analysis).chebyshev_degree, 3);
+  EXPECT_EQ(multigrid_params(s.analysis).smoother_settings.chebyshev_degree, 3);
+  j["analysis"]["smoother"] = "jacobi";
+  EXPECT_THROW(parse_scene(j, "/base", "s.json"), InputError);
+  j["analysis"]["smoother"] = "chebyshev";
   j["analysis"]["chebyshev_degree"] = 0;
   EXPECT_THROW(parse_scene(j, "/base", "s.json"), InputError);
 }

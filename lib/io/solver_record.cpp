@@ -38,20 +38,11 @@ nlohmann::json parts_json(std::initializer_list<std::pair<const char*, double>> 
   return parts_json<std::initializer_list<std::pair<const char*, double>>>(parts);
 }
 
+/// The smoother as it describes itself, with the smoothings per cycle.
 nlohmann::json smoother_json(const MultigridParams& p) {
-  if (p.smoother_kind == SmootherKind::Chebyshev)
-    return {{"kind", "chebyshev"},
-            {"diagonal", "l1 block Jacobi"},
-            {"degree", p.chebyshev_degree},
-            {"interval", {p.chebyshev_lower, 1.0}},
-            {"pre_smoothing", p.pre_smoothing},
-            {"post_smoothing", p.post_smoothing}};
-  nlohmann::json j = {{"kind", "block-gauss-seidel"},
-                      {"ordering", kSmootherOrderings.name(p.smoother)},
-                      {"pre_smoothing", p.pre_smoothing},
-                      {"post_smoothing", p.post_smoothing}};
-  if (p.smoother == SmootherOrdering::Hybrid) j["domain_blocks"] = kHybridDomainBlocks;
-  if (p.smoother == SmootherOrdering::Domains) j["domain_vertices"] = kDomainVertices;
+  nlohmann::json j = make_smoother(p.smoother, p.smoother_settings)->describe();
+  j["pre_smoothing"] = p.pre_smoothing;
+  j["post_smoothing"] = p.post_smoothing;
   return j;
 }
 

@@ -46,10 +46,6 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
     : params_(params),
       preconditioner_(as_preconditioner),
       hierarchy_(pattern, std::move(built.transfers)),
-      smoothers_(params.smoother_kind == SmootherKind::GaussSeidel ? hierarchy_.num_levels() : 0,
-                 BlockGaussSeidel(params.smoother)),
-      chebyshev_(params.smoother_kind == SmootherKind::Chebyshev ? hierarchy_.num_levels() : 0,
-                 ChebyshevSmoother(params.chebyshev_degree, params.chebyshev_lower)),
       coarsest_(std::make_unique<Coarsest>()),
       residual_(hierarchy_.num_levels()),
       coarse_b_(hierarchy_.num_levels()),
@@ -57,6 +53,8 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       level_origins_(std::move(built.levels)),
       ended_early_(std::move(built.ended_early)),
       setup_ms_{built.transfers_ms} {
+  for (int h = 0; h + 1 < hierarchy_.num_levels(); ++h)
+    smoothers_.push_back(make_smoother(params_.smoother, params_.smoother_settings));
   // The method's streams now, in the set-up, not in the first step's update.
   timed(setup_ms_.galerkin_streams, [&] { hierarchy_.prepare(params_.galerkin); });
 }
@@ -117,12 +115,8 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
   run_side_by_side([&] { coarsest_ms = wall_ms([&] { update_coarsest(); }); },
                    [&] {
                      smoothers_ms = wall_ms([&] {
-                       for (int h = 0; h < last; ++h) {
-                         if (chebyshev_.empty())
-                           smoothers_[h].set_matrix(hierarchy_.matrix(h));
-                         else
-                           chebyshev_[h].set_matrix(hierarchy_.matrix(h));
-                       }
+                       for (int h = 0; h < last; ++h)
+                         smoothers_[h]->set_matrix(hierarchy_.matrix(h));
                      });
                      if (beside) beside();
                    });
@@ -187,28 +181,11 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
                               bool zero_guess) {
   const BrcMatrix& a = hierarchy_.matrix(h);
   const bool fine = h == 0;
-  // A single sweep from zero forms its residual as it goes (the blocks it reads, transposed, are
-  // the rest of the rows above): that residual counts in the smoothing.
-  const bool from_zero_sweep = zero_guess && params_.pre_smoothing == 1 && chebyshev_.empty();
+  bool formed = false;  // the smoother formed the residual in passing: it counts in the smoothing
   timed(fine ? solve_ms_.fine_smooth : solve_ms_.coarse_levels, [&] {
-    if (!chebyshev_.empty()) {
-      for (int s = 0; s < params_.pre_smoothing; ++s)
-        chebyshev_[h].smooth(a, b, x, zero_guess && s == 0);
-      if (params_.pre_smoothing == 0 && zero_guess) x.setZero(b.size());
-      return;
-    }
-    if (from_zero_sweep)
-      return smoothers_[h].forward_from_zero_with_residual(a, b, x, residual_[h]);
-    int s = 0;
-    if (zero_guess && params_.pre_smoothing > 0) {
-      smoothers_[h].forward_from_zero(a, b, x);
-      ++s;
-    } else if (zero_guess) {
-      x.setZero(b.size());
-    }
-    for (; s < params_.pre_smoothing; ++s) smoothers_[h].forward(a, b, x);
+    formed = smoothers_[h]->pre_smooth(a, b, x, params_.pre_smoothing, zero_guess, residual_[h]);
   });
-  if (!from_zero_sweep)
+  if (!formed)
     timed(fine ? solve_ms_.fine_residual : solve_ms_.coarse_levels,
           [&] { a.residual(b, x, residual_[h]); });
   timed(fine ? solve_ms_.fine_transfer : solve_ms_.coarse_levels,
@@ -219,14 +196,8 @@ void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
   const bool fine = h == 0;
   timed(fine ? solve_ms_.fine_transfer : solve_ms_.coarse_levels,
         [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
-  timed(fine ? solve_ms_.fine_smooth : solve_ms_.coarse_levels, [&] {
-    for (int s = 0; s < params_.post_smoothing; ++s) {
-      if (chebyshev_.empty())
-        smoothers_[h].backward(hierarchy_.matrix(h), b, x);
-      else
-        chebyshev_[h].smooth(hierarchy_.matrix(h), b, x, false);
-    }
-  });
+  timed(fine ? solve_ms_.fine_smooth : solve_ms_.coarse_levels,
+        [&] { smoothers_[h]->post_smooth(hierarchy_.matrix(h), b, x, params_.post_smoothing); });
 }
 
 void MultigridSolver::finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

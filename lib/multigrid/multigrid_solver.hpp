@@ -1,38 +1,19 @@
 #pragma once
 // Geometric multigrid with Galerkin coarse operators (paper section 4; Georgii and Westermann
-// 2005): V-cycles with block Gauss-Seidel smoothing and CHOLMOD on the coarsest level, as a
-// solver ("multigrid") or as the preconditioner of CG ("mgpcg").
+// 2005): V-cycles with a registered smoother (block Gauss-Seidel by default) and CHOLMOD on the
+// coarsest level, as a solver ("multigrid") or as the preconditioner of CG ("mgpcg").
 #include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <utility>
 
-#include "linalg/chebyshev_smoother.hpp"
-#include "linalg/gauss_seidel.hpp"
 #include "linalg/linear_solver.hpp"
+#include "linalg/smoother.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 
 namespace corofem {
-
-/// The smoother of every level but the coarsest: nodal block Gauss-Seidel (in `smoother`'s
-/// ordering) or Chebyshev on the l1 block-Jacobi diagonal (linalg/chebyshev_smoother.hpp).
-enum class SmootherKind { GaussSeidel, Chebyshev };
-
-/// A scene's `smoother`: a Gauss-Seidel ordering, or Chebyshev (whose ordering is unused and left
-/// at the default).
-struct SmootherChoice {
-  SmootherKind kind;
-  SmootherOrdering ordering;
-  bool operator==(const SmootherChoice&) const = default;
-};
-inline constexpr NameTable<SmootherChoice, 5> kSmootherChoices{{{
-    {{SmootherKind::GaussSeidel, SmootherOrdering::Sequential}, "sequential"},
-    {{SmootherKind::GaussSeidel, SmootherOrdering::Multicolour}, "multicolour"},
-    {{SmootherKind::GaussSeidel, SmootherOrdering::Domains}, "domains"},
-    {{SmootherKind::GaussSeidel, SmootherOrdering::Hybrid}, "hybrid"},
-    {{SmootherKind::Chebyshev, SmootherOrdering::Hybrid}, "chebyshev"},
-}}};
 
 /// The cycle's shape: V visits each coarser level once per visit of the level above; W twice (the
 /// coarse correction iterated, for where it is the weak part; the coarsest level, solved exactly,
@@ -45,18 +26,17 @@ inline constexpr NameTable<CycleShape, 2> kCycleShapes{
 /// (io/multigrid_record.hpp).
 struct MultigridParams {
   HierarchyParams hierarchy;  ///< builder and level count
-  int pre_smoothing = 1;      ///< forward Gauss-Seidel sweeps before the coarse correction
-  int post_smoothing = 1;     ///< backward sweeps after it
+  int pre_smoothing = 1;      ///< smoothings before the coarse correction
+  int post_smoothing = 1;     ///< smoothings after it
   CycleShape cycle = CycleShape::V;
   int vcycles = 0;           ///< multigrid: fixed count; 0 = iterate to the tolerance
   int max_iterations = 500;  ///< cap on V-cycles / CG iterations
   double tolerance = 1e-8;   ///< relative residual |b - A x| / |b|
   GalerkinMethod galerkin = GalerkinMethod::Gather;
-  /// The Gauss-Seidel sweeps' order: hybrid, the one that threads with the sequential locality.
-  SmootherOrdering smoother = SmootherOrdering::Hybrid;
-  SmootherKind smoother_kind = SmootherKind::GaussSeidel;
-  int chebyshev_degree = 2;      ///< Chebyshev: steps per smoothing (pre_ and post_smoothing)
-  double chebyshev_lower = 0.1;  ///< Chebyshev: the interval's lower end (its upper is 1)
+  /// The smoother of every level but the coarsest, by its registered name (linalg/smoother.hpp):
+  /// hybrid Gauss-Seidel, the one that threads with the sequential locality.
+  std::string smoother = "hybrid";
+  SmootherSettings smoother_settings{};
   /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial
   /// residual and first descent (see MultigridSolver::defers_update), not in the update.
   bool overlap_factorization = true;
@@ -113,6 +93,8 @@ class MultigridSolver : public LinearSolver {
   bool update_deferred() const { return update_pending_; }
   const MultigridHierarchy& hierarchy() const { return hierarchy_; }
   const MultigridParams& params() const { return params_; }
+  /// Level h's smoother (h below the coarsest level).
+  const Smoother& smoother(int h) const { return *smoothers_.at(static_cast<std::size_t>(h)); }
   /// The coarsest level's Cholesky factor: entries of L and flops per factorization (CHOLMOD's
   /// analysis; 0 before the first set_matrix).
   double coarsest_factor_nonzeros() const;
@@ -157,8 +139,7 @@ class MultigridSolver : public LinearSolver {
   MultigridParams params_;
   bool preconditioner_;
   MultigridHierarchy hierarchy_;
-  std::vector<BlockGaussSeidel> smoothers_;
-  std::vector<ChebyshevSmoother> chebyshev_;  ///< with SmootherKind::Chebyshev
+  std::vector<std::unique_ptr<Smoother>> smoothers_;  ///< one per level but the coarsest
   struct Coarsest;
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level

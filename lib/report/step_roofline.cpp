@@ -9,51 +9,7 @@
 namespace corofem {
 namespace {
 
-constexpr double kLine = 64;   // bytes per cache line
-constexpr double kBlock = 72;  // a 3x3 block of doubles
-constexpr double kIndex = 4;   // int
 constexpr double kVec3 = 24;
-
-/// Cache lines spanned by a member of `bytes` read out of a larger struct.
-double lines(double bytes) {
-  return std::ceil(bytes / kLine) * kLine;
-}
-
-/// BRC storage of a matrix: values, column indices, row starts.
-double matrix_bytes(const BrcMatrix& a) {
-  const double blocks = static_cast<double>(a.col_index.size());
-  return (kBlock + kIndex) * blocks + kIndex * (a.block_rows + 1);
-}
-
-/// y = A x.
-Traffic matvec(const BrcMatrix& a) {
-  const double n = 3.0 * a.block_rows;
-  return {matrix_bytes(a) + 16 * n, 18.0 * static_cast<double>(a.col_index.size())};
-}
-
-/// One block Gauss-Seidel sweep: per row r = b - sum A x, x += D^-1 r (the inverse diagonal
-/// blocks and their positions are the smoother's).
-Traffic gauss_seidel_sweep(const BrcMatrix& a) {
-  const double n = 3.0 * a.block_rows;
-  return {matrix_bytes(a) + (kBlock + kIndex) * a.block_rows + 8 * n + 16 * n,
-          18.0 * static_cast<double>(a.col_index.size()) + 21.0 * a.block_rows};
-}
-
-/// The first forward sweep of a correction, from x = 0 (BlockGaussSeidel::forward_from_zero): only
-/// the blocks below the diagonal, b read, x written.
-double blocks_below_diagonal(const BrcMatrix& a) {
-  double lower = 0;
-  for (int i = 0; i < a.block_rows; ++i)
-    for (int k = a.row_start[i]; k < a.row_start[i + 1] && a.col_index[k] < i; ++k) ++lower;
-  return lower;
-}
-
-Traffic gauss_seidel_sweep_from_zero(const BrcMatrix& a, double lower) {
-  const double n = 3.0 * a.block_rows;
-  return {(kBlock + kIndex) * lower + kIndex * (a.block_rows + 1) +
-              (kBlock + kIndex) * a.block_rows + 16 * n,
-          18.0 * lower + 15.0 * a.block_rows};
-}
 
 /// One V-cycle from level h (multigrid_solver.cpp vcycle), x = 0 on entry on every level.
 Traffic vcycle(const MultigridSolver& solver, int h) {
@@ -67,16 +23,11 @@ Traffic vcycle(const MultigridSolver& solver, int h) {
   const Transfer& t = hierarchy.transfer(h);
   const double n = 3.0 * a.block_rows, coarse = 3.0 * t.coarse;
   const int pre = solver.params().pre_smoothing, post = solver.params().post_smoothing;
-  Traffic out = (std::max(pre - 1, 0) + post) * gauss_seidel_sweep(a);
-  const double lower = blocks_below_diagonal(a);
-  if (pre > 0) out += gauss_seidel_sweep_from_zero(a, lower);
-  if (pre == 1) {
-    // r = b - A x in the same pass (forward_from_zero_with_residual): the blocks it reads,
-    // transposed, 18 flops each; r written. The halo rows' blocks outside their domain, read
-    // again, are left out: a floor.
-    out += {8 * n, 18 * lower + 3 * n};
-  } else {
-    out += matvec(a);
+  const Smoother& smoother = solver.smoother(h);
+  Traffic out = smoother.pre_traffic(a, pre);
+  out += smoother.post_traffic(a, post);
+  if (!smoother.forms_residual(pre)) {
+    out += matvec_traffic(a);
     out += {24 * n, n};  // r = b - A x
   }
   const double r_entries = static_cast<double>(t.r_weight.size());
@@ -110,23 +61,21 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
     const double coarse_blocks = static_cast<double>(coarse.col_index.size());
     const auto [bytes, pairs] = stream(level - 1);
     galerkin += {static_cast<double>(bytes) +
-                     kBlock * static_cast<double>(h.matrix(level - 1).col_index.size()) +
-                     kBlock * coarse_blocks + 8 * (coarse_blocks - coarse.block_rows) / 2,
+                     kBlockBytes * static_cast<double>(h.matrix(level - 1).col_index.size()) +
+                     kBlockBytes * coarse_blocks + 8 * (coarse_blocks - coarse.block_rows) / 2,
                  18.0 * static_cast<double>(pairs)};
   }
   parts["galerkin"] = galerkin;
-  // The smoothers' inverse diagonal blocks (about 50 flops each).
+  // The smoothers' set-up, as each counts its own.
   Traffic smoothers;
-  for (int level = 0; level + 1 < h.num_levels(); ++level) {
-    const double rows = h.matrix(level).block_rows;
-    smoothers += {(lines(kBlock) + kIndex + kBlock) * rows, 50 * rows};
-  }
+  for (int level = 0; level + 1 < h.num_levels(); ++level)
+    smoothers += solver.smoother(level).setup_traffic(h.matrix(level));
   parts["smoothers"] = smoothers;
   // The coarsest level: its values converted to CHOLMOD's lower-triangular CSC (about half the
   // blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's analysis counted.
   const BrcMatrix& coarsest = h.matrix(h.num_levels() - 1);
   parts["coarsest"] = {
-      kBlock * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
+      kBlockBytes * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
           8 * solver.coarsest_factor_nonzeros(),
       solver.coarsest_factorization_flops()};
   return parts;
@@ -137,7 +86,7 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   const double e = problem.mesh.num_tets(), v = problem.mesh.num_vertices(), n = 3 * v;
   const BrcMatrix& k = problem.stiffness;
   const double blocks = static_cast<double>(k.col_index.size());
-  const double tets = sizeof(Tet) * e, rotations = kBlock * e;
+  const double tets = sizeof(Tet) * e, rotations = kBlockBytes * e;
   std::map<std::string, Traffic> t;
   // The finiteness checks of b and u (entries and squared norm); energy-newton counts the
   // inverted elements on its way (the sign of det S, 14 flops a tet, below).
@@ -154,8 +103,8 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // the gradients and V lambda, V mu read out of ElementRest, the 16 target blocks of the
   // assembly map, rest positions and displacements, the step's matrix written once (zeroing
   // fused; the mass read and added into its diagonal), the force written.
-  t["assemble"] = {rotations + lines(4 * kVec3 + 16) * e + sizeof(std::array<int, 16>) * e + tets +
-                       kVec3 * v + 8 * n + kBlock * blocks + 8 * n + 8 * n,
+  t["assemble"] = {rotations + cache_lines(4 * kVec3 + 16) * e + sizeof(std::array<int, 16>) * e +
+                       tets + kVec3 * v + 8 * n + kBlockBytes * blocks + 8 * n + 8 * n,
                    (60 + 10 * 35 + 16 * 9 + 117 + 138 + 72) * e};
   // b = M v + dt (f_ext - f_int), f_int from the assembly: mass, velocity, external force and
   // f_int read, b written.
@@ -168,7 +117,7 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   const std::vector<char> supported = problem.dirichlet.supported_vertices();
   for (int i = 0; i < k.block_rows; ++i)
     if (supported[i]) supported_blocks += 2 * (k.row_start[i + 1] - k.row_start[i]);
-  t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlock + kIndex) + 16 * n,
+  t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlockBytes + kIndexBytes) + 16 * n,
                  2 * n + 18 * supported_blocks};
   // The coarsest factorization and the smoothers' set-up count where they run: in the solve
   // when the solver defers them to it (MultigridSolver::defers_update).
@@ -180,7 +129,7 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // MG-PCG (linalg/preconditioned_cg.cpp): per iteration A p, one V-cycle and 14 vector passes
   // (two dots, two axpys, a norm, p = z + beta p); the start: r = b - A x, norms, r.z.
   const Traffic cycle = vcycle(solver, 0);
-  Traffic solve = (solve_iterations + 1) * matvec(solver.hierarchy().matrix(0));
+  Traffic solve = (solve_iterations + 1) * matvec_traffic(solver.hierarchy().matrix(0));
   solve += solve_iterations * cycle;
   solve += {(14 * solve_iterations + 9) * 8 * n, (12 * solve_iterations + 6) * n};
   solve += deferred;

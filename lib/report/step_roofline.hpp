@@ -15,23 +15,11 @@
 #include <string>
 
 #include "fem/fe_problem.hpp"
+#include "sparse/matrix_traffic.hpp"
 
 namespace corofem {
 
 class MultigridSolver;
-
-struct Traffic {
-  double bytes = 0;
-  double flops = 0;
-  Traffic& operator+=(const Traffic& o) {
-    bytes += o.bytes;
-    flops += o.flops;
-    return *this;
-  }
-};
-inline Traffic operator*(double k, Traffic t) {
-  return {k * t.bytes, k * t.flops};
-}
 
 /// The update phase's parts (MultigridSolver::update_parts_ms): galerkin, smoothers, coarsest.
 std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver);

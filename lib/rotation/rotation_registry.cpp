@@ -16,16 +16,19 @@ namespace {
 
 std::deque<RotationMethodTraits> builtin_methods() {
   std::deque<RotationMethodTraits> methods{
-      energy_newton_traits(), energy_exact_traits(), polar_traits(),
-      polar_fixed_traits(),   polar_smoothed_traits(), qr_traits(),
-      mueller2016_traits(),   identity_traits(),
+      energy_newton_traits(),  energy_exact_traits(), polar_traits(),       polar_fixed_traits(),
+      polar_smoothed_traits(), qr_traits(),           mueller2016_traits(), identity_traits(),
   };
   // In the order of the RotationMethod constants.
   const std::pair<RotationMethod, const char*> fixed[] = {
-      {RotationMethod::EnergyNewton, "energy-newton"}, {RotationMethod::EnergyExact, "energy-exact"},
-      {RotationMethod::Polar, "polar"},                {RotationMethod::PolarFixed, "polar-fixed"},
-      {RotationMethod::PolarSmoothed, "polar-smoothed"}, {RotationMethod::Qr, "qr"},
-      {RotationMethod::Mueller2016, "mueller2016"},    {RotationMethod::None, "none"}};
+      {RotationMethod::EnergyNewton, "energy-newton"},
+      {RotationMethod::EnergyExact, "energy-exact"},
+      {RotationMethod::Polar, "polar"},
+      {RotationMethod::PolarFixed, "polar-fixed"},
+      {RotationMethod::PolarSmoothed, "polar-smoothed"},
+      {RotationMethod::Qr, "qr"},
+      {RotationMethod::Mueller2016, "mueller2016"},
+      {RotationMethod::None, "none"}};
   for (const auto& [method, name] : fixed)
     if (methods.at(static_cast<std::size_t>(method.id())).name != name)
       throw std::logic_error("rotation registry: built-in " + std::to_string(method.id()) +
@@ -84,8 +87,8 @@ RotationMethod rotation_method_named(std::string_view name) {
   if (auto method = find_rotation_method(name)) return *method;
   std::string list;
   for (const std::string& n : rotation_method_names()) list += (list.empty() ? "" : ", ") + n;
-  throw std::out_of_range("no rotation method named '" + std::string(name) + "' (registered: " +
-                          list + ")");
+  throw std::out_of_range("no rotation method named '" + std::string(name) +
+                          "' (registered: " + list + ")");
 }
 
 }  // namespace corofem

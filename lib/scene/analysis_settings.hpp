@@ -1,7 +1,7 @@
 #pragma once
 // The scene's `analysis` choices that are not a numerical component's own (those keep their
-// tables beside the component: the rotation registry, kGalerkinMethods, kHierarchyKinds,
-// kSmootherChoices): one enum and one name table each, used to parse and to write.
+// tables or registries beside the component: the rotation methods, kGalerkinMethods,
+// kHierarchyKinds, the smoothers): one enum and one name table each, used to parse and to write.
 #include "core/name_table.hpp"
 #include "solver/petsc_solver.hpp"
 

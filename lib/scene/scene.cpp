@@ -210,10 +210,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   if (a.coarsening > 0 && a.coarsening < 2) f.fail("coarsening", "0 or in [2, 64]");
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  const SmootherChoice smoother =
-      one_of(f, "smoother", SmootherChoice{a.smoother_kind, a.smoother}, kSmootherChoices);
-  a.smoother_kind = smoother.kind;
-  a.smoother = smoother.ordering;
+  a.smoother = one_of(f, "smoother", a.smoother, smoother_names());
   a.chebyshev_degree = integer_in(f, "chebyshev_degree", a.chebyshev_degree, 1, 16);
   a.cycle = one_of(f, "cycle", a.cycle, kCycleShapes);
   if (a.solver == SolverKind::PetscMg)

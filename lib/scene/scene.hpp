@@ -87,8 +87,8 @@ struct AnalysisSpec {
   RotationMethod rotation = RotationMethod::Polar;
   RotationParams rotation_params;
   SolverKind solver = SolverKind::Cholmod;
-  /// The multigrid's settings, parsed from their names (kGalerkinMethods, kHierarchyKinds,
-  /// kSmootherChoices), each with the one default of its component's params.
+  /// The multigrid's settings, parsed from their names (kGalerkinMethods, kHierarchyKinds, the
+  /// smoother registry), each with the one default of its component's params.
   /// naive | stream | stream-full | reuse | gather (multigrid coarse operators)
   GalerkinMethod galerkin = MultigridParams{}.galerkin;
   /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
@@ -103,13 +103,12 @@ struct AnalysisSpec {
   double coarsening = MultigridParams{}.hierarchy.coarsening;
   int vcycles = 0;  ///< 0: iterate to tolerance
   int smoothing = 1;
-  /// Gauss-Seidel ordering: hybrid (the default: l1 Gauss-Seidel in domains, Jacobi across them,
-  /// every thread) | domains (exact Gauss-Seidel, boundaries by colours) | sequential (one
-  /// thread) | multicolour (every thread, a worse rho); see README "Multigrid"
-  SmootherOrdering smoother = MultigridParams{}.smoother;
-  /// `smoother: "chebyshev"` picks Chebyshev smoothing (its ordering then unused).
-  SmootherKind smoother_kind = MultigridParams{}.smoother_kind;
-  int chebyshev_degree = MultigridParams{}.chebyshev_degree;
+  /// A registered smoother (linalg/smoother.hpp): the Gauss-Seidel orderings hybrid (the
+  /// default: l1 Gauss-Seidel in domains, Jacobi across them, every thread), domains (exact
+  /// Gauss-Seidel, boundaries by colours), sequential (one thread), multicolour (every thread, a
+  /// worse rho); chebyshev (on the l1 block-Jacobi diagonal); see README "Multigrid"
+  std::string smoother = MultigridParams{}.smoother;
+  int chebyshev_degree = MultigridParams{}.smoother_settings.chebyshev_degree;
   CycleShape cycle = MultigridParams{}.cycle;  ///< V | W
   /// Dynamic, linearly implicit, corotated, iterative solvers on one process: the solve's start
   /// (start_history: the velocities projected on, 2..16).

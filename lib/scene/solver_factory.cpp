@@ -19,8 +19,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   p.tolerance = a.tolerance;
   p.galerkin = a.galerkin;
   p.smoother = a.smoother;
-  p.smoother_kind = a.smoother_kind;
-  p.chebyshev_degree = a.chebyshev_degree;
+  p.smoother_settings.chebyshev_degree = a.chebyshev_degree;
   p.cycle = a.cycle;
   return p;
 }
