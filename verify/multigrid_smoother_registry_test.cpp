@@ -99,9 +99,9 @@ void register_and_use_a_smoother_of_ones_own() {
   register_smoother({.name = "damped-l1-jacobi", .make = [](const SmootherSettings&) {
                        return std::unique_ptr<Smoother>(new DampedL1Jacobi);
                      }});
-  EXPECT_THROW(register_smoother({.name = "damped-l1-jacobi",
-                                  .make = find_smoother("hybrid")->make}),
-               std::invalid_argument);
+  EXPECT_THROW(
+      register_smoother({.name = "damped-l1-jacobi", .make = find_smoother("hybrid")->make}),
+      std::invalid_argument);
 
   json scene = cube_scene("mgpcg");
   scene["analysis"]["smoother"] = "damped-l1-jacobi";
@@ -131,8 +131,8 @@ void register_and_use_a_smoother_of_ones_own() {
       16 * solver.coarsest_factor_nonzeros() + 32 * 3.0 * h.matrix(1).block_rows;
   EXPECT_GE(per_iteration, 4 * fine_matrix + cg_vectors + coarsest);
   // Besides: its two sweeps' inverse diagonal and vectors, the transfers (under 200 B a DOF).
-  EXPECT_LE(per_iteration, 4 * fine_matrix + cg_vectors + coarsest + 2 * (72 * v + 48 * n) +
-                               200 * n);
+  EXPECT_LE(per_iteration,
+            4 * fine_matrix + cg_vectors + coarsest + 2 * (72 * v + 48 * n) + 200 * n);
   std::exit(::testing::Test::HasFailure() ? 1 : 0);
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "core/statistics.hpp"
@@ -182,16 +184,10 @@ bool Comparison::regressed() const {
   return std::any_of(rows.begin(), rows.end(), [](const RowComparison& r) { return r.regression; });
 }
 
-Comparison compare_records(const RecordSet& base, const RecordSet& contender,
-                           const CompareOptions& options) {
-  Comparison out;
-  out.options = options;
-  out.warnings = context_warnings(base, contender);
-  out.base_context = first_context(base);
-  out.new_context = first_context(contender);
-  std::map<std::string, const RecordRow*> new_rows;
-  for (const RecordRow& r : contender.rows) new_rows[r.key()] = &r;
-  // A case both sides ran must be the same scene on both: else its rows say nothing of the code.
+namespace {
+
+/// A case both sides ran must be the same scene on both: else its rows say nothing of the code.
+void refuse_different_scenes(const RecordSet& base, const RecordSet& contender) {
   std::map<std::string, const RecordRow*> new_cases;
   for (const RecordRow& r : contender.rows) new_cases.emplace(r.case_name, &r);
   for (const RecordRow& b : base.rows) {
@@ -200,75 +196,107 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
       throw InputError("refusing to pair '" + b.case_name + "': " + b.source + " and " +
                        it->second->source + " ran different scenes");
   }
+}
+
+/// The cases of each gated phase, and their summed medians, for the stratified rows.
+struct PhaseStrata {
+  std::map<std::string, std::vector<Stratum>> cases;
+  std::map<std::string, std::pair<double, double>> totals;
+
+  void add(const RecordRow& b, const RecordRow& n, const RowComparison& c) {
+    if (c.unit_of_sample != "runs" || c.test.base_count < 3 || c.test.new_count < 3 ||
+        c.note.find("not gated") != std::string::npos)
+      return;
+    const bool per_run = b.runs.size() >= 3 && n.runs.size() >= 3;
+    cases[b.quantity].push_back({test_samples(b, per_run), test_samples(n, per_run)});
+    totals[b.quantity].first += c.base_value;
+    totals[b.quantity].second += c.new_value;
+  }
+
+  /// A phase's code runs in every case: its shift tested across them at once (van Elteren).
+  void append_rows(std::vector<RowComparison>& rows, const CompareOptions& options) const {
+    for (const auto& [quantity, strata] : cases) {
+      if (strata.size() < 2) continue;
+      RowComparison c;
+      c.case_name = "all cases";
+      c.quantity = quantity;
+      c.kind = RowKind::Timed;
+      c.unit_of_sample = "runs";
+      c.test = stratified_shift_test(strata, options.alpha);
+      c.p_adjusted = c.test.p_value;
+      c.base_value = totals.at(quantity).first;
+      c.new_value = totals.at(quantity).second;
+      c.note = std::to_string(strata.size()) + " cases stratified (van Elteren); ms summed";
+      rows.push_back(std::move(c));
+    }
+  }
+};
+
+RowComparison compare_pair(const RecordRow& b, const RecordRow& n, const CompareOptions& options) {
+  switch (b.kind) {
+    case RowKind::Timed:
+      return timed(b, n, options);
+    case RowKind::Counter:
+      return counter(b, n);
+    case RowKind::Accuracy:
+      return accuracy(b, n, options);
+    case RowKind::Field:
+      return field(b, n, options);
+  }
+  throw std::logic_error("compare_pair: unhandled kind");
+}
+
+/// A row only one side has: its verdict and the file it came from.
+RowComparison unpaired(const RecordRow& r, const std::string& verdict) {
+  RowComparison c;
+  c.verdict = verdict;
+  c.note = r.source;
+  return c;
+}
+
+}  // namespace
+
+Comparison compare_records(const RecordSet& base, const RecordSet& contender,
+                           const CompareOptions& options) {
+  Comparison out;
+  out.options = options;
+  out.warnings = context_warnings(base, contender);
+  out.base_context = first_context(base);
+  out.new_context = first_context(contender);
+  refuse_different_scenes(base, contender);
+  std::map<std::string, const RecordRow*> new_rows;
+  std::set<std::string> new_cases;
+  for (const RecordRow& r : contender.rows) {
+    new_rows[r.key()] = &r;
+    new_cases.insert(r.case_name);
+  }
   int paired = 0;
-  std::map<std::string, std::vector<Stratum>> strata;       // per quantity: its gated cases
-  std::map<std::string, std::pair<double, double>> totals;  // per quantity: summed medians
+  PhaseStrata strata;
+  const auto labelled = [](RowComparison c, const RecordRow& r) {
+    c.case_name = r.case_name;
+    c.quantity = r.quantity;
+    c.threads = r.threads;
+    c.kind = r.kind;
+    return c;
+  };
   for (const RecordRow& b : base.rows) {
     auto it = new_rows.find(b.key());
-    RowComparison c;
     if (it == new_rows.end() || it->second->kind != b.kind) {
-      c.verdict = "missing in new";
-      c.note = b.source;
+      RowComparison c = unpaired(b, "missing in new");
       // A case NEW no longer completes is a failure, not a speed-up; a quantity alone (a phase
       // under the clock's resolution) is only listed.
       c.regression = !new_cases.count(b.case_name);
-    } else {
-      const RecordRow& n = *it->second;
-      ++paired;
-      switch (b.kind) {
-        case RowKind::Timed:
-          c = timed(b, n, options);
-          if (c.unit_of_sample == "runs" && c.test.base_count >= 3 && c.test.new_count >= 3 &&
-              c.note.find("not gated") == std::string::npos) {
-            const bool per_run = b.runs.size() >= 3 && n.runs.size() >= 3;
-            strata[b.quantity].push_back({test_samples(b, per_run), test_samples(n, per_run)});
-            totals[b.quantity].first += c.base_value;
-            totals[b.quantity].second += c.new_value;
-          }
-          break;
-        case RowKind::Counter:
-          c = counter(b, n);
-          break;
-        case RowKind::Accuracy:
-          c = accuracy(b, n, options);
-          break;
-        case RowKind::Field:
-          c = field(b, n, options);
-          break;
-      }
-      new_rows.erase(it);
+      out.rows.push_back(labelled(std::move(c), b));
+      continue;
     }
-    c.case_name = b.case_name;
-    c.quantity = b.quantity;
-    c.threads = b.threads;
-    c.kind = b.kind;
-    out.rows.push_back(std::move(c));
+    ++paired;
+    RowComparison c = compare_pair(b, *it->second, options);
+    strata.add(b, *it->second, c);
+    new_rows.erase(it);
+    out.rows.push_back(labelled(std::move(c), b));
   }
-  for (const auto& [key, n] : new_rows) {
-    RowComparison c;
-    c.case_name = n->case_name;
-    c.quantity = n->quantity;
-    c.threads = n->threads;
-    c.kind = n->kind;
-    c.verdict = "new row";
-    c.note = n->source;
-    out.rows.push_back(std::move(c));
-  }
-  // A phase's code runs in every case: its shift tested across them at once (stratified).
-  for (const auto& [quantity, cases] : strata) {
-    if (cases.size() < 2) continue;
-    RowComparison c;
-    c.case_name = "all cases";
-    c.quantity = quantity;
-    c.kind = RowKind::Timed;
-    c.unit_of_sample = "runs";
-    c.test = stratified_shift_test(cases, options.alpha);
-    c.p_adjusted = c.test.p_value;
-    c.base_value = totals[quantity].first;
-    c.new_value = totals[quantity].second;
-    c.note = std::to_string(cases.size()) + " cases stratified (van Elteren); ms summed";
-    out.rows.push_back(std::move(c));
-  }
+  for (const auto& [key, n] : new_rows) out.rows.push_back(labelled(unpaired(*n, "new row"), *n));
+  strata.append_rows(out.rows, options);
   holm_verdicts(out.rows, options);
   if (paired == 0)
     throw InputError(

@@ -9,7 +9,8 @@ namespace corofem {
 
 class GaussSeidelSmoother : public Smoother {
  public:
-  explicit GaussSeidelSmoother(SmootherOrdering ordering) : ordering_(ordering), sweeps_(ordering) {}
+  explicit GaussSeidelSmoother(SmootherOrdering ordering)
+      : ordering_(ordering), sweeps_(ordering) {}
   void set_matrix(const BrcMatrix& a) override { sweeps_.set_matrix(a); }
   /// The first forward sweep of a correction reads only the blocks below the diagonal; a single
   /// one forms its residual as it goes (the blocks it reads, transposed, are the rest of the rows

@@ -190,20 +190,9 @@ int integer_in(JsonFields& f, const std::string& key, int fallback, int lo, int 
   return value;
 }
 
-void read_analysis(JsonFields f, AnalysisSpec& a) {
-  a.type = one_of(f, "type", a.type, kAnalysisTypes);
-  a.formulation = one_of(f, "formulation", a.formulation, kFormulations);
-  a.integrator =
-      one_of(f, "integrator",
-             a.type == AnalysisType::Static ? Integrator::Newton : Integrator::LinearImplicit,
-             kIntegrators);
-  a.rotation =
-      *find_rotation_method(one_of(f, "rotation", a.rotation.name(), rotation_method_names()));
-  a.solver = one_of(f, "solver", a.solver, kSolverKinds);
-  a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
-  a.hierarchy = one_of(f, "hierarchy", a.hierarchy, kHierarchyKinds);
-  const bool multigrid = is_multigrid_solver(a.solver);
-  a.levels = integer_in(f, "levels", multigrid ? 3 : 1, 1, 16);
+/// The multigrid solvers' settings (levels default to 3 for them, 1 for the others).
+void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
+  a.levels = integer_in(f, "levels", is_multigrid_solver(a.solver) ? 3 : 1, 1, 16);
   a.coarsest_max_vertices =
       integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
   a.coarsening = number_in(f, "coarsening", a.coarsening, 0, 64);
@@ -223,6 +212,44 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
                "left out with solver 'petsc-mg' (PETSc's PCMG runs its own V-cycle of "
                "Chebyshev-Jacobi smoothing, `smoothing` steps, and its own Galerkin product; it "
                "cannot honour this setting)");
+}
+
+/// rotation_params, after the tolerance (a static run tightens the iterative methods' own).
+void read_rotation_params(JsonFields& f, AnalysisSpec& a) {
+  RotationParams& p = a.rotation_params;
+  if (a.type == AnalysisType::Static) {
+    // A static residual is the user's criterion: the iterative methods' rotations, found to their
+    // dynamic default 1e-9, left a floor in it (3e-9 on the bunny under gravity, 8e-8 to 1e-7 on
+    // the dragon, which then never reached 1e-8); found kStaticRotationMargin x tighter than the
+    // tolerance they no longer set it (the bunny 3e-11 to 1e-13, as energy-exact's closed form).
+    const double tight = std::max(kMinTolerance, kStaticRotationMargin * a.tolerance);
+    p.newton_tolerance = std::min(p.newton_tolerance, tight);
+    p.mueller_tolerance = std::min(p.mueller_tolerance, tight);
+  }
+  const nlohmann::json* params = f.get("rotation_params");
+  if (!params) return;
+  JsonFields r(*params, f.path_of("rotation_params"), f.file());
+  p.newton_tolerance = number_in(r, "newton_tolerance", p.newton_tolerance, kMinTolerance, 0.5);
+  p.newton_max_iterations = integer_in(r, "newton_max_iterations", p.newton_max_iterations, 1, 100);
+  p.mueller_iterations = integer_in(r, "mueller_iterations", p.mueller_iterations, 1, 200);
+  p.mueller_tolerance = number_in(r, "mueller_tolerance", p.mueller_tolerance, kMinTolerance, 0.5);
+  p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
+  r.reject_unknown_keys();
+}
+
+void read_analysis(JsonFields f, AnalysisSpec& a) {
+  a.type = one_of(f, "type", a.type, kAnalysisTypes);
+  a.formulation = one_of(f, "formulation", a.formulation, kFormulations);
+  a.integrator =
+      one_of(f, "integrator",
+             a.type == AnalysisType::Static ? Integrator::Newton : Integrator::LinearImplicit,
+             kIntegrators);
+  a.rotation =
+      *find_rotation_method(one_of(f, "rotation", a.rotation.name(), rotation_method_names()));
+  a.solver = one_of(f, "solver", a.solver, kSolverKinds);
+  a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
+  a.hierarchy = one_of(f, "hierarchy", a.hierarchy, kHierarchyKinds);
+  read_multigrid_settings(f, a);
   a.start = one_of(f, "start", a.start, kSolveStarts);
   a.start_history = integer_in(f, "start_history", a.start_history, 2, 16);
   a.dt = number_in(f, "dt", a.dt, kMinDt, kMaxDt);
@@ -242,29 +269,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     a.rayleigh_beta = number_in(d, "beta", 0.0, 0.0, kMaxDamping);
     d.reject_unknown_keys();
   }
-  if (a.type == AnalysisType::Static) {
-    // A static residual is the user's criterion: the iterative methods' rotations, found to their
-    // dynamic default 1e-9, left a floor in it (3e-9 on the bunny under gravity, 8e-8 to 1e-7 on
-    // the dragon, which then never reached 1e-8); found kStaticRotationMargin x tighter than the
-    // tolerance they no longer set it (the bunny 3e-11 to 1e-13, as energy-exact's closed form).
-    RotationParams& p = a.rotation_params;
-    const double tight = std::max(kMinTolerance, kStaticRotationMargin * a.tolerance);
-    p.newton_tolerance = std::min(p.newton_tolerance, tight);
-    p.mueller_tolerance = std::min(p.mueller_tolerance, tight);
-  }
-  if (const nlohmann::json* params = f.get("rotation_params")) {
-    JsonFields r(*params, f.path_of("rotation_params"), f.file());
-    RotationParams& p = a.rotation_params;
-    p.newton_tolerance = number_in(r, "newton_tolerance", p.newton_tolerance, kMinTolerance, 0.5);
-    p.newton_max_iterations =
-        integer_in(r, "newton_max_iterations", p.newton_max_iterations, 1, 100);
-    p.mueller_iterations = integer_in(r, "mueller_iterations", p.mueller_iterations, 1, 200);
-    p.mueller_tolerance =
-        number_in(r, "mueller_tolerance", p.mueller_tolerance, kMinTolerance, 0.5);
-    p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
-    r.reject_unknown_keys();
-  }
-  if (!multigrid) {
+  read_rotation_params(f, a);
+  if (!is_multigrid_solver(a.solver)) {
     // A scene that sweeps solvers keeps its multigrid settings: ignored here, said once.
     std::string ignored;
     for (const char* key : kMultigridAnalysisKeys)

@@ -1,0 +1,16 @@
+#pragma once
+// The example's two methods: their scene names and registrations, and the checks against the
+// oracles.
+namespace own {
+
+inline constexpr const char* kEnergyMueller = "energy-mueller-3";
+inline constexpr const char* kDampedL1Jacobi = "damped-l1-jacobi";
+
+void register_energy_mueller();
+void register_damped_l1_jacobi();
+
+/// 0 when both agree with their oracles (the exact minimizer; CHOLMOD), else 1; says why on
+/// stderr.
+int check_against_oracles();
+
+}  // namespace own
