@@ -100,6 +100,24 @@ TEST_F(ThreadsTest, CountIsValidatedAndParsed) {
   set_items_per_thread(1);
 }
 
+TEST(Threads, TheAssemblyHasAPartPerThreadItsSizeUses) {
+  // A part more than the threads the assembly will use (threads_for its elements, 2048 a thread)
+  // visits its boundary elements twice on one thread for nothing: at two threads a mesh under
+  // 4096 tets is one part, a larger one two.
+  const ScopedThreadCount two(2);
+  for (const int cells : {8, 14}) {
+    const nlohmann::json scene = {
+        {"mesh", {{"box", {1, 1, 1}}, {"cells", {cells, cells, cells}}}},
+        {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+        {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 1, 1}}}}}},
+        {"analysis", {{"type", "dynamic"}, {"solver", "cholmod"}, {"steps", 1}}}};
+    SceneSimulation sim(parse_scene(scene, ".", "box"));
+    const int tets = sim.problem().mesh.num_tets();
+    SCOPED_TRACE(tets);
+    EXPECT_EQ(sim.problem().assembly.rows.parts(), tets < 2 * 2048 ? 1 : 2);
+  }
+}
+
 TEST_F(ThreadsTest, RotationsAssemblyAndForcesAreTheOneThreadBits) {
   std::map<std::string, std::vector<Mat3>> rotations_one;  // every method's one-thread rotations
   Eigen::VectorXd fused_one, force_one;

@@ -23,8 +23,10 @@ bool rotation_reaches_the_minimizer() {
   for (const corofem::Vec3& x : mesh.rest)
     moved.push_back(turn * corofem::Vec3(x.x() + 0.3 * x.y(), 0.9 * x.y(), x.z() + 0.1 * x.x()));
   std::vector<corofem::Mat3> exact(mesh.tets.size(), corofem::Mat3::Identity()), mine = exact;
-  corofem::make_rotation_extractor(corofem::RotationMethod::EnergyExact, mesh)->extract(moved, exact);
-  auto method = corofem::make_rotation_extractor(corofem::rotation_method_named(kEnergyMueller), mesh);
+  corofem::make_rotation_extractor(corofem::RotationMethod::EnergyExact, mesh)
+      ->extract(moved, exact);
+  auto method =
+      corofem::make_rotation_extractor(corofem::rotation_method_named(kEnergyMueller), mesh);
   for (int call = 0; call < 100; ++call) method->extract(moved, mine);
   double worst = 0;
   for (std::size_t e = 0; e < mine.size(); ++e)
@@ -34,15 +36,13 @@ bool rotation_reaches_the_minimizer() {
 }
 
 nlohmann::json cube(const std::string& solver) {
-  return {{"mesh", {{"box", {1, 1, 1}}, {"cells", {6, 6, 6}}}},
-          {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
-          {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 1, 1}}}}}},
-          {"gravity", {0, 0, -9.81}},
-          {"analysis",
-           {{"type", "static"},
-            {"formulation", "linear"},
-            {"solver", solver},
-            {"tolerance", 1e-11}}}};
+  return {
+      {"mesh", {{"box", {1, 1, 1}}, {"cells", {6, 6, 6}}}},
+      {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+      {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 1, 1}}}}}},
+      {"gravity", {0, 0, -9.81}},
+      {"analysis",
+       {{"type", "static"}, {"formulation", "linear"}, {"solver", solver}, {"tolerance", 1e-11}}}};
 }
 
 /// MG-PCG to 1e-11 in the residual with the smoother agrees with CHOLMOD to 1e-8.

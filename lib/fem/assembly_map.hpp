@@ -18,11 +18,11 @@ struct AssemblyMap {
   /// first one stores and the others add: K needs no zero fill.
   std::vector<std::uint16_t> first;
   std::vector<int> diagonal;  ///< block index of (v, v) per vertex
-  RowPartition rows;          ///< rows per thread (thread_count() at construction)
+  RowPartition rows;          ///< rows per thread (threads_for(tets) at construction)
 };
 
 /// Zero matrix with one block per pair of vertices sharing an element, and its assembly map
-/// (its row partition for thread_count() threads).
+/// (its row partition for the threads its size uses, threads_for(tets)).
 BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map);
 
 }  // namespace corofem
