@@ -1,14 +1,14 @@
 // The smoother registry: the built-ins by name, and a smoother registered from outside lib/
-// (l1 block Jacobi, damped) reaching the scene parser, the V-cycle, the record and the roofline
-// without a change elsewhere; its MG-PCG answer checked against CHOLMOD. Registration changes the
-// process for good, so it runs in a child process (a death test's fork).
+// (bench/own_method's damped l1 block Jacobi) reaching the scene parser, the V-cycle, the record
+// and the roofline without a change elsewhere; its MG-PCG answer checked against CHOLMOD.
+// Registration changes the process for good, so it runs in a child process (a death test's
+// fork).
 #include <gtest/gtest.h>
-
-#include <Eigen/LU>
 
 #include "core/errors.hpp"
 #include "io/solver_record.hpp"
 #include "multigrid/multigrid_solver.hpp"
+#include "own_method.hpp"
 #include "report/step_roofline.hpp"
 #include "scene/scene_simulation.hpp"
 
@@ -32,57 +32,7 @@ TEST(SmootherRegistry, BuiltInsByName) {
   }
 }
 
-/// x += w M^-1 (b - A x), M the l1-augmented block diagonal (every eigenvalue of M^-1 A in
-/// (0, 1], so any w in (0, 2) converges); the same before and after the coarse correction.
-class DampedL1Jacobi : public Smoother {
- public:
-  void set_matrix(const BrcMatrix& a) override {
-    inverse_.assign(a.block_rows, Mat3::Zero());
-    for (int i = 0; i < a.block_rows; ++i) {
-      Mat3 d = Mat3::Zero();
-      for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
-        if (a.col_index[k] == i)
-          d += a.block(k);
-        else
-          d.diagonal() += a.block(k).cwiseAbs().rowwise().sum();
-      inverse_[i] = d.inverse();
-    }
-  }
-  bool pre_smooth(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int sweeps,
-                  bool zero_guess, Eigen::VectorXd&) const override {
-    if (zero_guess) x.setZero(b.size());
-    post_smooth(a, b, x, sweeps);
-    return false;
-  }
-  bool forms_residual(int) const override { return false; }
-  void post_smooth(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                   int sweeps) const override {
-    Eigen::VectorXd r;
-    for (int s = 0; s < sweeps; ++s) {
-      a.residual(b, x, r);
-      for (int i = 0; i < a.block_rows; ++i)
-        x.segment<3>(3 * i) += kDamping * (inverse_[i] * r.segment<3>(3 * i));
-    }
-  }
-  Traffic setup_traffic(const BrcMatrix& a) const override {
-    return {matrix_bytes(a) + kBlockBytes * a.block_rows, 50.0 * a.block_rows};
-  }
-  Traffic pre_traffic(const BrcMatrix& a, int sweeps) const override {
-    return post_traffic(a, sweeps);
-  }
-  Traffic post_traffic(const BrcMatrix& a, int sweeps) const override {
-    const double n = 3.0 * a.block_rows;
-    return sweeps * Traffic{matrix_bytes(a) + 24 * n + kBlockBytes * a.block_rows + 24 * n,
-                            18.0 * static_cast<double>(a.col_index.size()) + 21 * n};
-  }
-  json describe() const override { return {{"kind", "damped-l1-jacobi"}, {"damping", kDamping}}; }
-
- private:
-  static constexpr double kDamping = 0.8;
-  std::vector<Mat3> inverse_;
-};
-
-json cube_scene(const std::string& solver) {
+json cube_scene() {
   return {{"mesh", {{"box", {1, 1, 1}}, {"cells", {6, 6, 6}}}},
           {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
           {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 1, 1}}}}}},
@@ -90,28 +40,26 @@ json cube_scene(const std::string& solver) {
           {"analysis",
            {{"type", "static"},
             {"formulation", "linear"},
-            {"solver", solver},
+            {"solver", "mgpcg"},
             {"levels", 2},
             {"tolerance", 1e-11}}}};
 }
 
 void register_and_use_a_smoother_of_ones_own() {
-  register_smoother({.name = "damped-l1-jacobi", .make = [](const SmootherSettings&) {
-                       return std::unique_ptr<Smoother>(new DampedL1Jacobi);
-                     }});
+  own::register_damped_l1_jacobi();
   EXPECT_THROW(
-      register_smoother({.name = "damped-l1-jacobi", .make = find_smoother("hybrid")->make}),
+      register_smoother({.name = own::kDampedL1Jacobi, .make = find_smoother("hybrid")->make}),
       std::invalid_argument);
 
-  json scene = cube_scene("mgpcg");
-  scene["analysis"]["smoother"] = "damped-l1-jacobi";
+  // The example's own checks: MG-PCG with it against CHOLMOD (and its rotation method against
+  // the exact minimizer).
+  own::register_energy_mueller();
+  EXPECT_EQ(own::check_against_oracles(), 0);
+
+  json scene = cube_scene();
+  scene["analysis"]["smoother"] = own::kDampedL1Jacobi;
   SceneSimulation mine(parse_scene(scene, ".", "cube.json"));
-  const SimulationResult got = mine.run();
-  SceneSimulation direct(parse_scene(cube_scene("cholmod"), ".", "cube.json"));
-  const SimulationResult want = direct.run();
-  // MG-PCG to 1e-11 in the residual: the displacements agree to about the condition number's
-  // share of it (1e-8 is that with room).
-  EXPECT_LT((got.displacement - want.displacement).norm(), 1e-8 * want.displacement.norm());
+  mine.run();
 
   const auto& solver = dynamic_cast<const MultigridSolver&>(mine.solver());
   EXPECT_EQ(to_json(solver.params())["smoother"]["kind"], "damped-l1-jacobi");
