@@ -301,6 +301,20 @@ std::map<std::string, double> step_phases(const std::map<std::string, double>& b
   return phase_ms;
 }
 
+/// The equilibrium residual of the run's final state, |f_ext - f_int| / |f_ext| on the free
+/// DOFs: how far from static rest the run ended. Extracts the final rotations into `result`.
+double final_equilibrium_residual(FeProblem& problem, RotationExtractor& rotate,
+                                  const DynamicOptions& options, SimulationResult& result,
+                                  PhaseClock& clock) {
+  clock.time("rotate",
+             [&] { rotate.extract(problem.positions(result.displacement), result.rotations); });
+  const Eigen::VectorXd r =
+      problem.external_force - internal_forces(problem, result.rotations, result.displacement);
+  check_finite(problem, r, "force", "the end of step " + std::to_string(options.steps));
+  const double f_norm = options.ranks.free_norm(problem.dirichlet, problem.external_force);
+  return options.ranks.free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
+}
+
 }  // namespace
 
 void euler_newton_matrix(const FeProblem& problem, double dt, double damping, double mass_factor,
@@ -379,14 +393,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
       on_step({step, result.displacement, velocity, result.rotations,
                step_phases(before, result.timings_ms, step_start), stats});
   }
-  // Equilibrium residual of the final state (how far from static rest the run ended).
-  clock.time("rotate",
-             [&] { rotate.extract(problem.positions(result.displacement), result.rotations); });
-  const Eigen::VectorXd r =
-      problem.external_force - internal_forces(problem, result.rotations, result.displacement);
-  check_finite(problem, r, "force", "the end of step " + std::to_string(options.steps));
-  const double f_norm = options.ranks.free_norm(problem.dirichlet, problem.external_force);
-  result.residual = options.ranks.free_norm(problem.dirichlet, r) / (f_norm > 0 ? f_norm : 1);
+  result.residual = final_equilibrium_residual(problem, rotate, options, result, clock);
   result.iterations = options.steps;
   result.converged = true;
   return result;

@@ -140,6 +140,47 @@ Eigen::VectorXd KrylovNewtonSolve::solve(const BrcMatrix& a, const Eigen::Vector
   return x;
 }
 
+namespace {
+
+/// The stopping rules, checked before each iteration: converged; at the floor (near the
+/// tolerance and no longer halving the residual); stalled (near it, and no halving for
+/// stall_iterations); out of iterations.
+class StoppingRules {
+ public:
+  explicit StoppingRules(const NewtonSettings& settings) : settings_(settings) {}
+  bool stop(NewtonReport& report, double norm) {
+    if (report.residual <= settings_.tolerance) return report.converged = true;
+    if (report.residual <= settings_.floor_factor * settings_.tolerance &&
+        norm > 0.5 * previous_norm_)
+      return report.converged = report.at_floor = true;
+    previous_norm_ = norm;
+    if (norm <= 0.5 * last_halved_) {
+      last_halved_ = norm;
+      halved_at_ = report.iterations;
+    }
+    if (settings_.stall_iterations > 0 &&
+        report.residual <= settings_.stall_factor * settings_.tolerance &&
+        report.iterations - halved_at_ >= settings_.stall_iterations)
+      return report.stalled = true;
+    return report.iterations == settings_.max_iterations;
+  }
+
+ private:
+  const NewtonSettings& settings_;
+  double previous_norm_ = std::numeric_limits<double>::infinity();
+  double last_halved_ = std::numeric_limits<double>::infinity();  // the stall rule's reference
+  int halved_at_ = 0;
+};
+
+/// A state Newton may move to: z, its residual g and norm, its potential.
+struct NewtonState {
+  Eigen::VectorXd z, g;
+  double norm = 0;
+  PotentialValue phi{};
+};
+
+}  // namespace
+
 NewtonReport newton_iterate(
     Eigen::VectorXd& z, const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& residual,
     const std::function<void(BrcMatrix&)>& jacobian, const DirichletConditions& fixed, double scale,
@@ -153,34 +194,12 @@ NewtonReport newton_iterate(
   Eigen::VectorXd g = residual(z);
   double norm = ranks.free_norm(fixed, g);
   PotentialValue phi = potential ? potential() : PotentialValue{};
-  double previous_norm = std::numeric_limits<double>::infinity();
-  double last_halved = std::numeric_limits<double>::infinity();  // the stall rule's reference
-  int halved_at = 0;
+  StoppingRules rules(settings);
   for (;; ++report.iterations) {
     report.residual = norm / scale;
     if (settings.on_iteration && report.iterations > 0)
       settings.on_iteration(report.iterations, report.residual);
-    if (report.residual <= settings.tolerance) {
-      report.converged = true;
-      return report;
-    }
-    if (report.residual <= settings.floor_factor * settings.tolerance &&
-        norm > 0.5 * previous_norm) {
-      report.converged = report.at_floor = true;
-      return report;
-    }
-    previous_norm = norm;
-    if (norm <= 0.5 * last_halved) {
-      last_halved = norm;
-      halved_at = report.iterations;
-    }
-    if (settings.stall_iterations > 0 &&
-        report.residual <= settings.stall_factor * settings.tolerance &&
-        report.iterations - halved_at >= settings.stall_iterations) {
-      report.stalled = true;
-      return report;
-    }
-    if (report.iterations == settings.max_iterations) return report;
+    if (rules.stop(report, norm)) return report;
     jacobian(work);
     Eigen::VectorXd rhs = -g;
     apply_dirichlet(step_bc, work, rhs);
@@ -192,14 +211,12 @@ NewtonReport newton_iterate(
     // J), where the search finds no decrease (the potential has kinks where elements invert), or
     // without a potential.
     const double slope = g.dot(dz);
-    Eigen::VectorXd trial, g_trial;
-    double trial_norm = 0;
-    PotentialValue trial_phi;
+    NewtonState trial;
     const auto evaluate = [&](double alpha) {
-      trial = z + alpha * dz;
-      g_trial = residual(trial);
-      trial_norm = ranks.free_norm(fixed, g_trial);
-      trial_phi = potential ? potential() : PotentialValue{};
+      trial.z = z + alpha * dz;
+      trial.g = residual(trial.z);
+      trial.norm = ranks.free_norm(fixed, trial.g);
+      trial.phi = potential ? potential() : PotentialValue{};
     };
     int halvings = 0;
     bool found = false;
@@ -209,8 +226,8 @@ NewtonReport newton_iterate(
       double alpha = longest;
       for (int h = 0; h <= settings.max_halvings && !found; ++h, alpha *= 0.5) {
         evaluate(alpha);
-        found = std::isfinite(trial_phi.value) &&
-                trial_phi.value <= phi.value + kArmijo * alpha * slope;
+        found = std::isfinite(trial.phi.value) &&
+                trial.phi.value <= phi.value + kArmijo * alpha * slope;
         halvings += !found;
       }
       report.potential_fallbacks += !found;
@@ -219,17 +236,17 @@ NewtonReport newton_iterate(
       double alpha = longest;
       for (int h = 0;; ++h, alpha *= 0.5) {
         evaluate(alpha);
-        if ((std::isfinite(trial_norm) && trial_norm <= settings.max_growth * norm) ||
+        if ((std::isfinite(trial.norm) && trial.norm <= settings.max_growth * norm) ||
             h == settings.max_halvings)
           break;
         ++halvings;
       }
     }
-    if (!std::isfinite(trial_norm)) throw NumericalFault("Newton: the residual became non-finite");
-    z = std::move(trial);
-    g = std::move(g_trial);
-    norm = trial_norm;
-    phi = trial_phi;
+    if (!std::isfinite(trial.norm)) throw NumericalFault("Newton: the residual became non-finite");
+    z = std::move(trial.z);
+    g = std::move(trial.g);
+    norm = trial.norm;
+    phi = trial.phi;
     report.halvings += halvings;
   }
 }

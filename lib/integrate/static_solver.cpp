@@ -128,6 +128,40 @@ IncrementEnd lagged_increment(FeProblem& problem, RotationExtractor& rotate, Lin
   return IncrementEnd::Missed;
 }
 
+/// Static Newton's solve of its tangent, as options.tangent_solve says.
+std::unique_ptr<NewtonLinearSolve> newton_linear_solve(FeProblem& problem, LinearSolver& solver,
+                                                       const StaticOptions& options,
+                                                       const std::vector<Mat3>& rotations) {
+  if (options.tangent_solve == TangentSolve::BySolver)
+    return std::make_unique<KrylovNewtonSolve>(solver);
+  if (options.ranks.distributed())  // a part's own solve would solve the part alone
+    throw std::logic_error("static Newton on a distributed mesh with a serial tangent solve");
+  if (options.tangent_solve == TangentSolve::PreconditionedBySolver)
+    // Where the tangent's symmetric part is indefinite (a body in compression), the multigrid
+    // takes the corotated stiffness R K R^T at the iterate's rotations: positive definite, and
+    // GMRES's iterations stay few enough that no factor's fill is needed.
+    return std::make_unique<PreconditionedGmresSolve>(
+        solver, problem.stiffness, newton_tangent_tolerance(options.tolerance),
+        corotated_stiffness_standin(problem, rotations));
+  return std::make_unique<SparseLuSolve>(problem.stiffness);
+}
+
+/// Why a run stopped short of its load: stalled at a floor, or out of iterations.
+std::string static_failure_message(IncrementEnd end, const StaticIteration& at,
+                                   const SimulationResult& result, const StaticOptions& options) {
+  const std::string cuts =
+      result.increment_cuts > 0 ? ", after " + std::to_string(result.increment_cuts) + " cuts" : "";
+  if (end == IncrementEnd::Stalled)
+    return at.name() + " stalls at residual " + general_number(result.residual) +
+           " above tolerance " + general_number(options.tolerance) + " (" +
+           std::to_string(at.iteration) + " iterations" + cuts +
+           "): the floor of the internal forces' own error, their rounding and an "
+           "iterative rotation method's tolerance (rotation_params); a looser tolerance ends here";
+  return at.name() + " did not reach tolerance " + general_number(options.tolerance) + " in " +
+         std::to_string(options.max_iterations) + " iterations (residual " +
+         general_number(result.residual) + cuts + ")";
+}
+
 }  // namespace
 
 SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
@@ -145,19 +179,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
   BrcMatrix jacobian_matrix;
   if (options.newton && options.corotational) {
     tangent = std::make_unique<RotationTangent>(problem, rotate.method());
-    if (options.tangent_solve == TangentSolve::BySolver)
-      linear = std::make_unique<KrylovNewtonSolve>(solver);
-    else if (options.ranks.distributed())  // a part's own solve would solve the part alone
-      throw std::logic_error("static Newton on a distributed mesh with a serial tangent solve");
-    else if (options.tangent_solve == TangentSolve::PreconditionedBySolver)
-      // Where the tangent's symmetric part is indefinite (a body in compression), the multigrid
-      // takes the corotated stiffness R K R^T at the iterate's rotations: positive definite, and
-      // GMRES's iterations stay few enough that no factor's fill is needed.
-      linear = std::make_unique<PreconditionedGmresSolve>(
-          solver, problem.stiffness, newton_tangent_tolerance(options.tolerance),
-          corotated_stiffness_standin(problem, result.rotations));
-    else
-      linear = std::make_unique<SparseLuSolve>(problem.stiffness);
+    linear = newton_linear_solve(problem, solver, options, result.rotations);
     jacobian_matrix = problem.stiffness;
   }
   // The load fraction reached is done / denominator, in integers, so that uncut the k-th
@@ -208,20 +230,7 @@ SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
     }
     note_inverted();
     result.converged = false;
-    const std::string cuts = result.increment_cuts > 0
-                                 ? ", after " + std::to_string(result.increment_cuts) + " cuts"
-                                 : "";
-    result.message =
-        end == IncrementEnd::Stalled
-            ? at.name() + " stalls at residual " + general_number(result.residual) +
-                  " above tolerance " + general_number(options.tolerance) + " (" +
-                  std::to_string(at.iteration) + " iterations" + cuts +
-                  "): the floor of the internal forces' own error, their rounding and an "
-                  "iterative rotation method's tolerance (rotation_params); a looser tolerance "
-                  "ends here"
-            : at.name() + " did not reach tolerance " + general_number(options.tolerance) + " in " +
-                  std::to_string(options.max_iterations) + " iterations (residual " +
-                  general_number(result.residual) + cuts + ")";
+    result.message = static_failure_message(end, at, result, options);
     break;
   }
   if (linear) result.tangent_fallbacks = linear->fallbacks();

@@ -400,6 +400,33 @@ json table_settings(const ReportConfig& config, int warmup, int measured,
           {"oracle_check_steps", check_steps}};
 }
 
+/// Every table's rows of one model at one of Table 1's sizes.
+void add_model_rows(json& tables, ModelTables& m, const std::string& model, SceneSize size,
+                    const ReportConfig& config, int threads) {
+  tables["table1"].push_back(table1_row(m, threads));
+  if (m.main_completed) tables["verification"].push_back(verification_row(m));
+  tables["table2"].push_back(table2_row(m));
+  tables["small_strain"].push_back(small_strain_row(m));
+  for (const HierarchyKind hierarchy : {HierarchyKind::Meshes, HierarchyKind::Lattice})
+    tables["multigrid"].push_back(multigrid_row(m, hierarchy));
+  if (model == "quadruped")  // its coarse meshes derived, at sizes corofem picks
+    tables["multigrid"].push_back(
+        multigrid_row(m, HierarchyKind::Meshes, false, kSizeIndependentCoarsening));
+  if (has_given_levels(m.scene))
+    tables["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes, true));
+  if (config.jacobi_table(size))
+    for (const double young_scale : {1.0, 100.0})
+      tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
+  if (!config.comparison_tables(size)) return;
+  for (const auto& [rival, reuse] :
+       std::vector<std::pair<SolverKind, bool>>{{SolverKind::PetscGamg, false},
+                                                {SolverKind::HypreBoomeramg, false},
+                                                {SolverKind::PetscMg, false},
+                                                {SolverKind::PetscGamg, true},
+                                                {SolverKind::HypreBoomeramg, true}})
+    tables["rival_solvers"].push_back(rival_row(m, rival, reuse));
+}
+
 }  // namespace
 
 json run_paper_tables(const ReportConfig& config) {
@@ -449,29 +476,7 @@ json run_paper_tables(const ReportConfig& config) {
   for (const std::string& model : config.models()) {
     for (SceneSize size : config.table_sizes(model)) {
       ModelTables m = model_tables(model, size);
-      tables["table1"].push_back(table1_row(m, threads));
-      if (m.main_completed) tables["verification"].push_back(verification_row(m));
-      tables["table2"].push_back(table2_row(m));
-      tables["small_strain"].push_back(small_strain_row(m));
-      for (const HierarchyKind hierarchy : {HierarchyKind::Meshes, HierarchyKind::Lattice})
-        tables["multigrid"].push_back(multigrid_row(m, hierarchy));
-      if (model == "quadruped")  // its coarse meshes derived, at sizes corofem picks
-        tables["multigrid"].push_back(
-            multigrid_row(m, HierarchyKind::Meshes, false, kSizeIndependentCoarsening));
-      if (has_given_levels(m.scene))
-        tables["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes, true));
-      if (config.jacobi_table(size))
-        for (const double young_scale : {1.0, 100.0})
-          tables["jacobi_pcg"].push_back(jacobi_row(m, young_scale));
-      if (config.comparison_tables(size)) {
-        for (const auto& [rival, reuse] :
-             std::vector<std::pair<SolverKind, bool>>{{SolverKind::PetscGamg, false},
-                                                      {SolverKind::HypreBoomeramg, false},
-                                                      {SolverKind::PetscMg, false},
-                                                      {SolverKind::PetscGamg, true},
-                                                      {SolverKind::HypreBoomeramg, true}})
-          tables["rival_solvers"].push_back(rival_row(m, rival, reuse));
-      }
+      add_model_rows(tables, m, model, size, config, threads);
       progress.finish();
     }
     for (SceneSize size : config.multigrid_only_sizes(model)) {

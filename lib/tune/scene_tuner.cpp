@@ -89,6 +89,10 @@ class Tuner {
   json candidate_json(const Measured& m, double reference_error) const;
   TuneOutcome answer(Measured choice, const ReferenceError& e_ref, const std::string& status,
                      const std::string& reason);
+  /// The record's account of the search: what was tuned against what, the axes, the runs.
+  json search_record(const ReferenceError& e_ref) const;
+  /// Every candidate measured, those completed marked on the Pareto front or not.
+  json candidates_record(double reference_error) const;
 
   const json& raw_;
   std::filesystem::path base_dir_;
@@ -307,10 +311,8 @@ json Tuner::candidate_json(const Measured& m, double reference_error) const {
   return j;
 }
 
-TuneOutcome Tuner::answer(Measured choice, const ReferenceError& e_ref, const std::string& status,
-                          const std::string& reason) {
-  TuneOutcome out;
-  json& r = out.record;
+json Tuner::search_record(const ReferenceError& e_ref) const {
+  json r;
   r["producer"] = "corofem tune";
   r["context"] = run_context();
   r["scene_file"] = name_;
@@ -352,11 +354,15 @@ TuneOutcome Tuner::answer(Measured choice, const ReferenceError& e_ref, const st
   r["search_fraction"] = runs / grid;
   r["skipped"] = skipped_;
   r["budget_spent"] = budget_spent_;
+  return r;
+}
+
+json Tuner::candidates_record(double reference_error) const {
   // The Pareto front of everything measured (error with the reference's, cost).
   json candidates = json::array();
   std::vector<json*> on_front;
   std::vector<CostAndError> points;
-  for (const Measured& m : measured_) candidates.push_back(candidate_json(m, e_ref.value));
+  for (const Measured& m : measured_) candidates.push_back(candidate_json(m, reference_error));
   for (std::size_t i = 0; i < measured_.size(); ++i)
     if (measured_[i].run.completed && measured_[i].stage != "re-run") {
       on_front.push_back(&candidates[i]);
@@ -364,7 +370,15 @@ TuneOutcome Tuner::answer(Measured choice, const ReferenceError& e_ref, const st
     }
   const std::vector<bool> front = pareto_front(points);
   for (std::size_t i = 0; i < on_front.size(); ++i) (*on_front[i])["pareto"] = bool(front[i]);
-  r["candidates"] = candidates;
+  return candidates;
+}
+
+TuneOutcome Tuner::answer(Measured choice, const ReferenceError& e_ref, const std::string& status,
+                          const std::string& reason) {
+  TuneOutcome out;
+  json& r = out.record;
+  r = search_record(e_ref);
+  r["candidates"] = candidates_record(e_ref.value);
   std::optional<double> given_cost;  // read now: the re-run below grows measured_
   if (given_index_ >= 0) {
     const Measured& given = measured_[given_index_];
