@@ -12,9 +12,12 @@
 #include <set>
 #include <sstream>
 
+#include "cholmod_oracle.hpp"
 #include "core/errors.hpp"
+#include "galerkin_oracle.hpp"
 #include "report/case_record.hpp"
 #include "report/report_config.hpp"
+#include "report/report_oracles.hpp"
 #include "report/section_progress.hpp"
 #include "report/speed_accuracy.hpp"
 #include "solver/petsc_solver.hpp"
@@ -702,6 +705,32 @@ TEST(Report, BadOptionsExitTwo) {
   const auto r = run_cli("report --models '" + empty.path().string() + "' --out x");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("bunny_L0.stl"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace corofem
+
+namespace corofem {
+namespace {
+
+TEST(ReportOracles, ACheckWithNoOracleWiredIsRefusedNotRecorded) {
+  // lib/ links no oracle: the executable wires them (cli/main.cpp). The gates' binary wires
+  // none, so a check asked for here must refuse, naming the oracle, and run once wired.
+  try {
+    report_oracles("galerkin");
+    ADD_FAILURE() << "an oracle nobody wired was handed out";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'galerkin' is not wired"), std::string::npos) << e.what();
+  }
+  set_report_oracles(
+      {.direct_solve = reference::cholmod_solve, .galerkin = reference::eigen_galerkin});
+  Eigen::SparseMatrix<double> a(2, 2);
+  a.insert(0, 0) = 4;
+  a.insert(1, 1) = 2;
+  const Eigen::VectorXd x = report_oracles("direct_solve").direct_solve(a, Eigen::Vector2d(8, 2));
+  EXPECT_DOUBLE_EQ(x[0], 2);
+  EXPECT_DOUBLE_EQ(x[1], 1);
+  set_report_oracles({});  // as the binary was
 }
 
 }  // namespace

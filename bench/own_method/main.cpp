@@ -3,10 +3,16 @@
 // knows them.
 #include <string>
 
+#include "cholmod_oracle.hpp"
 #include "cli/entry_point.hpp"
+#include "galerkin_oracle.hpp"
 #include "own_method.hpp"
+#include "report/report_oracles.hpp"
 
 int main(int argc, char** argv) {
+  // The report's verification summary checks against reference/'s oracles, as corofem's does.
+  corofem::set_report_oracles({.direct_solve = corofem::reference::cholmod_solve,
+                               .galerkin = corofem::reference::eigen_galerkin});
   own::register_energy_mueller();
   own::register_damped_l1_jacobi();
   if (argc == 2 && std::string(argv[1]) == "check") return own::check_against_oracles();

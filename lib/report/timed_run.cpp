@@ -5,12 +5,11 @@
 #include <cmath>
 #include <limits>
 
-#include "cholmod_oracle.hpp"
-#include "galerkin_oracle.hpp"
 #include "io/solver_record.hpp"
 #include "mesh/vertex_selection.hpp"
 #include "multigrid/multigrid_solver.hpp"
 #include "multigrid/transfer.hpp"
+#include "report/report_oracles.hpp"
 #include "rotation/quaternion.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/scene_simulation.hpp"
@@ -42,7 +41,7 @@ class OracleCheckedSolver : public LinearSolver {
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     const SolveStats stats = inner_->solve(b, x);
     if (checking_) {
-      const Eigen::VectorXd exact = reference::cholmod_solve(matrix_, b);
+      const Eigen::VectorXd exact = report_oracles("direct_solve").direct_solve(matrix_, b);
       const double norm = exact.norm();
       const double error = norm > 0 ? (x - exact).norm() / norm : (x - exact).norm();
       out_.solve_error_max = std::max(out_.solve_error_max, error);
@@ -167,8 +166,9 @@ void check_operators(SceneSimulation& simulation, LinearSolver& under_test,
     const MultigridHierarchy& h = mg->hierarchy();
     out.galerkin_error_max = 0;
     for (int level = 0; level + 1 < h.num_levels(); ++level) {
-      const Eigen::SparseMatrix<double> expected = reference::eigen_galerkin(
-          restriction_matrix(h.transfer(level)), to_eigen(h.matrix(level)));
+      const Eigen::SparseMatrix<double> expected =
+          report_oracles("galerkin")
+              .galerkin(restriction_matrix(h.transfer(level)), to_eigen(h.matrix(level)));
       const double error = (to_eigen(h.matrix(level + 1)) - expected).norm() / expected.norm();
       out.galerkin_error_max = std::max(out.galerkin_error_max, error);
     }
