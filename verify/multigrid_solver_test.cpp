@@ -387,6 +387,25 @@ TEST(MultigridSolver, IterationCapAboveToleranceIsNotConverged) {
   }
 }
 
+TEST(MultigridSolver, SaysItselfThatItIsOne) {
+  // The records, the roofline and the Galerkin oracle find the hierarchy through the solver's
+  // own multigrid(), not a cast: the multigrid solvers return themselves, the others null.
+  const std::vector<MeshCase> cases = meshes();
+  const MeshCase& c = cases.front();
+  const std::vector<TetMesh> coarse = c.coarse();
+  FeProblem p = problem_for(c);
+  for (const char* name : {"cholmod", "jacobi-pcg", "multigrid", "mgpcg"}) {
+    SCOPED_TRACE(name);
+    auto solver = make_linear_solver(analysis(name, 1e-8, "meshes"), p, coarse);
+    const bool multigrid = std::string(name) == "multigrid" || std::string(name) == "mgpcg";
+    EXPECT_EQ(solver->multigrid() != nullptr, multigrid);
+    if (multigrid) {
+      EXPECT_EQ(static_cast<const void*>(solver->multigrid()),
+                static_cast<const void*>(solver.get()));
+    }
+  }
+}
+
 TEST(MultigridSolver, VcycleConvergenceFactor) {
   int w_cycle_cases = 0;  // cases whose hierarchy makes W differ from V (3 levels or more)
   for (const MeshCase& c : meshes()) {

@@ -97,7 +97,7 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
                                  ? nlohmann::json{{"kind", "projection"}, {"history", history}}
                                  : nlohmann::json{{"kind", "extrapolation"}};
   }
-  if (const auto* mg = dynamic_cast<const MultigridSolver*>(solver)) {
+  if (const MultigridSolver* mg = solver->multigrid()) {
     r["analysis"]["multigrid"] = to_json(mg->params());
     r["multigrid"] = simulation.describe_multigrid(*mg);
   }

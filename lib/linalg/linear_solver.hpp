@@ -9,6 +9,8 @@
 
 namespace corofem {
 
+class MultigridSolver;
+
 struct SolveStats {
   int iterations = 0;             ///< V-cycles or CG iterations; 1 for a direct solve
   double residual = 0;            ///< |b - A x| / |b| reached
@@ -37,6 +39,10 @@ class LinearSolver {
   virtual void take_matrix(BrcMatrix& a) { set_matrix(a); }
   /// x holds the initial guess on entry (ignored by direct solvers).
   virtual SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  /// The multigrid solver this one is, or wraps, for what reads a hierarchy (the run's
+  /// multigrid record, the step's roofline, the Galerkin oracle); null for every other solver.
+  /// The solver says so itself: no caller casts.
+  virtual const MultigridSolver* multigrid() const { return nullptr; }
 };
 
 /// CHOLMOD: symbolic analysis at the first matrix, numeric refactorization at every later one.

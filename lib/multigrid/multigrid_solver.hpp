@@ -79,6 +79,7 @@ class MultigridSolver : public LinearSolver {
   void set_matrix(const BrcMatrix& a) override;
   void take_matrix(BrcMatrix& a) override;  ///< the fine values swapped in, not copied
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
+  const MultigridSolver* multigrid() const override { return this; }
 
   /// One V-cycle from level h for A_h x = b, x the initial guess on entry; `zero_guess`: x starts
   /// at 0 whatever it holds (a correction: every coarse level, and the preconditioner), so the

@@ -29,7 +29,7 @@ class OracleCheckedSolver : public LinearSolver {
                       TimedRun& out)
       : inner_(std::move(inner)), check_steps_(std::move(check_steps)), out_(out) {}
   std::string name() const override { return inner_->name(); }
-  LinearSolver& inner() { return *inner_; }
+  const MultigridSolver* multigrid() const override { return inner_->multigrid(); }
   void set_matrix(const BrcMatrix& a) override {
     if (next_is_checked()) matrix_ = to_eigen(a);
     inner_->set_matrix(a);
@@ -159,10 +159,10 @@ double matptap_ms(const MultigridHierarchy& h) {
 
 /// The operators of the run's final state against the oracles: every coarse level against Eigen's
 /// R A R^T, and energy-newton's rotations against the exact minimizer.
-void check_operators(SceneSimulation& simulation, LinearSolver& under_test,
+void check_operators(SceneSimulation& simulation, const LinearSolver& solver,
                      const std::vector<Vec3>& final_positions, TimedRun& out) {
   const FeProblem& problem = simulation.problem();
-  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
+  if (const MultigridSolver* mg = solver.multigrid()) {
     const MultigridHierarchy& h = mg->hierarchy();
     out.galerkin_error_max = 0;
     for (int level = 0; level + 1 < h.num_levels(); ++level) {
@@ -197,17 +197,12 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
   out.tets = problem.mesh.num_tets();
   out.vertices = problem.mesh.num_vertices();
   out.mesh = problem.mesh;
-  OracleCheckedSolver* checked = nullptr;
-  if (!options.check_steps.empty()) {
-    auto solver = std::make_unique<OracleCheckedSolver>(simulation.release_solver(),
-                                                        options.check_steps, out);
-    checked = solver.get();
-    simulation.set_solver(std::move(solver));
-  }
+  if (!options.check_steps.empty())
+    simulation.set_solver(std::make_unique<OracleCheckedSolver>(simulation.release_solver(),
+                                                                options.check_steps, out));
   if (options.on_step) simulation.keep_stiffness();  // it gets the problem, Ktilde included
-  LinearSolver& under_test = checked ? checked->inner() : simulation.solver();
-  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test))
-    out.levels = mg->hierarchy().num_levels();
+  const MultigridSolver* mg = simulation.solver().multigrid();
+  if (mg) out.levels = mg->hierarchy().num_levels();
   out.result = simulation.run([&](const StepState& s) {
     auto phases = s.phase_ms;
     if (std::find(options.check_steps.begin(), options.check_steps.end(), s.step) !=
@@ -222,8 +217,8 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
         iterations.empty() ? 0.0 : sum / static_cast<double>(iterations.size()));
     if (options.on_step) options.on_step(s, problem);
   });
-  out.multigrid = simulation.multigrid_summary(under_test);
-  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test)) {
+  out.multigrid = simulation.multigrid_summary(simulation.solver());
+  if (mg) {
     const int warmup = std::min<int>(options.warmup_steps, static_cast<int>(out.solves.size()) - 1);
     const std::vector<double> after(out.rotation_iterations.begin() + std::max(warmup, 0),
                                     out.rotation_iterations.end());
@@ -236,13 +231,12 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     for (int level = 0; level < h.num_levels(); ++level)
       out.working_set_bytes += 76.0 * static_cast<double>(h.matrix(level).col_index.size());
   }
-  if (auto* mg = dynamic_cast<MultigridSolver*>(&under_test);
-      mg && options.time_matptap && have_petsc())
-    out.matptap_ms = matptap_ms(mg->hierarchy());
+  if (mg && options.time_matptap && have_petsc()) out.matptap_ms = matptap_ms(mg->hierarchy());
   out.rest_volume = total_volume(problem.mesh, problem.mesh.rest);
   const auto final_positions = problem.positions(out.result.displacement);
   out.final_volume = total_volume(problem.mesh, final_positions);
-  if (options.check_operators) check_operators(simulation, under_test, final_positions, out);
+  if (options.check_operators)
+    check_operators(simulation, simulation.solver(), final_positions, out);
   return out;
 }
 

@@ -149,7 +149,7 @@ RankShare SceneSimulation::receive_share() {
 
 std::optional<MultigridSummary> SceneSimulation::multigrid_summary(
     const LinearSolver& solver) const {
-  const auto* mg = dynamic_cast<const MultigridSolver*>(&solver);
+  const MultigridSolver* mg = solver.multigrid();
   if (!mg) return std::nullopt;
   MultigridSummary s = summarize(*mg);
   s.setup.coarse_meshes = coarse_meshing_ms_;
