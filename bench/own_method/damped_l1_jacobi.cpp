@@ -2,10 +2,8 @@
 // diagonal plus each row's l1 norm outside its block (every eigenvalue of M^-1 A then lies in
 // (0, 1], so w = 0.8 converges); the same before and after the coarse correction, so the V-cycle
 // stays a symmetric preconditioner.
-#include <Eigen/LU>
-
 #include "core/types.hpp"
-#include "linalg/smoother.hpp"
+#include "linalg/chebyshev_smoother.hpp"
 #include "own_method.hpp"
 
 namespace own {
@@ -13,16 +11,7 @@ namespace own {
 class DampedL1Jacobi : public corofem::Smoother {
  public:
   void set_matrix(const corofem::BrcMatrix& a) override {
-    inverse_.assign(a.block_rows, corofem::Mat3::Zero());
-    for (int i = 0; i < a.block_rows; ++i) {
-      corofem::Mat3 d = corofem::Mat3::Zero();
-      for (int k = a.row_start[i]; k < a.row_start[i + 1]; ++k)
-        if (a.col_index[k] == i)
-          d += a.block(k);
-        else
-          d.diagonal() += a.block(k).cwiseAbs().rowwise().sum();
-      inverse_[i] = d.inverse();
-    }
+    inverse_ = corofem::l1_block_diagonal_inverse(a);  // Chebyshev's diagonal, corofem's own
   }
   bool pre_smooth(const corofem::BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                   int sweeps, bool zero_guess, Eigen::VectorXd&) const override {

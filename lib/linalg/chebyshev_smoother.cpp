@@ -7,8 +7,8 @@
 
 namespace corofem {
 
-void ChebyshevSmoother::set_matrix(const BrcMatrix& a) {
-  inverse_.resize(a.block_rows);
+std::vector<Eigen::Matrix3d> l1_block_diagonal_inverse(const BrcMatrix& a) {
+  std::vector<Eigen::Matrix3d> inverse(a.block_rows);
   bool missing_diagonal = false;
 #pragma omp parallel for schedule(static) num_threads(threads_for(a.block_rows))
   for (int i = 0; i < a.block_rows; ++i) {
@@ -25,9 +25,14 @@ void ChebyshevSmoother::set_matrix(const BrcMatrix& a) {
     }
     if (!found) missing_diagonal = true;
     d.diagonal() += l1;
-    inverse_[i] = d.inverse();
+    inverse[i] = d.inverse();
   }
   if (missing_diagonal) throw NumericalFault("multigrid: a level has no diagonal block");
+  return inverse;
+}
+
+void ChebyshevSmoother::set_matrix(const BrcMatrix& a) {
+  inverse_ = l1_block_diagonal_inverse(a);
 }
 
 void ChebyshevSmoother::apply_inverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {

@@ -15,6 +15,10 @@
 
 namespace corofem {
 
+/// M^-1 block by block, M = blockdiag(A_ii + diag(l1 norms of row r's entries outside block i)):
+/// every eigenvalue of M^-1 A lies in (0, 1]. NumericalFault where a row has no diagonal block.
+std::vector<Eigen::Matrix3d> l1_block_diagonal_inverse(const BrcMatrix& a);
+
 class ChebyshevSmoother : public Smoother {
  public:
   /// `lower`: the interval's lower end; eigenvalues of M^-1 A below it (the smooth modes, left
