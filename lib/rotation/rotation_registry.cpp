@@ -3,6 +3,7 @@
 #include <deque>
 #include <stdexcept>
 
+#include "core/named_registry.hpp"
 #include "rotation/energy_rotation.hpp"
 #include "rotation/gram_schmidt_frame.hpp"
 #include "rotation/mueller2016.hpp"
@@ -36,10 +37,8 @@ std::deque<RotationMethodTraits> builtin_methods() {
   return methods;
 }
 
-/// Never shrinks, so the references traits() hands out stay valid (a deque's push_back keeps
-/// them). Registration happens before any run, reading from any thread after.
-std::deque<RotationMethodTraits>& registry() {
-  static std::deque<RotationMethodTraits> methods = builtin_methods();
+NamedRegistry<RotationMethodTraits>& registry() {
+  static NamedRegistry<RotationMethodTraits> methods(builtin_methods(), "rotation method");
   return methods;
 }
 
@@ -54,14 +53,9 @@ const std::string& RotationMethod::name() const {
 }
 
 RotationMethod register_rotation_method(RotationMethodTraits traits) {
-  if (traits.name.empty()) throw std::invalid_argument("register_rotation_method: no name");
   if (!traits.make)
-    throw std::invalid_argument("register_rotation_method: '" + traits.name + "' has no make");
-  if (find_rotation_method(traits.name))
-    throw std::invalid_argument("register_rotation_method: '" + traits.name +
-                                "' is registered already");
-  registry().push_back(std::move(traits));
-  return RotationMethod(static_cast<int>(registry().size()) - 1);
+    throw std::invalid_argument("register rotation method: '" + traits.name + "' has no make");
+  return RotationMethod(static_cast<int>(registry().add(std::move(traits))));
 }
 
 std::vector<RotationMethod> rotation_methods() {
@@ -71,24 +65,16 @@ std::vector<RotationMethod> rotation_methods() {
 }
 
 std::vector<std::string> rotation_method_names() {
-  std::vector<std::string> out;
-  for (const RotationMethodTraits& t : registry()) out.push_back(t.name);
-  return out;
+  return registry().names();
 }
 
 std::optional<RotationMethod> find_rotation_method(std::string_view name) {
-  const auto& methods = registry();
-  for (std::size_t i = 0; i < methods.size(); ++i)
-    if (methods[i].name == name) return RotationMethod(static_cast<int>(i));
+  if (auto i = registry().find(name)) return RotationMethod(static_cast<int>(*i));
   return std::nullopt;
 }
 
 RotationMethod rotation_method_named(std::string_view name) {
-  if (auto method = find_rotation_method(name)) return *method;
-  std::string list;
-  for (const std::string& n : rotation_method_names()) list += (list.empty() ? "" : ", ") + n;
-  throw std::out_of_range("no rotation method named '" + std::string(name) +
-                          "' (registered: " + list + ")");
+  return RotationMethod(static_cast<int>(registry().index_of(name)));
 }
 
 }  // namespace corofem
