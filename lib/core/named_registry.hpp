@@ -37,8 +37,8 @@ class NamedRegistry {
     if (auto i = find(name)) return *i;
     std::string list;
     for (const std::string& n : names()) list += (list.empty() ? "" : ", ") + n;
-    throw std::out_of_range("no " + what_ + " named '" + std::string(name) + "' (registered: " +
-                            list + ")");
+    throw std::out_of_range("no " + what_ + " named '" + std::string(name) +
+                            "' (registered: " + list + ")");
   }
   const Traits& at(std::size_t i) const { return entries_.at(i); }
   std::size_t size() const { return entries_.size(); }
