@@ -30,8 +30,8 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import render_report  # noqa: E402
 
-RECORDS = ("tables.json", "speed_accuracy.json", "stability.json", "stability_frames.json", "cache_profile.json",
-           "mpi_scaling.json", "model_accuracy.json")
+RECORDS = tuple(render_report.record_files(render_report.units()))
+
 
 
 class Reads:

@@ -17,6 +17,7 @@
 #include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "report/report_driver.hpp"
+#include "report/report_section.hpp"
 #include "scene/scene_paths.hpp"
 #include "scene/scene_simulation.hpp"
 #include "solver/mpi_launch.hpp"
@@ -80,24 +81,27 @@ level h to h+1) in Matrix Market coordinate real general, DOF index 3*vertex+com
 levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver computed it.
 )";
 
-const char* kReportHelp =
-    R"(Usage: corofem report [--out DIR] [--full | --quick | --smoke] [--models DIR] [--only NAME]
-                      [--tables-only | --speed-accuracy-only | --stability-only | --model-accuracy-only]
+/// `corofem report --help`: the sections' flags and records come from their registry.
+std::string report_help() {
+  std::string flags, records;
+  for (const std::string& name : report_section_names()) {
+    const ReportSectionTraits& section = report_section(name);
+    flags += (flags.empty() ? "" : " | ") + ("--" + name + "-only");
+    std::string file = "  " + section.file;
+    file.resize(std::max<std::size_t>(file.size() + 1, 23), ' ');
+    std::string usage = section.usage;
+    for (std::size_t at = usage.find('\n'); at != std::string::npos; at = usage.find('\n', at + 1))
+      usage.insert(at + 1, std::string(23, ' '));
+    records += file + usage + "\n";
+  }
+  return R"(Usage: corofem report [--out DIR] [--full | --quick | --smoke] [--models DIR] [--only NAME]
+                      [)" +
+         flags + R"(]
                       [--vtu] [--no-render] [--threads N]
 
 Runs the report's sections and writes into DIR (default out/report):
-  tables.json          Tables 1 and 2 of the paper, measured (dynamic runs: energy-newton rotations,
-                       MG-PCG, gather update; naive update, polar + smoothing, CHOLMOD step,
-                       small strain, Jacobi-PCG), the paper's rows, and the oracle checks
-  speed_accuracy.json  time per step against error for solver settings, rotation methods and
-                       resolutions, with the Pareto front and the cheapest setting meeting targets
-  stability.json       every rotation extractor on scenes built to break them, under linearly
-                       implicit and Newton Euler at two steps: stable, flutter or diverged, with
-                       flutter, inversion, energy and asymmetry measurements and the cause of each
-                       failure (method or integrator)
-  model_accuracy.json  every rotation extractor's static solve against CalculiX NLGEOM on the same
-                       meshes and loads, and the linear solve against CalculiX's (needs ccx)
-then draws REPORT.md and charts/*.png from the JSON alone (reports/render; needs matplotlib).
+)" + records +
+         R"(then draws REPORT.md and charts/*.png from the JSON alone (reports/render; needs matplotlib).
 A cache_profile.json (bench/cache_profile.sh) and an mpi_scaling.json (bench/mpi_scaling.py) in DIR,
 both run by ci/report, are included.
 
@@ -111,6 +115,7 @@ both run by ci/report, are included.
   --only NAME    just one model (cantilever, twisting-bar, quadruped, bunny, horse, dragon) or
                  stability scene (bar-twist, bar-stretch, block-squash, quadruped-stretched,
                  quadruped-posed, horse-stretched, horse-stretched-paper, horse-posed)
+  --NAME-only    just that section
   --vtu          VTU frames of the stability runs (every 10th step) under DIR/vtu/
   --no-render    JSON only
   --threads N    threads of the step's kernels (default: all cores; "all"); Table 1 is measured
@@ -118,6 +123,7 @@ both run by ci/report, are included.
 Progress goes to stderr. A failing case is recorded ("completed": false) and the report goes on.
 Exit status: 0 written, 2 bad options.
 )";
+}
 
 const char* kTuneHelp =
     R"(Usage: corofem tune SCENE.json --target E [--quantity displacement|tip|probe]
@@ -292,12 +298,11 @@ int export_command(const std::vector<std::string>& args) {
 }
 
 int report_command(const std::vector<std::string>& args) {
-  ParsedArgs parsed =
-      parse_args(args, {"--out", "--models", "--only", "--threads"},
-                 {"--full", "--quick", "--smoke", "--tables-only", "--speed-accuracy-only",
-                  "--stability-only", "--model-accuracy-only", "--vtu", "--no-render"});
+  std::vector<std::string> switches = {"--full", "--quick", "--smoke", "--vtu", "--no-render"};
+  for (const std::string& name : report_section_names()) switches.push_back("--" + name + "-only");
+  ParsedArgs parsed = parse_args(args, {"--out", "--models", "--only", "--threads"}, switches);
   if (parsed.help) {
-    std::cout << kReportHelp;
+    std::cout << report_help();
     return 0;
   }
   if (!parsed.positional.empty())
@@ -319,19 +324,11 @@ int report_command(const std::vector<std::string>& args) {
       if (!std::filesystem::is_regular_file(config.models_dir / file, ec))
         throw InputError("--models " + config.models_dir.string() + ": no " + file + " there");
   }
-  const int only =
-      parsed.options.count("--tables-only") + parsed.options.count("--speed-accuracy-only") +
-      parsed.options.count("--stability-only") + parsed.options.count("--model-accuracy-only");
-  if (only > 1)
-    throw InputError(
-        "report: give at most one of --tables-only, --speed-accuracy-only, --stability-only, "
-        "--model-accuracy-only");
-  if (only == 1) {
-    config.tables = parsed.options.count("--tables-only") > 0;
-    config.speed_accuracy = parsed.options.count("--speed-accuracy-only") > 0;
-    config.stability = parsed.options.count("--stability-only") > 0;
-    config.model_accuracy = parsed.options.count("--model-accuracy-only") > 0;
-  }
+  for (const std::string& name : report_section_names())
+    if (parsed.options.count("--" + name + "-only")) config.sections.push_back(name);
+  if (config.sections.size() > 1)
+    throw InputError("report: give at most one --NAME-only (got --" + config.sections[0] +
+                     "-only and --" + config.sections[1] + "-only)");
   config.vtu = parsed.options.count("--vtu") > 0;
   if (parsed.options.count("--only")) config.only = parsed.options["--only"];
   apply_threads_option(parsed);

@@ -104,4 +104,13 @@ json run_model_accuracy(const ReportConfig& config) {
   return out;
 }
 
+ReportSectionTraits model_accuracy_section() {
+  return {"model-accuracy", "model accuracy", "model_accuracy.json",
+          "every rotation extractor's static solve against CalculiX NLGEOM on the same\n"
+          "meshes and loads, and the linear solve against CalculiX's (needs ccx)",
+          [](const ReportConfig& config, std::vector<ReportRecord>&) {
+            return run_model_accuracy(config);
+          }};
+}
+
 }  // namespace corofem

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "report/report_config.hpp"
+#include "report/report_section.hpp"
 
 namespace corofem {
 
@@ -13,5 +14,8 @@ namespace corofem {
 /// cantilever), or
 /// {"skipped": why} without ccx.
 nlohmann::json run_model_accuracy(const ReportConfig& config);
+
+/// The section of `corofem report` that writes model_accuracy.json (report/report_section.hpp).
+ReportSectionTraits model_accuracy_section();
 
 }  // namespace corofem

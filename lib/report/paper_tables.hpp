@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "report/report_config.hpp"
+#include "report/report_section.hpp"
 
 namespace corofem {
 
@@ -16,5 +17,8 @@ nlohmann::json paper_table2_tps(const std::string& paper_model);
 /// {"table1": [...], "table2": [...], "small_strain": [...], "jacobi_pcg": [...],
 ///  "verification": [...], "settings": {...}}; every row has "completed".
 nlohmann::json run_paper_tables(const ReportConfig& config);
+
+/// The section of `corofem report` that writes tables.json (report/report_section.hpp).
+ReportSectionTraits paper_tables_section();
 
 }  // namespace corofem

@@ -1,5 +1,7 @@
 #include "report/report_config.hpp"
 
+#include <algorithm>
+
 namespace corofem {
 
 std::string ReportConfig::mode_name() const {
@@ -14,6 +16,10 @@ std::string ReportConfig::mode_name() const {
       return "smoke";
   }
   return "standard";
+}
+
+bool ReportConfig::runs(const std::string& section) const {
+  return sections.empty() || std::find(sections.begin(), sections.end(), section) != sections.end();
 }
 
 namespace {

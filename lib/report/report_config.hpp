@@ -18,12 +18,14 @@ struct ReportConfig {
   enum class Mode { Standard, Full, Quick, Smoke } mode = Mode::Standard;
   std::filesystem::path out_dir = "out/report";
   std::filesystem::path models_dir;  ///< empty: procedural scenes only
-  bool tables = true, speed_accuracy = true, stability = true, model_accuracy = true;
+  /// The sections to run, by name (report/report_section.hpp); empty: every registered one.
+  std::vector<std::string> sections;
   bool vtu = false;  ///< stability: VTU frames for ParaView
   std::string only;  ///< if set: just the models / stability scenes of this name
   std::ostream* progress = nullptr;
 
   std::string mode_name() const;
+  bool runs(const std::string& section) const;
   bool with_models() const { return !models_dir.empty(); }
   /// The table models (procedural, or the files' with --models) and the sizes of each.
   std::vector<std::string> models() const;  ///< quadruped first: the paper's rows

@@ -3,13 +3,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <ostream>
+#include <stdexcept>
 
 #include "core/atomic_file.hpp"
 #include "io/run_context.hpp"
-#include "report/model_accuracy.hpp"
-#include "report/paper_tables.hpp"
-#include "report/speed_accuracy.hpp"
-#include "report/stability_study.hpp"
+#include "report/report_section.hpp"
 
 #ifndef COROFEM_SOURCE_DIR
 #define COROFEM_SOURCE_DIR "."
@@ -21,8 +19,8 @@ using nlohmann::json;
 
 namespace {
 
-json header(const ReportConfig& config, const char* section) {
-  return {{"producer", std::string("corofem report (") + section + ")"},
+json header(const ReportConfig& config, const std::string& label) {
+  return {{"producer", "corofem report (" + label + ")"},
           {"context", run_context()},
           {"parameters",
            {{"mode", config.mode_name()},
@@ -32,26 +30,36 @@ json header(const ReportConfig& config, const char* section) {
 }
 
 /// The record: what produced it (header) and its body's fields.
-json with_header(const ReportConfig& config, const char* section, json body) {
-  json record = header(config, section);
+json with_header(const ReportConfig& config, const std::string& label, json body) {
+  json record = header(config, label);
   for (auto& [key, value] : body.items()) record[key] = std::move(value);
   return record;
 }
 
-fs::path write_record(const ReportConfig& config, const char* file, const json& record) {
+fs::path write_record(const ReportConfig& config, const std::string& file, const json& record) {
   const fs::path path = config.out_dir / file;
   write_file_atomically(path, [&](std::ostream& o) { o << record.dump(1) << '\n'; });
   if (config.progress) *config.progress << "report: wrote " << path.string() << std::endl;
   return path;
 }
 
-template <class F>
-fs::path write_section(const ReportConfig& config, const char* section, const char* file, F&& run) {
+/// Runs a section; writes its record, with what produced it and how long it took, and the records
+/// it made beside it.
+void write_section(const ReportConfig& config, const ReportSectionTraits& section,
+                   std::vector<fs::path>& written) {
   const auto start = std::chrono::steady_clock::now();
-  json record = with_header(config, section, run());
+  std::vector<ReportRecord> beside;
+  json body = section.run(config, beside);
+  if (!body.is_object())
+    throw std::logic_error("report section '" + section.name + "' returned a JSON " +
+                           body.type_name() + " as its record, not an object");
+  json record = with_header(config, section.label, std::move(body));
   record["elapsed_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return write_record(config, file, record);
+  written.push_back(write_record(config, section.file, record));
+  for (ReportRecord& r : beside)
+    written.push_back(
+        write_record(config, r.file, with_header(config, r.label, std::move(r.body))));
 }
 
 }  // namespace
@@ -59,25 +67,8 @@ fs::path write_section(const ReportConfig& config, const char* section, const ch
 std::vector<fs::path> run_report(const ReportConfig& config) {
   fs::create_directories(config.out_dir);
   std::vector<fs::path> written;
-  if (config.tables)
-    written.push_back(
-        write_section(config, "tables", "tables.json", [&] { return run_paper_tables(config); }));
-  if (config.speed_accuracy)
-    written.push_back(write_section(config, "speed-accuracy", "speed_accuracy.json",
-                                    [&] { return run_speed_accuracy(config); }));
-  if (config.stability) {
-    json frames;  // the charts' series and poses, beside the study's record
-    written.push_back(write_section(config, "stability", "stability.json", [&] {
-      json study = run_stability_study(config);
-      frames = take_stability_frames(study);
-      return study;
-    }));
-    written.push_back(write_record(config, "stability_frames.json",
-                                   with_header(config, "stability frames", std::move(frames))));
-  }
-  if (config.model_accuracy)
-    written.push_back(write_section(config, "model accuracy", "model_accuracy.json",
-                                    [&] { return run_model_accuracy(config); }));
+  for (const std::string& name : report_section_names())
+    if (config.runs(name)) write_section(config, report_section(name), written);
   return written;
 }
 

@@ -246,4 +246,13 @@ json run_speed_accuracy(const ReportConfig& config) {
   return out;
 }
 
+ReportSectionTraits speed_accuracy_section() {
+  return {"speed-accuracy", "speed-accuracy", "speed_accuracy.json",
+          "time per step against error for solver settings, rotation methods and\n"
+          "resolutions, with the Pareto front and the cheapest setting meeting targets",
+          [](const ReportConfig& config, std::vector<ReportRecord>&) {
+            return run_speed_accuracy(config);
+          }};
+}
+
 }  // namespace corofem

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "report/report_config.hpp"
+#include "report/report_section.hpp"
 
 namespace corofem {
 
@@ -21,5 +22,8 @@ struct AccuracyTargets {
 void mark_pareto_front(nlohmann::json& points, const std::string& sweep = "");
 
 nlohmann::json run_speed_accuracy(const ReportConfig& config);
+
+/// The section of `corofem report` that writes speed_accuracy.json (report/report_section.hpp).
+ReportSectionTraits speed_accuracy_section();
 
 }  // namespace corofem

@@ -557,4 +557,18 @@ json take_stability_frames(json& study) {
   return frames;
 }
 
+ReportSectionTraits stability_section() {
+  return {"stability", "stability", "stability.json",
+          "every rotation extractor on scenes built to break them, under linearly\n"
+          "implicit and Newton Euler at two steps: stable, flutter or diverged, with\n"
+          "flutter, inversion, energy and asymmetry measurements and the cause of each\n"
+          "failure (method or integrator)",
+          [](const ReportConfig& config, std::vector<ReportRecord>& beside) {
+            json study = run_stability_study(config);
+            beside.push_back(
+                {"stability_frames.json", "stability frames", take_stability_frames(study)});
+            return study;
+          }};
+}
+
 }  // namespace corofem

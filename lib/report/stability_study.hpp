@@ -17,6 +17,7 @@
 
 #include "core/types.hpp"
 #include "report/report_config.hpp"
+#include "report/report_section.hpp"
 #include "rotation/rotation_method.hpp"
 #include "scene/analysis_settings.hpp"
 
@@ -108,5 +109,8 @@ nlohmann::json run_stability_study(const ReportConfig& config);
 /// order of study["runs"], "poses", "surfaces"}. The study keeps its measurements and verdicts,
 /// a record small enough to review (the quick study's series and poses are 5 MB).
 nlohmann::json take_stability_frames(nlohmann::json& study);
+
+/// The section of `corofem report` that writes stability.json (report/report_section.hpp).
+ReportSectionTraits stability_section();
 
 }  // namespace corofem

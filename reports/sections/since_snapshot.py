@@ -2,9 +2,14 @@
 `corofem compare reports/ NEW_REPORT` as ci/report runs it (lib/docs/comparing.md). A reader sees
 what changed and whether it is signal: the timings beyond the threshold with their intervals, the
 counters and accuracy fields that moved."""
+from render_common import num, table
+
+ORDER = 20
+RECORDS = ("since_snapshot.json", "tables.json", "speed_accuracy.json")
 
 
-def render_since_snapshot(verdict, md, table, num):
+
+def render_since_snapshot(verdict, md):
     md.append("## Since the last published snapshot\n\n")
     if verdict is None:
         md.append("Not compared (ci/report compares a new report with reports/, the published "
@@ -45,3 +50,8 @@ def render_since_snapshot(verdict, md, table, num):
     md.append(table(["case", "threads", "quantity", "kind", "snapshot", "now", "ratio",
                      "interval", "verdict"], rows))
     md.append("\n")
+
+
+def render(records, folder, md):
+    if records["tables.json"] or records["speed_accuracy.json"]:
+        render_since_snapshot(records["since_snapshot.json"], md)
