@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
 
 #include "core/errors.hpp"
 #include "core/threads.hpp"
@@ -16,6 +18,7 @@
 #include "linalg/preconditioned_cg.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_mesh.hpp"
+#include "multigrid/multigrid_summary.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/coarse_meshes.hpp"
 #include "scene/scene.hpp"
@@ -547,6 +550,63 @@ TEST(MultigridSolver, OverlappedFactorizationIsTheInUpdateBits) {
     }
   }
   set_items_per_thread(2048);
+}
+
+TEST(MultigridSolver, AnObserverHearsEverySolveAndPartAndChangesNoBit) {
+  // The solver keeps no times or logs: what a record reports comes from the observer a run
+  // attaches (multigrid/multigrid_log.hpp). With and without one, the same bits; the observer hears
+  // each update and solve once, each solve with the statistics the solve returned, and parts whose
+  // times add up to no more than the wall time they were measured in.
+  const MeshCase c{
+      "box", box_spec(Vec3(1, 0.4, 0.4), {10, 4, 4}), make_box_mesh({1, 0.4, 0.4}, {10, 4, 4}), {}};
+  FeProblem p = problem_for(c);
+  Eigen::VectorXd b;
+  const BrcMatrix system = small_strain_system(p, b);
+  BrcMatrix stiffer = system;
+  for (double& v : stiffer.values) v *= 1.5;
+  for (const int threads : {1, 2}) {
+    const ScopedThreadCount count(threads);
+    MultigridLog log;
+    auto watched = make_multigrid_solver(analysis("mgpcg", 1e-10, "lattice"), p, {}, true, &log);
+    auto unwatched = make_multigrid_solver(analysis("mgpcg", 1e-10, "lattice"), p, {}, true);
+    std::vector<SolveStats> returned;
+    double solve_wall_ms = 0;
+    for (const BrcMatrix* a : std::vector<const BrcMatrix*>{&system, &stiffer, &system}) {
+      watched->set_matrix(*a);
+      unwatched->set_matrix(*a);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), y = x;
+      const auto start = std::chrono::steady_clock::now();
+      returned.push_back(watched->solve(b, x));
+      solve_wall_ms +=
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
+      unwatched->solve(b, y);
+      EXPECT_TRUE(x == y) << threads << " threads: the observer changed the bits";
+    }
+    ASSERT_EQ(log.solve_log().size(), returned.size());
+    for (std::size_t k = 0; k < returned.size(); ++k) {
+      EXPECT_EQ(log.solve_log()[k].iterations, returned[k].iterations);
+      EXPECT_EQ(log.solve_log()[k].residual, returned[k].residual);
+    }
+    // The first update analyses and is never deferred; at two threads the other two are.
+    EXPECT_EQ(log.deferred_updates(), threads > 1 ? 2 : 0);
+    const MultigridSolveParts solve = log.solve_parts_ms();
+    const double parts = solve.fine_smooth + solve.fine_residual + solve.fine_transfer +
+                         solve.coarse_levels + solve.coarsest;
+    EXPECT_GT(solve.fine_smooth, 0);
+    EXPECT_GT(solve.coarsest, 0);
+    EXPECT_LE(parts * static_cast<double>(returned.size()), solve_wall_ms);
+    const MultigridUpdateParts update = log.update_parts_ms();
+    EXPECT_GT(update.galerkin, 0);
+    EXPECT_GT(update.coarsest, 0);
+    EXPECT_GT(log.setup_ms().galerkin_streams, 0);
+    const MultigridSummary summary = summarize(*watched, log);
+    EXPECT_EQ(summary.solves, 3);
+    std::vector<int> iterations;
+    for (const SolveStats& r : returned) iterations.push_back(r.iterations);
+    std::sort(iterations.begin(), iterations.end());
+    EXPECT_EQ(summary.iterations, static_cast<double>(iterations[1]));  // the median of three
+  }
 }
 
 /// TwoGridEqualsDenseOperator on one coarse mesh of the unit cube.

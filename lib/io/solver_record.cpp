@@ -133,8 +133,4 @@ nlohmann::json to_json(const MultigridSummary& s) {
   return out;
 }
 
-nlohmann::json describe(const MultigridSolver& solver) {
-  return to_json(summarize(solver));
-}
-
 }  // namespace corofem

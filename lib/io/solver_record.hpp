@@ -28,6 +28,5 @@ nlohmann::json to_json(const CoarseLevelOrigin& origin);
 /// iterations over the solves so far, the coarsest level's semidefinite shifts, and how many
 /// updates had their coarsest factorization run in the next solve (`deferred_updates`).
 nlohmann::json to_json(const MultigridSummary& summary);
-nlohmann::json describe(const MultigridSolver& solver);  ///< to_json(summarize(solver))
 
 }  // namespace corofem

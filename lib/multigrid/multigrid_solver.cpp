@@ -24,17 +24,13 @@ double wall_ms(const F& f) {
       .count();
 }
 
-/// Runs f and adds its wall time in ms to `total`.
-template <class F>
-void timed(double& total, const F& f) {
-  total += wall_ms(f);
-}
-
-double mean(double total, int count) {
-  return count > 0 ? total / count : 0.0;
-}
-
 }  // namespace
+
+template <class F>
+void MultigridSolver::timed(SolverPart part, const F& f) {
+  if (!observer_) return f();
+  observer_->on_part(part, wall_ms(f));
+}
 
 struct MultigridSolver::Coarsest {
   std::optional<BrcToEigen> converter;
@@ -42,7 +38,8 @@ struct MultigridSolver::Coarsest {
 };
 
 MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
-                                 const MultigridParams& params, bool as_preconditioner)
+                                 const MultigridParams& params, bool as_preconditioner,
+                                 SolverObserver* observer)
     : params_(params),
       preconditioner_(as_preconditioner),
       hierarchy_(pattern, std::move(built.transfers)),
@@ -50,27 +47,17 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       residual_(hierarchy_.num_levels()),
       coarse_b_(hierarchy_.num_levels()),
       coarse_x_(hierarchy_.num_levels()),
+      observer_(observer),
       level_origins_(std::move(built.levels)),
-      ended_early_(std::move(built.ended_early)),
-      setup_ms_{built.transfers_ms} {
+      ended_early_(std::move(built.ended_early)) {
+  if (observer_) observer_->on_part(SolverPart::Transfers, built.transfers_ms);
   for (int h = 0; h + 1 < hierarchy_.num_levels(); ++h)
     smoothers_.push_back(make_smoother(params_.smoother, params_.smoother_settings));
   // The method's streams now, in the set-up, not in the first step's update.
-  timed(setup_ms_.galerkin_streams, [&] { hierarchy_.prepare(params_.galerkin); });
+  timed(SolverPart::GalerkinStreams, [&] { hierarchy_.prepare(params_.galerkin); });
 }
 
 MultigridSolver::~MultigridSolver() = default;
-
-MultigridUpdateParts MultigridSolver::update_parts_ms() const {
-  const MultigridUpdateParts& t = update_ms_;
-  return {mean(t.galerkin, updates_), mean(t.smoothers, updates_), mean(t.coarsest, updates_)};
-}
-MultigridSolveParts MultigridSolver::solve_parts_ms() const {
-  const MultigridSolveParts& t = solve_ms_;
-  return {mean(t.fine_smooth, solves_), mean(t.fine_residual, solves_),
-          mean(t.fine_transfer, solves_), mean(t.coarse_levels, solves_),
-          mean(t.coarsest, solves_)};
-}
 
 double MultigridSolver::coarsest_factor_nonzeros() const {
   return coarsest_->cholmod.factor_nonzeros();
@@ -80,14 +67,14 @@ double MultigridSolver::coarsest_factorization_flops() const {
 }
 
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
-  ++updates_;
-  timed(update_ms_.galerkin, [&] { hierarchy_.update(a, params_.galerkin); });
+  if (observer_) observer_->on_event(SolverEvent::Update);
+  timed(SolverPart::Galerkin, [&] { hierarchy_.update(a, params_.galerkin); });
   update_levels();
 }
 
 void MultigridSolver::take_matrix(BrcMatrix& a) {
-  ++updates_;
-  timed(update_ms_.galerkin, [&] { hierarchy_.take_update(a, params_.galerkin); });
+  if (observer_) observer_->on_event(SolverEvent::Update);
+  timed(SolverPart::Galerkin, [&] { hierarchy_.take_update(a, params_.galerkin); });
   update_levels();
 }
 
@@ -109,19 +96,21 @@ bool MultigridSolver::defers_update() const {
 void MultigridSolver::complete_update(const std::function<void()>& beside) {
   if (!update_pending_) return;
   update_pending_ = false;
-  // Each part keeps its own time; at two or more threads they overlap.
+  // Each part keeps its own time; at two or more threads they overlap. The observer hears of them
+  // after both, so that it is never called from two threads at once (`beside` calls it).
   const int last = hierarchy_.num_levels() - 1;
   double smoothers_ms = 0, coarsest_ms = 0;
+  auto set_up_smoothers = [&] {
+    for (int h = 0; h < last; ++h) smoothers_[h]->set_matrix(hierarchy_.matrix(h));
+  };
   run_side_by_side([&] { coarsest_ms = wall_ms([&] { update_coarsest(); }); },
                    [&] {
-                     smoothers_ms = wall_ms([&] {
-                       for (int h = 0; h < last; ++h)
-                         smoothers_[h]->set_matrix(hierarchy_.matrix(h));
-                     });
+                     smoothers_ms = wall_ms(set_up_smoothers);
                      if (beside) beside();
                    });
-  update_ms_.smoothers += smoothers_ms;
-  update_ms_.coarsest += coarsest_ms;
+  if (!observer_) return;
+  observer_->on_part(SolverPart::Smoothers, smoothers_ms);
+  observer_->on_part(SolverPart::Coarsest, coarsest_ms);
 }
 
 void MultigridSolver::update_coarsest() {
@@ -162,7 +151,7 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
 
 void MultigridSolver::cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
   if (h == hierarchy_.num_levels() - 1) {
-    timed(solve_ms_.coarsest, [&] { x = coarsest_->cholmod.solve(b); });
+    timed(SolverPart::CoarsestSolve, [&] { x = coarsest_->cholmod.solve(b); });
     return;
   }
   descend(h, b, x, zero_guess);
@@ -182,21 +171,21 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
   const BrcMatrix& a = hierarchy_.matrix(h);
   const bool fine = h == 0;
   bool formed = false;  // the smoother formed the residual in passing: it counts in the smoothing
-  timed(fine ? solve_ms_.fine_smooth : solve_ms_.coarse_levels, [&] {
+  timed(fine ? SolverPart::FineSmooth : SolverPart::CoarseLevels, [&] {
     formed = smoothers_[h]->pre_smooth(a, b, x, params_.pre_smoothing, zero_guess, residual_[h]);
   });
   if (!formed)
-    timed(fine ? solve_ms_.fine_residual : solve_ms_.coarse_levels,
+    timed(fine ? SolverPart::FineResidual : SolverPart::CoarseLevels,
           [&] { a.residual(b, x, residual_[h]); });
-  timed(fine ? solve_ms_.fine_transfer : solve_ms_.coarse_levels,
+  timed(fine ? SolverPart::FineTransfer : SolverPart::CoarseLevels,
         [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
 }
 
 void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const bool fine = h == 0;
-  timed(fine ? solve_ms_.fine_transfer : solve_ms_.coarse_levels,
+  timed(fine ? SolverPart::FineTransfer : SolverPart::CoarseLevels,
         [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
-  timed(fine ? solve_ms_.fine_smooth : solve_ms_.coarse_levels,
+  timed(fine ? SolverPart::FineSmooth : SolverPart::CoarseLevels,
         [&] { smoothers_[h]->post_smooth(hierarchy_.matrix(h), b, x, params_.post_smoothing); });
 }
 
@@ -212,9 +201,8 @@ void MultigridSolver::finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x)
 }
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  ++solves_;
   const SolveStats stats = run_solve(b, x);
-  solve_log_.push_back(stats);
+  if (observer_) observer_->on_solve(stats);
   return stats;
 }
 
@@ -225,7 +213,7 @@ SolveStats MultigridSolver::run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::
   const BrcMatrix& a = hierarchy_.matrix(0);
   const int last = hierarchy_.num_levels() - 1;
   Eigen::VectorXd r0, z0;
-  ++deferred_updates_;
+  if (observer_) observer_->on_event(SolverEvent::DeferredUpdate);
   complete_update([&] {
     start_iterative_solve(b, x);  // x sized as CG sizes it
     a.residual(b, x, r0);

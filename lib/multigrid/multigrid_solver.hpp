@@ -10,6 +10,7 @@
 
 #include "linalg/linear_solver.hpp"
 #include "linalg/smoother.hpp"
+#include "linalg/solver_observer.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
 
@@ -42,37 +43,13 @@ struct MultigridParams {
   bool overlap_factorization = true;
 };
 
-/// Where a multigrid solver's time goes, in ms, by part (totals while it runs; the accessors give
-/// means per update or solve). A part that never ran stays 0 (records leave it out).
-struct MultigridSetupParts {
-  double transfers = 0;         ///< the hierarchy's transfers (hierarchy_builder.hpp)
-  double galerkin_streams = 0;  ///< the Galerkin method's precomputed streams
-  /// Meshing the coarse levels, before the solver existed: set by the scene that meshed them.
-  std::optional<double> coarse_meshes{};
-};
-struct MultigridUpdateParts {
-  double galerkin = 0;   ///< every coarse E = R A R^T
-  double smoothers = 0;  ///< the smoothers' set-up (inverse diagonal blocks)
-  double coarsest = 0;   ///< CHOLMOD's numeric factorization and its input
-};
-/// The update's parts by the names the records and the update's roofline use.
-inline std::array<std::pair<const char*, double>, 3> named_parts(const MultigridUpdateParts& p) {
-  return {{{"galerkin", p.galerkin}, {"smoothers", p.smoothers}, {"coarsest", p.coarsest}}};
-}
-/// A V-cycle's parts: the finest level's smoothing, residual (absent where a pre-smoothing of
-/// one sweep from zero forms it in passing: it then counts in fine_smooth) and transfers
-/// (restriction and prolongation); all of these on the levels between; the coarsest level's
-/// triangular solves. The rest of a solve is the outer iteration (CG's product and updates).
-struct MultigridSolveParts {
-  double fine_smooth = 0, fine_residual = 0, fine_transfer = 0, coarse_levels = 0, coarsest = 0;
-};
-
 class MultigridSolver : public LinearSolver {
  public:
   /// `built`: the transfers from hierarchy_builder.hpp (fixed fine vertices, whose rows are
-  /// identity in A, take no part in them).
+  /// identity in A, take no part in them). `observer` (kept, may be null): receives the time of
+  /// each part, from the set-up on, the counts and every solve's statistics.
   MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built, const MultigridParams& params,
-                  bool as_preconditioner);
+                  bool as_preconditioner, SolverObserver* observer = nullptr);
   ~MultigridSolver() override;
 
   std::string name() const override { return preconditioner_ ? "mgpcg" : "multigrid"; }
@@ -100,22 +77,12 @@ class MultigridSolver : public LinearSolver {
   /// analysis; 0 before the first set_matrix).
   double coarsest_factor_nonzeros() const;
   double coarsest_factorization_flops() const;
-  /// Mean ms per set_matrix of its parts.
-  MultigridUpdateParts update_parts_ms() const;
-  /// Mean ms per solve of the V-cycles' parts.
-  MultigridSolveParts solve_parts_ms() const;
-  /// How many coarsest-level factorizations needed the semidefinite shift (see set_matrix).
+  /// How many coarsest-level factorizations needed the semidefinite shift (see update_coarsest).
   int coarsest_shifts() const { return coarsest_shifts_; }
-  /// Updates whose coarsest factorization ran in the next solve (run_overlapped_pcg).
-  int deferred_updates() const { return deferred_updates_; }
   /// Where each coarse level came from (level h + 1 at h).
   const std::vector<CoarseLevelOrigin>& level_origins() const { return level_origins_; }
   /// Why the hierarchy has fewer levels than its params ask for (BuiltHierarchy::ended_early).
   const std::string& ended_early() const { return ended_early_; }
-  /// What the set-up cost, by part: the builder's and the Galerkin streams'.
-  const MultigridSetupParts& setup_ms() const { return setup_ms_; }
-  /// Every solve's statistics, in order.
-  const std::vector<SolveStats>& solve_log() const { return solve_log_; }
 
  private:
   SolveStats run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
@@ -137,6 +104,9 @@ class MultigridSolver : public LinearSolver {
   void ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   /// The rest of a V-cycle from level 0 whose descent has run: the coarsest solve, the ascents.
   void finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// Runs f; with an observer, tells it f's wall time as `part`.
+  template <class F>
+  void timed(SolverPart part, const F& f);
   MultigridParams params_;
   bool preconditioner_;
   MultigridHierarchy hierarchy_;
@@ -144,17 +114,11 @@ class MultigridSolver : public LinearSolver {
   struct Coarsest;
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
+  SolverObserver* observer_;
   bool update_pending_ = false;
-  int deferred_updates_ = 0;  ///< updates whose factorization ran in a solve (run_overlapped_pcg)
   int coarsest_shifts_ = 0;
   std::vector<CoarseLevelOrigin> level_origins_;
   std::string ended_early_;
-  MultigridSetupParts setup_ms_;
-  MultigridUpdateParts update_ms_;  ///< totals over the updates
-  int updates_ = 0;
-  MultigridSolveParts solve_ms_;  ///< totals over the solves
-  int solves_ = 0;
-  std::vector<SolveStats> solve_log_;
 };
 
 }  // namespace corofem

@@ -4,7 +4,7 @@
 
 namespace corofem {
 
-MultigridSummary summarize(const MultigridSolver& solver) {
+MultigridSummary summarize(const MultigridSolver& solver, const MultigridLog& log) {
   MultigridSummary s;
   s.params = solver.params();
   const MultigridHierarchy& hierarchy = solver.hierarchy();
@@ -16,11 +16,11 @@ MultigridSummary summarize(const MultigridSolver& solver) {
   }
   s.origins = solver.level_origins();
   s.operator_complexity = blocks / static_cast<double>(hierarchy.matrix(0).col_index.size());
-  s.setup = solver.setup_ms();
-  s.update = solver.update_parts_ms();
-  s.solve = solver.solve_parts_ms();
+  s.setup = log.setup_ms();
+  s.update = log.update_parts_ms();
+  s.solve = log.solve_parts_ms();
   std::vector<double> rho, iterations;
-  for (const SolveStats& stats : solver.solve_log()) {
+  for (const SolveStats& stats : log.solve_log()) {
     if (stats.iterations == 0) continue;  // a zero right-hand side: nothing was solved
     rho.push_back(stats.convergence_factor);
     iterations.push_back(stats.iterations);
@@ -31,7 +31,7 @@ MultigridSummary summarize(const MultigridSolver& solver) {
     s.iterations = median(iterations);
   }
   s.coarsest_shifts = solver.coarsest_shifts();
-  s.deferred_updates = solver.deferred_updates();
+  s.deferred_updates = log.deferred_updates();
   s.ended_early = solver.ended_early();
   return s;
 }

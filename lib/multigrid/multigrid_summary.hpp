@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "multigrid/multigrid_log.hpp"
 #include "multigrid/multigrid_solver.hpp"
 
 namespace corofem {
@@ -29,6 +30,7 @@ struct MultigridSummary {
   std::string ended_early;  ///< MultigridSolver::ended_early
 };
 
-MultigridSummary summarize(const MultigridSolver& solver);
+/// What `solver` is (its levels, params, origins) and what `log`, its observer, heard.
+MultigridSummary summarize(const MultigridSolver& solver, const MultigridLog& log);
 
 }  // namespace corofem

@@ -63,7 +63,7 @@ SceneSimulation::SceneSimulation(const Scene& scene) : scene_(scene) {
   AnalysisSpec solver_analysis = a;  // the multigrid as static Newton's GMRES preconditioner
   if (tangent_solve() == TangentSolve::PreconditionedBySolver)
     solver_analysis.tolerance = kTangentPreconditionerTolerance;
-  solver_ = make_linear_solver(solver_analysis, problem_, coarse);
+  solver_ = make_linear_solver(solver_analysis, problem_, coarse, solver_log_.get());
   setup_ms_ = ms_since(start);
 }
 
@@ -151,7 +151,7 @@ std::optional<MultigridSummary> SceneSimulation::multigrid_summary(
     const LinearSolver& solver) const {
   const MultigridSolver* mg = solver.multigrid();
   if (!mg) return std::nullopt;
-  MultigridSummary s = summarize(*mg);
+  MultigridSummary s = summarize(*mg, *solver_log_);
   s.setup.coarse_meshes = coarse_meshing_ms_;
   return s;
 }

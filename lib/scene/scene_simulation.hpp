@@ -83,6 +83,9 @@ class SceneSimulation {
   FeProblem problem_;
   std::unique_ptr<RotationExtractor> extractor_;
   std::optional<DynamicOptions> dynamic_;
+  /// The observer this run attaches to its multigrid solver (the solver keeps no times or logs):
+  /// multigrid_summary reads it. Held by pointer, so that it stays where the solver points.
+  std::unique_ptr<MultigridLog> solver_log_ = std::make_unique<MultigridLog>();
   std::unique_ptr<LinearSolver> solver_;
   double setup_ms_ = 0;
   double coarse_meshing_ms_ = 0;

@@ -34,13 +34,14 @@ std::vector<char> fixed_vertices(const DirichletConditions& bc) {
 std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a,
                                                        const FeProblem& problem,
                                                        const std::vector<TetMesh>& coarse_meshes,
-                                                       bool as_preconditioner) {
+                                                       bool as_preconditioner,
+                                                       SolverObserver* observer) {
   const MultigridParams params = multigrid_params(a);
   return std::make_unique<MultigridSolver>(
       problem.stiffness,
       build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy,
                       coarse_meshes),
-      params, as_preconditioner);
+      params, as_preconditioner, observer);
 }
 
 PetscSolveSettings petsc_solve_settings(const AnalysisSpec& a) {
@@ -50,7 +51,8 @@ PetscSolveSettings petsc_solve_settings(const AnalysisSpec& a) {
 }
 
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem,
-                                                 const std::vector<TetMesh>& coarse_meshes) {
+                                                 const std::vector<TetMesh>& coarse_meshes,
+                                                 SolverObserver* observer) {
   if (a.solver == SolverKind::Cholmod) return make_cholmod_solver();
   if (a.solver == SolverKind::JacobiPcg) return make_jacobi_pcg_solver(a.tolerance, 100000);
   const PetscSolverKind petsc = petsc_solver_kind(a.solver);
@@ -68,7 +70,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
                                  .transfers,
                              a.smoothing, false, nullptr, s.nonsymmetric);
   }
-  return make_multigrid_solver(a, problem, coarse_meshes, a.solver == SolverKind::Mgpcg);
+  return make_multigrid_solver(a, problem, coarse_meshes, a.solver == SolverKind::Mgpcg, observer);
 }
 
 }  // namespace corofem

@@ -22,16 +22,19 @@ struct PetscSolveSettings {
 PetscSolveSettings petsc_solve_settings(const AnalysisSpec& analysis);
 
 /// The analysis's solver for the problem's pattern, rest positions and supports. Multigrid on the
-/// meshes hierarchy takes its levels from `coarse_meshes` (scene/coarse_meshes.hpp).
+/// meshes hierarchy takes its levels from `coarse_meshes` (scene/coarse_meshes.hpp); `observer`
+/// (linalg/solver_observer.hpp) hears what the multigrid solver marks.
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& analysis,
                                                  const FeProblem& problem,
-                                                 const std::vector<TetMesh>& coarse_meshes = {});
+                                                 const std::vector<TetMesh>& coarse_meshes = {},
+                                                 SolverObserver* observer = nullptr);
 
 /// Multigrid (V-cycles, or the preconditioner of CG) on the analysis's hierarchy.
 std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& analysis,
                                                        const FeProblem& problem,
                                                        const std::vector<TetMesh>& coarse_meshes,
-                                                       bool as_preconditioner);
+                                                       bool as_preconditioner,
+                                                       SolverObserver* observer = nullptr);
 
 /// Per vertex: 1 if all three DOFs are fixed.
 std::vector<char> fixed_vertices(const DirichletConditions& bc);
