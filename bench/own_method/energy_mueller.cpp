@@ -41,7 +41,10 @@ class EnergyMueller : public corofem::RotationExtractor {
 void register_energy_mueller() {
   corofem::register_rotation_method({.name = kEnergyMueller,
                                      .make = corofem::extractor_maker<EnergyMueller>(),
-                                     .tangent = corofem::TangentFamily::MomentFactor});
+                                     .tangent = corofem::TangentFamily::MomentFactor,
+                                     // In the smoke report's speed-accuracy chart too, which this
+                                     // example's tests run.
+                                     .in_smoke = true});
 }
 
 }  // namespace own

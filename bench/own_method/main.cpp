@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
                                .galerkin = corofem::reference::eigen_galerkin});
   own::register_energy_mueller();
   own::register_damped_l1_jacobi();
+  own::register_own_table();
   if (argc == 2 && std::string(argv[1]) == "check") return own::check_against_oracles();
   return corofem::cli::main(argc, argv);
 }
