@@ -8,6 +8,7 @@
 
 #include "own_method.hpp"
 #include "report/case_record.hpp"
+#include "report/report_checkpoint.hpp"
 #include "report/report_section.hpp"
 #include "report/scene_catalogue.hpp"
 #include "report/timed_run.hpp"
@@ -41,30 +42,38 @@ json run_variant(json scene, const json& analysis, const std::string& name, int 
   return row;
 }
 
-json run_own_table(const corofem::ReportConfig& config, std::vector<corofem::ReportRecord>&) {
+/// One model's four rows: a unit of the section, kept by `report --resume` after a kill.
+json model_rows(const corofem::ReportConfig& config, const std::string& model) {
   const int warmup = config.table_warmup(), steps = warmup + config.table_measured();
+  const corofem::SceneSize size = config.table_sizes(model).front();  // the smallest
+  const json scene =
+      corofem::table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
+  const std::string id = model + "-" + corofem::size_name(size);
   json rows = json::array();
-  for (const std::string& model : config.models()) {
-    const corofem::SceneSize size = config.table_sizes(model).front();  // the smallest
-    const json scene =
-        corofem::table_scene(model, size, steps, config.default_tolerance(), config.models_dir);
-    const std::string id = model + "-" + corofem::size_name(size);
-    Eigen::VectorXd paper;
-    for (const auto& [variant, analysis] : variants()) {
-      if (config.progress) *config.progress << "own methods: " << id << ", " << variant << "\n";
-      Eigen::VectorXd displacement;
-      rows.push_back(corofem::record_case({{"model", id}, {"variant", variant}}, [&] {
-        json row = run_variant(scene, analysis, id, warmup, paper, displacement);
-        row["model"] = id;
-        row["variant"] = variant;
-        return row;
-      }));
-      if (variant == "paper's method") paper = displacement;
-    }
+  Eigen::VectorXd paper;
+  for (const auto& [variant, analysis] : variants()) {
+    if (config.progress) *config.progress << "own methods: " << id << ", " << variant << "\n";
+    Eigen::VectorXd displacement;
+    rows.push_back(corofem::record_case({{"model", id}, {"variant", variant}}, [&] {
+      json row = run_variant(scene, analysis, id, warmup, paper, displacement);
+      row["model"] = id;
+      row["variant"] = variant;
+      return row;
+    }));
+    if (variant == "paper's method") paper = displacement;
   }
+  return rows;
+}
+
+json run_own_table(const corofem::ReportConfig& config, std::vector<corofem::ReportRecord>&) {
+  json rows = json::array();
+  for (const std::string& model : config.models())
+    for (json& row : corofem::report_unit(config, "own-methods", model,
+                                          [&] { return model_rows(config, model); }))
+      rows.push_back(std::move(row));
   return {{"rows", rows},
           {"methods", {{"rotation", kEnergyMueller}, {"smoother", kDampedL1Jacobi}}},
-          {"warmup_steps", warmup},
+          {"warmup_steps", config.table_warmup()},
           {"measured_steps", config.table_measured()}};
 }
 

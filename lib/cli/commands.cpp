@@ -97,7 +97,7 @@ std::string report_help() {
   return R"(Usage: corofem report [--out DIR] [--full | --quick | --smoke] [--models DIR] [--only NAME]
                       [)" +
          flags + R"(]
-                      [--vtu] [--no-render] [--threads N]
+                      [--vtu] [--no-render] [--threads N] [--resume]
 
 Runs the report's sections and writes into DIR (default out/report):
 )" + records +
@@ -120,6 +120,10 @@ both run by ci/report, are included.
   --no-render    JSON only
   --threads N    threads of the step's kernels (default: all cores; "all"); Table 1 is measured
                  at one thread and at N
+  --resume       go on with a report into DIR that was killed (at any moment, SIGKILL too), with
+                 the options it began with: every section and unit it finished is kept (a table
+                 model at a size, a sweep's scene, a stability scene and method, a model-accuracy
+                 case), the rest runs; the records are an uninterrupted run's but for times
 Progress goes to stderr. A failing case is recorded ("completed": false) and the report goes on.
 Exit status: 0 written, 2 bad options.
 )";
@@ -298,7 +302,8 @@ int export_command(const std::vector<std::string>& args) {
 }
 
 int report_command(const std::vector<std::string>& args) {
-  std::vector<std::string> switches = {"--full", "--quick", "--smoke", "--vtu", "--no-render"};
+  std::vector<std::string> switches = {"--full", "--quick",     "--smoke",
+                                       "--vtu",  "--no-render", "--resume"};
   for (const std::string& name : report_section_names()) switches.push_back("--" + name + "-only");
   ParsedArgs parsed = parse_args(args, {"--out", "--models", "--only", "--threads"}, switches);
   if (parsed.help) {
@@ -330,6 +335,7 @@ int report_command(const std::vector<std::string>& args) {
     throw InputError("report: give at most one --NAME-only (got --" + config.sections[0] +
                      "-only and --" + config.sections[1] + "-only)");
   config.vtu = parsed.options.count("--vtu") > 0;
+  config.resume = parsed.options.count("--resume") > 0;
   if (parsed.options.count("--only")) config.only = parsed.options["--only"];
   apply_threads_option(parsed);
   prepare_output_folder(config.out_dir, "tables.json");

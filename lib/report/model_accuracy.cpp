@@ -7,6 +7,7 @@
 #include "linalg/linear_solver.hpp"
 #include "report/calculix_oracle.hpp"
 #include "report/case_record.hpp"
+#include "report/report_checkpoint.hpp"
 #include "report/section_progress.hpp"
 #include "rotation/polar_decomposition.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -97,8 +98,13 @@ json run_model_accuracy(const ReportConfig& config) {
   for (const std::string& id : ids)
     for (SceneSize size : sizes) {
       const std::string prefix = progress.begin(id + " " + size_name(size));
-      out["cases"].push_back(record_case({{"scene", id}, {"size", size_name(size)}},
-                                         [&] { return run_case(id, size, config, prefix); }));
+      out["cases"].push_back(report_unit(  // a unit, kept for --resume
+          config, "model-accuracy", id + " " + size_name(size),
+          [&] {
+            return record_case({{"scene", id}, {"size", size_name(size)}},
+                               [&] { return run_case(id, size, config, prefix); });
+          },
+          prefix));
       progress.finish();
     }
   return out;

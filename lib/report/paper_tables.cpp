@@ -12,6 +12,7 @@
 #include "multigrid/multigrid_solver.hpp"
 #include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
+#include "report/report_checkpoint.hpp"
 #include "report/section_progress.hpp"
 #include "report/timed_run.hpp"
 
@@ -458,10 +459,10 @@ json run_paper_tables(const ReportConfig& config) {
     units += static_cast<int>(config.table_sizes(model).size() +
                               config.multigrid_only_sizes(model).size());
   SectionProgress progress(config.progress, "tables", units);
-  auto model_tables = [&](const std::string& model, SceneSize size) {
+  auto model_tables = [&](const std::string& model, SceneSize size, const std::string& prefix) {
     ModelTables m;
     m.id = model + "-" + size_name(size);
-    m.progress_prefix = progress.begin(m.id);
+    m.progress_prefix = prefix;
     // The paper's row sits beside ours only at the paper's size (not beside quick runs).
     m.paper_model =
         config.with_models() ? (size == file_model_size(model) ? model : "") : paper_model_of(size);
@@ -473,19 +474,35 @@ json run_paper_tables(const ReportConfig& config) {
     m.progress = config.progress;
     return m;
   };
+  // A unit: one model at one size, its rows of every table (kept for --resume).
+  auto unit = [&](const std::string& model, SceneSize size, const std::string& suffix,
+                  const std::function<void(json&, ModelTables&)>& rows) {
+    const std::string id = model + "-" + size_name(size);
+    const std::string prefix = progress.begin(id + suffix);
+    const json part = report_unit(
+        config, "tables", id + suffix,
+        [&] {
+          ModelTables m = model_tables(model, size, prefix);
+          json p = json::object();
+          rows(p, m);
+          return p;
+        },
+        prefix);
+    for (const auto& [table, rows_of_unit] : part.items())
+      for (const json& row : rows_of_unit) tables[table].push_back(row);
+    progress.finish();
+  };
   for (const std::string& model : config.models()) {
-    for (SceneSize size : config.table_sizes(model)) {
-      ModelTables m = model_tables(model, size);
-      add_model_rows(tables, m, model, size, config, threads);
-      progress.finish();
-    }
-    for (SceneSize size : config.multigrid_only_sizes(model)) {
-      const ModelTables m = model_tables(model, size);
-      tables["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes));
-      tables["multigrid"].push_back(
-          multigrid_row(m, HierarchyKind::Meshes, false, kSizeIndependentCoarsening));
-      progress.finish();
-    }
+    for (SceneSize size : config.table_sizes(model))
+      unit(model, size, "", [&](json& part, ModelTables& m) {
+        add_model_rows(part, m, model, size, config, threads);
+      });
+    for (SceneSize size : config.multigrid_only_sizes(model))
+      unit(model, size, " (multigrid only)", [&](json& part, ModelTables& m) {
+        part["multigrid"].push_back(multigrid_row(m, HierarchyKind::Meshes));
+        part["multigrid"].push_back(
+            multigrid_row(m, HierarchyKind::Meshes, false, kSizeIndependentCoarsening));
+      });
   }
   tables["size_independence"] = size_independence(tables["multigrid"], "quadruped", 0);
   tables["size_independence_fixed_ratio"] =

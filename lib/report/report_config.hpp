@@ -9,6 +9,8 @@
 
 namespace corofem {
 
+class ReportCheckpoint;
+
 struct ReportConfig {
   /// standard (the default, the main job): Table 1 at the paper's three sizes and small versions
   /// of every other section, about 7 minutes on 2 cores; full: every table and sweep at the
@@ -23,6 +25,10 @@ struct ReportConfig {
   bool vtu = false;  ///< stability: VTU frames for ParaView
   std::string only;  ///< if set: just the models / stability scenes of this name
   std::ostream* progress = nullptr;
+  /// --resume: take what a killed report into out_dir had finished (report/report_checkpoint.hpp).
+  bool resume = false;
+  /// Where the sections keep each finished unit; set by run_report for the sections it runs.
+  ReportCheckpoint* checkpoint = nullptr;
 
   std::string mode_name() const;
   bool runs(const std::string& section) const;

@@ -6,7 +6,10 @@
 #include <stdexcept>
 
 #include "core/atomic_file.hpp"
+#include "core/build_info.hpp"
+#include "core/threads.hpp"
 #include "io/run_context.hpp"
+#include "report/report_checkpoint.hpp"
 #include "report/report_section.hpp"
 
 #ifndef COROFEM_SOURCE_DIR
@@ -62,13 +65,40 @@ void write_section(const ReportConfig& config, const ReportSectionTraits& sectio
         write_record(config, r.file, with_header(config, r.label, std::move(r.body))));
 }
 
+/// What a resumed report must share with the killed one: the options that choose its work, the
+/// threads (the bits of a unit depend on nothing else) and the build.
+json checkpoint_parameters(const ReportConfig& config) {
+  json sections = json::array();
+  for (const std::string& name : report_section_names())
+    if (config.runs(name)) sections.push_back(name);
+  return {{"mode", config.mode_name()}, {"models_dir", config.models_dir.string()},
+          {"only", config.only},        {"sections", sections},
+          {"vtu", config.vtu},          {"threads", thread_count()},
+          {"commit", build_commit()}};
+}
+
 }  // namespace
 
-std::vector<fs::path> run_report(const ReportConfig& config) {
-  fs::create_directories(config.out_dir);
+std::vector<fs::path> run_report(const ReportConfig& given) {
+  fs::create_directories(given.out_dir);
+  ReportConfig config = given;
+  ReportCheckpoint checkpoint(config.out_dir, checkpoint_parameters(config), config.resume);
+  config.checkpoint = &checkpoint;
   std::vector<fs::path> written;
-  for (const std::string& name : report_section_names())
-    if (config.runs(name)) write_section(config, report_section(name), written);
+  for (const std::string& name : report_section_names()) {
+    if (!config.runs(name)) continue;
+    const ReportSectionTraits& section = report_section(name);
+    if (checkpoint.section_done(name)) {
+      if (config.progress)
+        *config.progress << "report: " << name << ": " << section.file
+                         << " kept from the interrupted run" << std::endl;
+      written.push_back(config.out_dir / section.file);
+      continue;
+    }
+    write_section(config, section, written);
+    checkpoint.finish_section(name);
+  }
+  checkpoint.finish();
   return written;
 }
 

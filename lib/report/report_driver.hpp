@@ -7,7 +7,9 @@
 namespace corofem {
 
 /// Runs and writes the sections; returns the paths written. Failing cases are recorded in the
-/// JSON ("completed": false), they do not abort the report.
+/// JSON ("completed": false), they do not abort the report. With config.resume, takes the
+/// sections and units a killed report into the same folder had finished
+/// (report/report_checkpoint.hpp).
 std::vector<std::filesystem::path> run_report(const ReportConfig& config);
 
 /// Draws REPORT.md and the charts of `dir` from its JSON with the renderer script (found beside

@@ -6,6 +6,7 @@
 #include "core/statistics.hpp"
 #include "report/analysis_variant.hpp"
 #include "report/case_record.hpp"
+#include "report/report_checkpoint.hpp"
 #include "report/section_progress.hpp"
 #include "report/timed_run.hpp"
 #include "rotation/rotation_extractor.hpp"
@@ -169,7 +170,7 @@ struct SceneSweeps {
 
 /// The solver, rotation and resolution sweeps of one model at its sweep size.
 json scene_sweeps(const ReportConfig& config, const std::string& model,
-                  const AccuracyTargets& targets, SectionProgress& progress) {
+                  const AccuracyTargets& targets, const std::string& progress_prefix) {
   const int steps = config.sweep_steps();
   const SceneSize size = config.sweep_size(model);
   SceneSweeps s{config,
@@ -180,7 +181,7 @@ json scene_sweeps(const ReportConfig& config, const std::string& model,
                 std::min(2, steps - 1),
                 json(),
                 ""};
-  s.progress_prefix = progress.begin(s.id);
+  s.progress_prefix = progress_prefix;
   s.entry = {{"scene", s.id}, {"model", model}, {"steps", steps}, {"points", json::array()}};
   // References at this resolution.
   Eigen::VectorXd u_ref, u_exact;
@@ -239,8 +240,11 @@ json run_speed_accuracy(const ReportConfig& config) {
       {"scenes", json::array()}};
   const std::vector<std::string> models = config.models();
   SectionProgress progress(config.progress, "speed-accuracy", static_cast<int>(models.size()));
-  for (const std::string& model : models) {
-    out["scenes"].push_back(scene_sweeps(config, model, targets, progress));
+  for (const std::string& model : models) {  // a unit each, kept for --resume
+    const std::string prefix = progress.begin(model + "-" + size_name(config.sweep_size(model)));
+    out["scenes"].push_back(report_unit(
+        config, "speed-accuracy", model,
+        [&] { return scene_sweeps(config, model, targets, prefix); }, prefix));
     progress.finish();
   }
   return out;

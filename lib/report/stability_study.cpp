@@ -13,6 +13,7 @@
 #include "core/threads.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "report/case_record.hpp"
+#include "report/report_checkpoint.hpp"
 #include "report/section_progress.hpp"
 #include "report/stability_monitor.hpp"
 #include "report/timed_run.hpp"
@@ -456,8 +457,16 @@ std::vector<std::vector<MethodRuns>> run_groups(const ReportConfig& config,
       plan.progress = &*lines;
     }
     if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
-    try {
-      groups[k][slot] = run_method_on_scene(scene_specs[k], id, method, plan);
+    try {  // a unit, kept for --resume (a kept unit writes no VTU frames again)
+      const json unit = report_unit(
+          config, "stability", id + ": " + method.name(),
+          [&] {
+            const MethodRuns m = run_method_on_scene(scene_specs[k], id, method, plan);
+            return json{{"runs", m.runs}, {"reference", m.reference}, {"poses", m.poses}};
+          },
+          plan.progress_prefix);
+      groups[k][slot] = {unit["runs"].get<std::vector<json>>(), unit["reference"],
+                         unit["poses"].get<std::vector<json>>()};
     } catch (...) {
       failed[static_cast<std::size_t>(g)] = std::current_exception();  // none may leave the loop
     }
