@@ -72,19 +72,19 @@ nlohmann::json to_json(const MultigridSolveParts& p) {
 }
 
 nlohmann::json to_json(const MultigridParams& p) {
-  return {
-      {"hierarchy", to_json(p.hierarchy)},
-      {"transfer", "barycentric in the containing or nearest coarse tet"},
-      {"galerkin", kGalerkinMethods.name(p.galerkin)},
-      {"smoother", smoother_json(p)},
-      {"cycle",
-       {{"kind", kCycleShapes.name(p.cycle)},
-        {"vcycles", p.vcycles},
-        {"max_iterations", p.max_iterations},
-        {"tolerance", p.tolerance},
-        {"coarsest", "cholmod"},
-        {"coarsest_factorization",
-         p.overlap_factorization ? "beside the first descent at 2+ threads" : "in the update"}}}};
+  return {{"hierarchy", to_json(p.hierarchy)},
+          {"transfer", "barycentric in the containing or nearest coarse tet"},
+          {"galerkin", kGalerkinMethods.name(p.galerkin)},
+          {"smoother", smoother_json(p)},
+          {"cycle",
+           {{"kind", kCycleShapes.name(p.cycle)},
+            {"vcycles", p.vcycles},
+            {"max_iterations", p.max_iterations},
+            {"tolerance", p.tolerance},
+            {"coarsest", "cholmod"},
+            {"coarsest_factorization", p.overlap_factorization
+                                           ? "beside the first descent at 2+ threads and 3+ levels"
+                                           : "in the update"}}}};
 }
 
 nlohmann::json to_json(const CoarseLevelOrigin& o) {

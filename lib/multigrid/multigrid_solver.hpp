@@ -38,8 +38,9 @@ struct MultigridParams {
   /// hybrid Gauss-Seidel, the one that threads with the sequential locality.
   std::string smoother = "hybrid";
   SmootherSettings smoother_settings{};
-  /// MG-PCG at two or more threads: the coarsest factorization beside the next solve's initial
-  /// residual and first descent (see MultigridSolver::defers_update), not in the update.
+  /// MG-PCG at two or more threads and three or more levels: the coarsest factorization beside the
+  /// next solve's initial residual and first descent (see MultigridSolver::defers_update), not in
+  /// the update.
   bool overlap_factorization = true;
 };
 
@@ -62,10 +63,14 @@ class MultigridSolver : public LinearSolver {
   /// at 0 whatever it holds (a correction: every coarse level, and the preconditioner), so the
   /// first forward sweep reads half the matrix.
   void vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
+  /// Whether an update runs the coarsest factorization beside the smoothers' set-up (and, deferred,
+  /// beside the next solve's start): overlap_factorization, two or more threads and three or more
+  /// levels (with two, the work beside it is too small to pay for a thread of its own).
+  bool overlaps_update() const;
   /// Whether set_matrix leaves the coarsest factorization and the smoothers' set-up to the next
-  /// solve (MG-PCG with overlap_factorization, at two or more threads, from the second update
-  /// on): that solve runs them beside its initial residual and its first V-cycle's descent.
-  /// Their time then counts in the solve, not the update.
+  /// solve (MG-PCG where the update overlaps, from the second update on): that solve runs them
+  /// beside its initial residual and its first V-cycle's descent. Their time then counts in the
+  /// solve, not the update.
   bool defers_update() const;
   /// Whether the last set_matrix's factorization and smoothers' set-up still wait for a solve.
   bool update_deferred() const { return update_pending_; }
