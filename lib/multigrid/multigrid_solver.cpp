@@ -105,8 +105,9 @@ bool MultigridSolver::defers_update() const {
 void MultigridSolver::complete_update(const std::function<void()>& beside) {
   if (!update_pending_) return;
   update_pending_ = false;
-  // Each part keeps its own time; at two or more threads they overlap. The observer hears of them
-  // after both, so that it is never called from two threads at once (`beside` calls it).
+  // Each part keeps its own time; where the update overlaps (overlaps_update) they run side by
+  // side. The observer hears of them after both, so that it is never called from two threads at
+  // once (`beside` calls it).
   const int last = hierarchy_.num_levels() - 1;
   double smoothers_ms = 0, coarsest_ms = 0;
   auto set_up_smoothers = [&] {
