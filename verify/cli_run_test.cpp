@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <vector>
@@ -158,6 +159,11 @@ const BadRun kBadRuns[] = {
     {"NumberOverflow",
      R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": -1e400, "poisson": 0.3}})",
      "key 'young' is outside the range of a double"},
+    {"AutoSolverOnACorotatedNewtonTangent",
+     R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3},
+       "fixed": [{"box": [[0,0,0],[0,1,1]]}],
+       "analysis": {"type": "static", "formulation": "corotational", "solver": "auto"}})",
+     "analysis.solver must be a named solver with integrator 'newton'"},
     {"NoSupportsStatic",
      R"({"mesh": {"box": [1,1,1], "cells": [1,1,1]}, "material": {"young": 1, "poisson": 0.3}})",
      "leaves rigid motions free"},
@@ -324,6 +330,20 @@ TEST(CliRun, PetscMgOnOneLevelIsItsLuAndEqualsCholmod) {
   EXPECT_LT(difference, 1e-8 * largest);
 }
 
+/// The largest difference of two records' displacements (per vertex, 3 components) over the
+/// reference's largest component; infinite where the reference does not move (nothing compared).
+double displacement_difference(const nlohmann::json& u, const nlohmann::json& reference) {
+  EXPECT_EQ(u.size(), reference.size());
+  double largest = 0, difference = 0;
+  for (std::size_t v = 0; v < std::min(u.size(), reference.size()); ++v)
+    for (int c = 0; c < 3; ++c) {
+      largest = std::max(largest, std::abs(reference[v][c].get<double>()));
+      difference =
+          std::max(difference, std::abs(u[v][c].get<double>() - reference[v][c].get<double>()));
+    }
+  return largest > 0 ? difference / largest : std::numeric_limits<double>::infinity();
+}
+
 /// A cube [0,1]^3 in Kuhn cells, fixed at x = 0, solved statically by multigrid on two levels;
 /// the coarse level is `coarse` (a mesh spec).
 nlohmann::json multigrid_cube(const nlohmann::json& coarse) {
@@ -337,6 +357,28 @@ nlohmann::json multigrid_cube(const nlohmann::json& coarse) {
             {"solver", "multigrid"},
             {"levels", 2},
             {"tolerance", 1e-10}}}};
+}
+
+/// multigrid_cube's cube, dynamic and corotated on `solver` (two levels for the multigrid): 8
+/// steps, each solve to 1e-10.
+nlohmann::json dynamic_cube(const char* solver) {
+  nlohmann::json scene = multigrid_cube({{"box", {1, 1, 1}}, {"cells", {2, 2, 2}}});
+  scene["analysis"] = {{"type", "dynamic"}, {"formulation", "corotational"},
+                       {"solver", solver},  {"levels", 2},
+                       {"steps", 8},        {"tolerance", 1e-10}};
+  return scene;
+}
+
+/// `scene` run by the CLI in `dir`: its record (null, and the test failed, on a non-zero exit).
+nlohmann::json run_record(const TempDir& dir, const nlohmann::json& scene) {
+  write_text(dir / "cube.json", scene.dump());
+  const auto r = run_cli("run '" + (dir / "cube.json").string() + "' --out '" +
+                         (dir / "r.json").string() + "'");
+  if (r.exit_code != 0) {
+    ADD_FAILURE() << r.err;
+    return nullptr;
+  }
+  return nlohmann::json::parse(test::read_text(dir / "r.json"));
 }
 
 /// One ASCII gmsh 2.2 file with the given nodes (tags 1..n) and linear tets.
@@ -414,39 +456,62 @@ TEST(CliRun, AProjectedStartIsRecordedAndSolvesTheSameSteps) {
   // solve every step to 1e-10, so their displacements agree far inside 1e-6 of the largest.
   // CHOLMOD ignores a start: its record says extrapolation whatever the scene asks.
   TempDir dir;
-  nlohmann::json scene = multigrid_cube({{"box", {1, 1, 1}}, {"cells", {2, 2, 2}}});
-  scene["analysis"] = {{"type", "dynamic"}, {"formulation", "corotational"},
-                       {"solver", "mgpcg"}, {"levels", 2},
-                       {"steps", 8},        {"tolerance", 1e-10}};
   std::vector<nlohmann::json> records;
   for (const char* run : {"default", "projection", "cholmod"}) {
-    nlohmann::json s = scene;
+    nlohmann::json s = dynamic_cube(std::string(run) == "cholmod" ? "cholmod" : "mgpcg");
     if (std::string(run) != "default") s["analysis"]["start"] = "projection";
-    if (std::string(run) == "cholmod") s["analysis"]["solver"] = "cholmod";
-    write_text(dir / "cube.json", s.dump());
-    const auto r = run_cli("run '" + (dir / "cube.json").string() + "' --out '" +
-                           (dir / "r.json").string() + "'");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    records.push_back(nlohmann::json::parse(test::read_text(dir / "r.json")));
+    records.push_back(run_record(dir, s));
+    ASSERT_FALSE(records.back().is_null()) << run;
   }
   EXPECT_EQ(records[0]["analysis"]["start"], nlohmann::json({{"kind", "extrapolation"}}));
   EXPECT_EQ(records[1]["analysis"]["start"],
             nlohmann::json({{"kind", "projection"}, {"history", 4}}));
   EXPECT_EQ(records[2]["analysis"]["start"], nlohmann::json({{"kind", "extrapolation"}}));
-  const auto &u0 = records[0]["displacement"], &u1 = records[1]["displacement"];
-  ASSERT_EQ(u0.size(), 125u);  // per vertex, 5^3
-  ASSERT_EQ(u1.size(), u0.size());
-  double largest = 0, difference = 0;
-  for (std::size_t v = 0; v < u0.size(); ++v)
-    for (int c = 0; c < 3; ++c) {
-      largest = std::max(largest, std::abs(u0[v][c].get<double>()));
-      difference = std::max(difference, std::abs(u0[v][c].get<double>() - u1[v][c].get<double>()));
-    }
-  ASSERT_GT(largest, 0);
-  EXPECT_LT(difference, 1e-6 * largest);
+  ASSERT_EQ(records[0]["displacement"].size(), 125u);  // per vertex, 5^3
+  EXPECT_LT(displacement_difference(records[1]["displacement"], records[0]["displacement"]), 1e-6);
   // And it did start from the projection: a record that says so but extrapolated would take as
   // many CG iterations as the default.
   EXPECT_LT(records[1]["linear_iterations"].get<int>(), records[0]["linear_iterations"].get<int>());
+}
+
+TEST(CliRun, AnAutoSolverRecordsItsTrialAndKeepsTheCheaper) {
+  // analysis.solver "auto" on a dynamic corotated cube: the record lists both candidates' trial
+  // solves, and the one kept is the one of least recorded cost (which one that is depends on the
+  // machine: that is the point). Which solver solves no step changes the answer beyond the
+  // tolerance: every solve reaches 1e-10, so the displacements agree with CHOLMOD's far inside
+  // 1e-6 of the largest (as in AProjectedStartIsRecordedAndSolvesTheSameSteps).
+  TempDir dir;
+  std::vector<nlohmann::json> records;
+  for (const char* solver : {"auto", "cholmod"}) {
+    records.push_back(run_record(dir, dynamic_cube(solver)));
+    ASSERT_FALSE(records.back().is_null()) << solver;
+  }
+  const nlohmann::json& choice = records[0]["solver_choice"];
+  ASSERT_EQ(choice["candidates"].size(), 2u);
+  EXPECT_EQ(choice["candidates"][0]["name"], "mgpcg");
+  EXPECT_EQ(choice["candidates"][1]["name"], "jacobi-pcg");
+  const int trial = choice["decided_after"];
+  EXPECT_GE(trial, 2);  // a warm-up solve and one measured
+  EXPECT_LE(trial, choice["trial_solves"].get<int>());
+  std::string cheapest;
+  double least = 0;
+  for (const auto& c : choice["candidates"]) {
+    ASSERT_EQ(c["trial_ms"].size(), static_cast<std::size_t>(trial)) << c["name"];
+    ASSERT_EQ(c["iterations"].size(), static_cast<std::size_t>(trial)) << c["name"];
+    double cost = c["trial_ms"][1];
+    for (int s = 1; s < trial; ++s) cost = std::min(cost, c["trial_ms"][s].get<double>());
+    EXPECT_EQ(c["cost_ms"].get<double>(), cost) << c["name"];
+    if (cheapest.empty() || cost < least) cheapest = c["name"], least = cost;
+  }
+  EXPECT_EQ(choice["chosen"], cheapest);
+  EXPECT_EQ(records[0]["analysis"]["solver"], "auto: " + cheapest);
+  EXPECT_EQ(records[0].contains("multigrid"), cheapest == "mgpcg");  // the kept solver's record
+  // Multigrid's preconditioner takes fewer iterations than Jacobi's on every trial system.
+  for (int s = 0; s < trial; ++s)
+    EXPECT_LT(choice["candidates"][0]["iterations"][s].get<int>(),
+              choice["candidates"][1]["iterations"][s].get<int>())
+        << "trial solve " << s;
+  EXPECT_LT(displacement_difference(records[0]["displacement"], records[1]["displacement"]), 1e-6);
 }
 
 TEST(CliRun, BadCoarseMeshIsBadInput) {

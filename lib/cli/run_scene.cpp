@@ -101,6 +101,7 @@ nlohmann::json run_summary(SceneSimulation& simulation, const SimulationResult& 
     r["analysis"]["multigrid"] = to_json(mg->params());
     r["multigrid"] = simulation.describe_multigrid(*mg);
   }
+  if (const SolverChoice* choice = solver->choice()) r["solver_choice"] = to_json(*choice);
   r["converged"] = result.converged;
   if (!result.converged) r["message"] = result.message;
   r["iterations"] = result.iterations;

@@ -1,5 +1,6 @@
 #include "io/solver_record.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace corofem {
@@ -131,6 +132,26 @@ nlohmann::json to_json(const MultigridSummary& s) {
                         {"deferred_updates", s.deferred_updates}};
   if (!s.ended_early.empty()) out["ended_early"] = s.ended_early;
   return out;
+}
+
+nlohmann::json to_json(const SolverChoice& choice) {
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const SolverTrial& t : choice.candidates) {
+    nlohmann::json c = {{"name", t.name}, {"trial_ms", t.ms}, {"iterations", t.iterations}};
+    const auto measured = t.ms.begin() + std::min<std::size_t>(choice.warmup_solves, t.ms.size());
+    c["cost_ms"] = t.failure.empty() && measured != t.ms.end()
+                       ? nlohmann::json(*std::min_element(measured, t.ms.end()))
+                       : nlohmann::json(nullptr);
+    if (!t.failure.empty()) c["failure"] = t.failure;
+    candidates.push_back(std::move(c));
+  }
+  return {
+      {"candidates", std::move(candidates)},
+      {"trial_solves", choice.trial_solves},
+      {"warmup_solves", choice.warmup_solves},
+      {"decided_after", choice.decided_after},
+      {"rule", choice.rule},
+      {"chosen", choice.chosen.empty() ? nlohmann::json(nullptr) : nlohmann::json(choice.chosen)}};
 }
 
 }  // namespace corofem

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "linalg/solver_choice.hpp"
 #include "multigrid/multigrid_summary.hpp"
 #include "rotation/rotation_extractor.hpp"
 
@@ -28,5 +29,10 @@ nlohmann::json to_json(const CoarseLevelOrigin& origin);
 /// iterations over the solves so far, the coarsest level's semidefinite shifts, and how many
 /// updates had their coarsest factorization run in the next solve (`deferred_updates`).
 nlohmann::json to_json(const MultigridSummary& summary);
+
+/// The record's `solver_choice` (analysis.solver "auto"): per candidate its trial solves' costs
+/// (ms) and iterations, its cost (the least after the warm-up) or its failure; the rule and the
+/// candidate kept (null if the run ended within the trial).
+nlohmann::json to_json(const SolverChoice& choice);
 
 }  // namespace corofem

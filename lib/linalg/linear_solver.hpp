@@ -10,6 +10,7 @@
 namespace corofem {
 
 class MultigridSolver;
+struct SolverChoice;
 
 struct SolveStats {
   int iterations = 0;             ///< V-cycles or CG iterations; 1 for a direct solve
@@ -43,6 +44,9 @@ class LinearSolver {
   /// multigrid record, the step's roofline, the Galerkin oracle); null for every other solver.
   /// The solver says so itself: no caller casts.
   virtual const MultigridSolver* multigrid() const { return nullptr; }
+  /// What a solver that chooses among others (linalg/solver_choice.hpp) measured and kept; null
+  /// for every other solver.
+  virtual const SolverChoice* choice() const { return nullptr; }
 };
 
 /// CHOLMOD: symbolic analysis at the first matrix, numeric refactorization at every later one.

@@ -30,6 +30,7 @@ class OracleCheckedSolver : public LinearSolver {
       : inner_(std::move(inner)), check_steps_(std::move(check_steps)), out_(out) {}
   std::string name() const override { return inner_->name(); }
   const MultigridSolver* multigrid() const override { return inner_->multigrid(); }
+  const SolverChoice* choice() const override { return inner_->choice(); }
   void set_matrix(const BrcMatrix& a) override {
     if (next_is_checked()) matrix_ = to_eigen(a);
     inner_->set_matrix(a);

@@ -27,8 +27,19 @@ inline constexpr NameTable<Integrator, 2> kIntegrators{{{
     {Integrator::Newton, "newton"},
 }}};
 
-enum class SolverKind { Cholmod, Multigrid, Mgpcg, JacobiPcg, PetscGamg, HypreBoomeramg, PetscMg };
-inline constexpr NameTable<SolverKind, 7> kSolverKinds{{{
+/// auto: the run's first solves measure mgpcg and jacobi-pcg on the scene and keep the cheaper
+/// (linalg/solver_choice.hpp).
+enum class SolverKind {
+  Cholmod,
+  Multigrid,
+  Mgpcg,
+  JacobiPcg,
+  PetscGamg,
+  HypreBoomeramg,
+  PetscMg,
+  Auto
+};
+inline constexpr NameTable<SolverKind, 8> kSolverKinds{{{
     {SolverKind::Cholmod, "cholmod"},
     {SolverKind::Multigrid, "multigrid"},
     {SolverKind::Mgpcg, "mgpcg"},
@@ -36,6 +47,7 @@ inline constexpr NameTable<SolverKind, 7> kSolverKinds{{{
     {SolverKind::PetscGamg, "petsc-gamg"},
     {SolverKind::HypreBoomeramg, "hypre-boomeramg"},
     {SolverKind::PetscMg, "petsc-mg"},
+    {SolverKind::Auto, "auto"},
 }}};
 
 /// Where a dynamic linearly implicit step's iterative solve starts: the last two velocities
@@ -51,6 +63,12 @@ inline constexpr NameTable<SolveStart, 2> kSolveStarts{{{
 inline bool is_multigrid_solver(SolverKind solver) {
   return solver == SolverKind::Multigrid || solver == SolverKind::Mgpcg ||
          solver == SolverKind::PetscMg;
+}
+
+/// Solvers that build corofem's hierarchy, and so read the scene's multigrid settings: the
+/// multigrid solvers and auto (one of its candidates is MG-PCG).
+inline bool builds_hierarchy(SolverKind solver) {
+  return is_multigrid_solver(solver) || solver == SolverKind::Auto;
 }
 
 /// The algebraic multigrid of the libraries, whose setup can be reused across steps

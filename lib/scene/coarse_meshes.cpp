@@ -147,7 +147,7 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
 
 std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices) {
   const AnalysisSpec& a = scene.analysis;
-  if (!is_multigrid_solver(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
+  if (!builds_hierarchy(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
   return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices, a.coarsening);
 }
 

@@ -37,6 +37,8 @@ double linear_bytes_per_tet(SolverKind solver) {
       return 1.5e3;
     case SolverKind::JacobiPcg:
       return 1.3e3;
+    case SolverKind::Auto:  // both candidates, through its trial
+      return linear_bytes_per_tet(SolverKind::Mgpcg) + linear_bytes_per_tet(SolverKind::JacobiPcg);
     case SolverKind::PetscMg:
       return 1.85e3;
     case SolverKind::PetscGamg:

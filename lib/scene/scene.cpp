@@ -192,7 +192,7 @@ int integer_in(JsonFields& f, const std::string& key, int fallback, int lo, int 
 
 /// The multigrid solvers' settings (levels default to 3 for them, 1 for the others).
 void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
-  a.levels = integer_in(f, "levels", is_multigrid_solver(a.solver) ? 3 : 1, 1, 16);
+  a.levels = integer_in(f, "levels", builds_hierarchy(a.solver) ? 3 : 1, 1, 16);
   a.coarsest_max_vertices =
       integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
   a.coarsening = number_in(f, "coarsening", a.coarsening, 0, 64);
@@ -247,6 +247,13 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.rotation =
       *find_rotation_method(one_of(f, "rotation", a.rotation.name(), rotation_method_names()));
   a.solver = one_of(f, "solver", a.solver, kSolverKinds);
+  if (a.solver == SolverKind::Auto && a.integrator == Integrator::Newton &&
+      a.formulation == Formulation::Corotational)
+    // Its candidates solve a symmetric system each step; corotated Newton's tangent is not.
+    f.fail("solver",
+           "a named solver with integrator 'newton' and a corotational formulation ('auto' times "
+           "mgpcg against jacobi-pcg on the symmetric systems of a linearly implicit run; Newton's "
+           "corotated tangent is not symmetric)");
   a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
   a.hierarchy = one_of(f, "hierarchy", a.hierarchy, kHierarchyKinds);
   read_multigrid_settings(f, a);
@@ -270,7 +277,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
     d.reject_unknown_keys();
   }
   read_rotation_params(f, a);
-  if (!is_multigrid_solver(a.solver)) {
+  if (!builds_hierarchy(a.solver)) {
     // A scene that sweeps solvers keeps its multigrid settings: ignored here, said once.
     std::string ignored;
     for (const char* key : kMultigridAnalysisKeys)
@@ -303,7 +310,7 @@ double LoadTiming::factor(int step) const {
 void drop_unused_multigrid_keys(nlohmann::json& analysis) {
   const auto solver =
       kSolverKinds.find(analysis.value("solver", kSolverKinds.name(SolverKind::Cholmod)));
-  if (solver && !is_multigrid_solver(*solver))
+  if (solver && !builds_hierarchy(*solver))
     for (const char* key : kMultigridAnalysisKeys) analysis.erase(key);
   if (solver == SolverKind::PetscMg)
     for (const char* key : kKeysPetscMgCannotHonour) analysis.erase(key);
@@ -362,7 +369,7 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
         "scene '" + name + "': mesh." + (s.mesh.kind == MeshSpec::Kind::Box ? "cells" : "size"),
         run_bytes_basis(a.solver, ranks, tangent));
   }
-  if (is_multigrid_solver(s.analysis.solver) && s.analysis.hierarchy == HierarchyKind::Meshes &&
+  if (builds_hierarchy(s.analysis.solver) && s.analysis.hierarchy == HierarchyKind::Meshes &&
       !remeshable)
     throw InputError("scene '" + name +
                      "': analysis.hierarchy 'meshes' needs mesh.levels for a "

@@ -4,6 +4,7 @@
 
 #include "integrate/newton_iteration.hpp"
 #include "linalg/preconditioned_cg.hpp"
+#include "linalg/solver_choice.hpp"
 #include "solver/petsc_solver.hpp"
 
 namespace corofem {
@@ -55,6 +56,12 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
                                                  SolverObserver* observer) {
   if (a.solver == SolverKind::Cholmod) return make_cholmod_solver();
   if (a.solver == SolverKind::JacobiPcg) return make_jacobi_pcg_solver(a.tolerance, 100000);
+  if (a.solver == SolverKind::Auto) {  // MG-PCG first: its solutions are the trial's
+    std::vector<std::unique_ptr<LinearSolver>> candidates;
+    candidates.push_back(make_multigrid_solver(a, problem, coarse_meshes, true, observer));
+    candidates.push_back(make_jacobi_pcg_solver(a.tolerance, 100000));
+    return make_trial_solver(std::move(candidates));
+  }
   const PetscSolverKind petsc = petsc_solver_kind(a.solver);
   const PetscSolveSettings s = petsc_solve_settings(a);
   if (is_library_amg(a.solver))
