@@ -47,8 +47,12 @@ int thread_count() {
 #endif
 }
 
-int threads_for(long long items) {
-  const long long useful = items / g_items_per_thread;
+long long items_per_thread(LoopItems kind) {
+  return kind == LoopItems::Blocks ? 4 * g_items_per_thread : g_items_per_thread;
+}
+
+int threads_for(long long items, LoopItems kind) {
+  const long long useful = items / items_per_thread(kind);
   return static_cast<int>(std::max(1LL, std::min<long long>(thread_count(), useful)));
 }
 

@@ -15,13 +15,24 @@ bool have_openmp();
 int available_cores();
 /// Threads the parallel kernels use.
 int thread_count();
-/// Threads for a loop over `items` units of work (elements, blocks, weights): one below a few
-/// thousand (forking and joining costs microseconds: more than a small level's whole sweep),
-/// else up to thread_count().
+/// What a parallel loop runs over, for threads_for: each kind has its own least count of items
+/// that makes a second thread pay.
+/// - Entries: vector entries, elements and weights.
+/// - Blocks: the 3x3 blocks of a matrix (products, smoothing, Galerkin and update passes).
+///   Its count is 4x, measured on the 1,536-tet cantilever (about 6,000 blocks on its fine level)
+///   at two threads: at 2,048 blocks a thread the step took 1.17x its one-thread time, with the
+///   serial assembly 1.42x (it then reads what the other core's cache holds); at 8,192, 1.005x.
+///   The quadrupeds' fine levels (11k tets and up: 35,000 blocks or more) stay threaded.
+enum class LoopItems { Entries, Blocks };
+/// Threads for a loop over `items` units of work: one below a few thousand (forking and joining
+/// costs microseconds, and the data a second core touches must come back to the first: more than
+/// a small level's whole sweep), else up to thread_count().
 /// Results never depend on it: every kernel gives the same bits at any count.
-int threads_for(long long items);
-/// The items per thread threads_for() asks for (default 2048); the gates set 1 so that small
-/// meshes run on every thread they ask for.
+int threads_for(long long items, LoopItems kind = LoopItems::Entries);
+/// The least items per thread threads_for() asks for, by kind (the record's context gives both).
+long long items_per_thread(LoopItems kind);
+/// Sets the entries' count (default 2048; blocks: 4x); the gates set 1 so that small meshes run
+/// on every thread they ask for.
 void set_items_per_thread(long long items);
 /// Sets the count (1..1024); throws InputError naming `what` otherwise. Without OpenMP, only 1.
 void set_thread_count(int count, const char* what = "--threads");

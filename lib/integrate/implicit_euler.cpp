@@ -266,7 +266,7 @@ SolveStats linear_implicit_solve(FeProblem& problem, LinearSolver& solver,
     if (!s.assemble_into_system) {  // the scaled copy: one pass over Ktilde into A, then M
       const std::vector<double>& k = problem.stiffness.values;
       const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(k.size());
-#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
+#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9, LoopItems::Blocks))
       for (std::ptrdiff_t i = 0; i < values; ++i) s.system.values[i] = s.k_scale * k[i];
       add_lumped_mass(problem, 1 + dt * options.rayleigh_alpha, s.system);
     }

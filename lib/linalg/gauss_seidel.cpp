@@ -183,7 +183,7 @@ void BlockGaussSeidel::sweep_from_zero(const BrcMatrix& a, const Eigen::VectorXd
   const int* col = a.col_index.data();
   const double* v = a.values.data();
   const int domains = hybrid ? num_domains() : 1;
-#pragma omp parallel num_threads(std::min(domains, threads_for(a.num_blocks())))
+#pragma omp parallel num_threads(std::min(domains, threads_for(a.num_blocks(), LoopItems::Blocks)))
   {
 #pragma omp for schedule(static)  // contiguous runs of domains, as in sweep_hybrid
     for (int d = 0; d < domains; ++d) {
@@ -239,7 +239,7 @@ void BlockGaussSeidel::sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b
   // against 0.48 at one).
   const int domains = num_domains();
   if (domains > 1) frozen_.resize(x.size());
-#pragma omp parallel num_threads(std::min(domains, threads_for(a.num_blocks())))
+#pragma omp parallel num_threads(std::min(domains, threads_for(a.num_blocks(), LoopItems::Blocks)))
   {
     if (domains > 1) {
 #pragma omp for schedule(static)

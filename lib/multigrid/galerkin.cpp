@@ -216,7 +216,7 @@ std::size_t GalerkinStream::bytes() const {
 void GalerkinStream::apply(const BrcMatrix& a, BrcMatrix& e) const {
   double* ev = e.values.data();
   const int parts = static_cast<int>(parts_.size());
-  const int threads = threads_for(a.num_blocks());
+  const int threads = threads_for(a.num_blocks(), LoopItems::Blocks);
 #pragma omp parallel num_threads(threads < parts ? threads : parts)
   {
 #pragma omp for schedule(static, 1)

@@ -96,7 +96,7 @@ void GalerkinGather::apply(const BrcMatrix& a, BrcMatrix& e) const {
   double* ev = e.values.data();
   const double* av = a.values.data();
   const int parts = static_cast<int>(part_start_.size()) - 1;
-  const int threads = threads_for(a.num_blocks());
+  const int threads = threads_for(a.num_blocks(), LoopItems::Blocks);
 #pragma omp parallel num_threads(threads < parts ? threads : parts)
   {
 #pragma omp for schedule(static, 1)

@@ -52,7 +52,7 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
   const double* from = fine.values.data();
   double* to = matrices_[0].values.data();
   constexpr std::ptrdiff_t kChunk = 1 << 15;
-#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9))
+#pragma omp parallel for schedule(static) num_threads(threads_for(values / 9, LoopItems::Blocks))
   for (std::ptrdiff_t c = 0; c < values; c += kChunk)
     std::copy(from + c, from + std::min(values, c + kChunk), to + c);
   update_coarse(method);

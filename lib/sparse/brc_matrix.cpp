@@ -22,7 +22,7 @@ void BrcMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   y.resize(3 * block_rows);
   const double* xs = x.data();
   auto source = [xs](int j) { return xs + 3 * j; };
-#pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks()))
+#pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks(), LoopItems::Blocks))
   for (int i = 0; i < block_rows; ++i)
     block_row_sum(col_index.data(), values.data(), row_start[i], row_start[i + 1], source,
                   y.data() + 3 * i);
@@ -33,7 +33,7 @@ void BrcMatrix::residual(const Eigen::VectorXd& b, const Eigen::VectorXd& x,
   r.resize(3 * block_rows);
   const double* xs = x.data();
   auto source = [xs](int j) { return xs + 3 * j; };
-#pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks()))
+#pragma omp parallel for schedule(static) num_threads(threads_for(num_blocks(), LoopItems::Blocks))
   for (int i = 0; i < block_rows; ++i) {
     double s[3];
     block_row_sum(col_index.data(), values.data(), row_start[i], row_start[i + 1], source, s);
