@@ -143,8 +143,10 @@ TEST(SolverChoice, AClearWinnerEndsTheTrialAtTheFirstSolveAfterTheWarmup) {
 TEST(SolverChoice, TheCandidatesSolveTheSameSystemFromTheSameStartAndSeeTheValues) {
   Trial t({1}, {1});
   t.step();
-  // Only the last candidate takes the values; the other copied them before (7, not -1).
-  EXPECT_EQ(t.first->taken + t.second->taken, 1);
+  // The first candidate (whose solution the trial returns) takes the values, as it would alone;
+  // the other copied them before (7, not -1).
+  EXPECT_EQ(t.first->taken, 1);
+  EXPECT_EQ(t.second->taken, 0);
   EXPECT_EQ(t.first->last_value, 7.0);
   EXPECT_EQ(t.second->last_value, 7.0);
   EXPECT_EQ(t.first->solves, 1);

@@ -62,10 +62,12 @@ class TrialSolver : public LinearSolver {
 
   void take_matrix(BrcMatrix& a) override {
     if (chosen_) return chosen_->take_matrix(a);
-    const std::size_t last = last_in_trial();  // the others copy the values before it takes them
+    // The candidate whose solutions are used takes the values, as it would alone (the multigrid
+    // swaps them instead of copying); the others copy them first.
+    const std::size_t taker = first_in_trial();
     for (std::size_t c = 0; c < candidates_.size(); ++c)
-      if (in_trial(c) && c != last) timed(c, [&] { candidates_[c]->set_matrix(a); });
-    timed(last, [&] { candidates_[last]->take_matrix(a); });
+      if (in_trial(c) && c != taker) timed(c, [&] { candidates_[c]->set_matrix(a); });
+    timed(taker, [&] { candidates_[taker]->take_matrix(a); });
   }
 
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
@@ -81,20 +83,16 @@ class TrialSolver : public LinearSolver {
  private:
   bool in_trial(std::size_t c) const { return choice_.candidates[c].failure.empty(); }
 
-  std::size_t last_in_trial() const {
-    std::size_t last = 0;
+  std::size_t first_in_trial() const {
     for (std::size_t c = 0; c < candidates_.size(); ++c)
-      if (in_trial(c)) last = c;
-    return last;
+      if (in_trial(c)) return c;
+    return 0;
   }
 
   /// The candidate whose solutions the run takes: the chosen one, or in the trial the first that
   /// has not failed.
   const LinearSolver* used() const {
-    if (chosen_) return chosen_;
-    for (std::size_t c = 0; c < candidates_.size(); ++c)
-      if (in_trial(c)) return candidates_[c].get();
-    return candidates_.front().get();
+    return chosen_ ? chosen_ : candidates_[first_in_trial()].get();
   }
 
   template <class Work>
