@@ -1,6 +1,6 @@
 #include "io/solver_record.hpp"
 
-#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace corofem {
@@ -138,10 +138,8 @@ nlohmann::json to_json(const SolverChoice& choice) {
   nlohmann::json candidates = nlohmann::json::array();
   for (const SolverTrial& t : choice.candidates) {
     nlohmann::json c = {{"name", t.name}, {"trial_ms", t.ms}, {"iterations", t.iterations}};
-    const auto measured = t.ms.begin() + std::min<std::size_t>(choice.warmup_solves, t.ms.size());
-    c["cost_ms"] = t.failure.empty() && measured != t.ms.end()
-                       ? nlohmann::json(*std::min_element(measured, t.ms.end()))
-                       : nlohmann::json(nullptr);
+    const double cost = trial_cost(t, choice.warmup_solves);
+    c["cost_ms"] = std::isfinite(cost) ? nlohmann::json(cost) : nlohmann::json(nullptr);
     if (!t.failure.empty()) c["failure"] = t.failure;
     candidates.push_back(std::move(c));
   }

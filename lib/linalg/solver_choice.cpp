@@ -141,12 +141,8 @@ class TrialSolver : public LinearSolver {
     std::rethrow_exception(first_failure);
   }
 
-  /// A candidate's cost: the least of its solves after the warm-up (infinite before).
   double cost(std::size_t c) const {
-    const std::vector<double>& ms = choice_.candidates[c].ms;
-    if (!in_trial(c) || static_cast<int>(ms.size()) <= choice_.warmup_solves)
-      return std::numeric_limits<double>::infinity();
-    return *std::min_element(ms.begin() + choice_.warmup_solves, ms.end());
+    return trial_cost(choice_.candidates[c], choice_.warmup_solves);
   }
 
   /// The candidate of least cost; candidates_.size() while none has a cost.
@@ -184,6 +180,12 @@ class TrialSolver : public LinearSolver {
 };
 
 }  // namespace
+
+double trial_cost(const SolverTrial& trial, int warmup_solves) {
+  if (!trial.failure.empty() || static_cast<int>(trial.ms.size()) <= warmup_solves)
+    return std::numeric_limits<double>::infinity();
+  return *std::min_element(trial.ms.begin() + warmup_solves, trial.ms.end());
+}
 
 std::unique_ptr<LinearSolver> make_trial_solver(
     std::vector<std::unique_ptr<LinearSolver>> candidates, SolverTrialSettings settings,

@@ -22,6 +22,10 @@ struct SolverTrial {
   std::string failure;  ///< the error that ended its trial (never chosen then); empty if none
 };
 
+/// A trial's cost: the least of its solves after the first `warmup_solves`; infinite for a
+/// candidate that failed or has no solve past the warm-up yet.
+double trial_cost(const SolverTrial& trial, int warmup_solves);
+
 /// The record of a choice: every candidate's trial, the rule and what it kept.
 struct SolverChoice {
   std::vector<SolverTrial> candidates;
