@@ -55,7 +55,8 @@ TEST(AnalysisVariant, AnotherSolverDropsTheMultigridKeys) {
                         "coarsest_max_vertices",
                         "coarsening",
                         "chebyshev_degree",
-                        "cycle"};
+                        "cycle",
+                        "coarsest_refactor"};
   nlohmann::json scene = mgpcg_scene();
   scene["analysis"].update({{"vcycles", 30},
                             {"galerkin", "stream"},
@@ -64,7 +65,8 @@ TEST(AnalysisVariant, AnotherSolverDropsTheMultigridKeys) {
                             {"coarsest_max_vertices", 500},
                             {"coarsening", 3.5},
                             {"chebyshev_degree", 3},
-                            {"cycle", "W"}});
+                            {"cycle", "W"},
+                            {"coarsest_refactor", 0.1}});
   for (const char* key : keys) ASSERT_TRUE(scene["analysis"].contains(key)) << key;
   const nlohmann::json cholmod = with_analysis(scene, {.solver = SolverKind::Cholmod});
   for (const char* key : keys) EXPECT_FALSE(cholmod["analysis"].contains(key)) << key;

@@ -85,7 +85,8 @@ nlohmann::json to_json(const MultigridParams& p) {
             {"coarsest", "cholmod"},
             {"coarsest_factorization", p.overlap_factorization
                                            ? "beside the first descent at 2+ threads and 3+ levels"
-                                           : "in the update"}}}};
+                                           : "in the update"},
+            {"coarsest_refactor_change", p.coarsest_refactor_change}}}};
 }
 
 nlohmann::json to_json(const CoarseLevelOrigin& o) {
@@ -129,6 +130,8 @@ nlohmann::json to_json(const MultigridSummary& s) {
                         {"rho", to_json(s.rho)},
                         {"iterations", to_json(s.iterations)},
                         {"coarsest_shifts", s.coarsest_shifts},
+                        {"updates", s.updates},
+                        {"coarsest_factorizations", s.coarsest_factorizations},
                         {"deferred_updates", s.deferred_updates}};
   if (!s.ended_early.empty()) out["ended_early"] = s.ended_early;
   return out;

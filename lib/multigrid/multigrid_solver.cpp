@@ -83,9 +83,26 @@ void MultigridSolver::update_levels() {
   // initial residual needs neither it nor the smoothers, and its first V-cycle's descent needs only
   // the smoothers: so at two or more threads the update stops after the Galerkin products and the
   // next solve runs the factorization on one thread beside those on another
-  // (run_overlapped_pcg). The first update, which analyses the pattern, runs in full here.
+  // (run_overlapped_pcg). The first update, which analyses the pattern, runs in full here, and so
+  // does one that keeps the coarsest factor (the smoothers' set-up then has both threads).
+  ++updates_;
+  check_ms_ = wall_ms([&] { refactor_pending_ = coarsest_moved(); });
   update_pending_ = true;
-  if (!(defers_update() && coarsest_->converter)) complete_update();
+  if (!(defers_update() && refactor_pending_ && coarsest_->converter)) complete_update();
+}
+
+bool MultigridSolver::coarsest_moved() const {
+  if (factored_values_.empty() || params_.coarsest_refactor_change <= 0) return true;
+  // Serial, in one order: the decision, and so the bits, are the same at every thread count.
+  const std::vector<double>& now = hierarchy_.matrix(hierarchy_.num_levels() - 1).values;
+  double change = 0, size = 0;
+  for (std::size_t k = 0; k < now.size(); ++k) {
+    const double d = now[k] - factored_values_[k];
+    change += d * d;
+    size += factored_values_[k] * factored_values_[k];
+  }
+  const double limit = params_.coarsest_refactor_change;
+  return !(change < limit * limit * size);  // a NaN refactors (and the factorization reports it)
 }
 
 bool MultigridSolver::overlaps_update() const {
@@ -113,12 +130,14 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
   auto set_up_smoothers = [&] {
     for (int h = 0; h < last; ++h) smoothers_[h]->set_matrix(hierarchy_.matrix(h));
   };
-  auto factorize = [&] { coarsest_ms = wall_ms([&] { update_coarsest(); }); };
+  auto factorize = [&] {
+    if (refactor_pending_) coarsest_ms = wall_ms([&] { update_coarsest(); });
+  };
   auto rest = [&] {
     smoothers_ms = wall_ms(set_up_smoothers);
     if (beside) beside();
   };
-  if (overlaps_update()) {
+  if (overlaps_update() && refactor_pending_) {
     run_side_by_side(factorize, rest);
   } else {  // the same operations, one after the other: the same bits
     factorize();
@@ -126,10 +145,19 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
   }
   if (!observer_) return;
   observer_->on_part(SolverPart::Smoothers, smoothers_ms);
-  observer_->on_part(SolverPart::Coarsest, coarsest_ms);
+  observer_->on_part(SolverPart::Coarsest, check_ms_ + coarsest_ms);
 }
 
 void MultigridSolver::update_coarsest() {
+  // Its values are kept only once factorized: a failed factorization (an indefinite operator,
+  // which a Newton caller then replaces) leaves none, so the next update refactors.
+  factored_values_.clear();
+  factorize_coarsest();
+  ++coarsest_factorizations_;
+  factored_values_ = hierarchy_.matrix(hierarchy_.num_levels() - 1).values;
+}
+
+void MultigridSolver::factorize_coarsest() {
   const int last = hierarchy_.num_levels() - 1;
   if (!coarsest_->converter) {
     coarsest_->converter.emplace(hierarchy_.matrix(last), BrcToEigen::Part::SymmetricUpper);

@@ -42,6 +42,12 @@ struct MultigridParams {
   /// next solve's initial residual and first descent (see MultigridSolver::defers_update), not in
   /// the update.
   bool overlap_factorization = true;
+  /// The coarsest factorization is kept while the coarsest operator's values differ from those it
+  /// factored by less than this, relative, in the Frobenius norm (0: refactored at every update).
+  /// The factor of a nearby SPD operator is still an SPD coarse solve, so the V-cycle stays an SPD
+  /// preconditioner and MG-PCG meets its tolerance; only its rate can suffer. Measured in
+  /// lib/docs/multigrid-notes.md, "The coarsest factor kept while the operator barely moves".
+  double coarsest_refactor_change = 0.03;
 };
 
 class MultigridSolver : public LinearSolver {
@@ -68,9 +74,9 @@ class MultigridSolver : public LinearSolver {
   /// levels (with two, the work beside it is too small to pay for a thread of its own).
   bool overlaps_update() const;
   /// Whether set_matrix leaves the coarsest factorization and the smoothers' set-up to the next
-  /// solve (MG-PCG where the update overlaps, from the second update on): that solve runs them
-  /// beside its initial residual and its first V-cycle's descent. Their time then counts in the
-  /// solve, not the update.
+  /// solve (MG-PCG where the update overlaps, from the second update on, in the updates that
+  /// refactor the coarsest level): that solve runs them beside its initial residual and its first
+  /// V-cycle's descent. Their time then counts in the solve, not the update.
   bool defers_update() const;
   /// Whether the last set_matrix's factorization and smoothers' set-up still wait for a solve.
   bool update_deferred() const { return update_pending_; }
@@ -84,6 +90,10 @@ class MultigridSolver : public LinearSolver {
   double coarsest_factorization_flops() const;
   /// How many coarsest-level factorizations needed the semidefinite shift (see update_coarsest).
   int coarsest_shifts() const { return coarsest_shifts_; }
+  /// How many updates there were, and how many of them factorized the coarsest level (the others
+  /// kept its factor: params().coarsest_refactor_change).
+  int updates() const { return updates_; }
+  int coarsest_factorizations() const { return coarsest_factorizations_; }
   /// Where each coarse level came from (level h + 1 at h).
   const std::vector<CoarseLevelOrigin>& level_origins() const { return level_origins_; }
   /// Why the hierarchy has fewer levels than its params ask for (BuiltHierarchy::ended_early).
@@ -98,7 +108,12 @@ class MultigridSolver : public LinearSolver {
   /// Runs a pending update: the coarsest factorization on one thread, and on another the
   /// smoothers' set-up, then `beside` (work that does not need the factor).
   void complete_update(const std::function<void()>& beside = {});
+  /// The coarsest factorization, and a record of the values it factorized.
   void update_coarsest();
+  void factorize_coarsest();
+  /// Whether the coarsest level's values moved from those last factorized by
+  /// params_.coarsest_refactor_change or more (always before the first factorization).
+  bool coarsest_moved() const;
   void cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess);
   /// How many cycles on level h + 1 make level h's coarse correction.
   int coarse_visits(int h) const;
@@ -121,7 +136,10 @@ class MultigridSolver : public LinearSolver {
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
   SolverObserver* observer_;
   bool update_pending_ = false;
-  int coarsest_shifts_ = 0;
+  bool refactor_pending_ = false;  ///< the pending update factorizes the coarsest level
+  double check_ms_ = 0;            ///< coarsest_moved's time in the pending update
+  int coarsest_shifts_ = 0, coarsest_factorizations_ = 0, updates_ = 0;
+  std::vector<double> factored_values_;  ///< the coarsest level's values when last factorized
   std::vector<CoarseLevelOrigin> level_origins_;
   std::string ended_early_;
 };

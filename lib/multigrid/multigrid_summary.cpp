@@ -31,6 +31,8 @@ MultigridSummary summarize(const MultigridSolver& solver, const MultigridLog& lo
     s.iterations = median(iterations);
   }
   s.coarsest_shifts = solver.coarsest_shifts();
+  s.updates = solver.updates();
+  s.coarsest_factorizations = solver.coarsest_factorizations();
   s.deferred_updates = log.deferred_updates();
   s.ended_early = solver.ended_early();
   return s;

@@ -27,6 +27,9 @@ struct MultigridSummary {
   int solves = 0;                         ///< solves of a non-zero right-hand side
   std::optional<double> rho, iterations;  ///< medians over those solves
   int coarsest_shifts = 0, deferred_updates = 0;
+  /// Updates of the matrix, and those that factorized the coarsest level (the rest kept its
+  /// factor).
+  int updates = 0, coarsest_factorizations = 0;
   std::string ended_early;  ///< MultigridSolver::ended_early
 };
 

@@ -38,6 +38,20 @@ Traffic vcycle(const MultigridSolver& solver, int h) {
   return out;
 }
 
+/// The share of the updates that factorized the coarsest level (the others kept its factor).
+double refactor_share(const MultigridSolver& solver) {
+  return solver.updates() > 0
+             ? static_cast<double>(solver.coarsest_factorizations()) / solver.updates()
+             : 1.0;
+}
+
+/// Every update's check of how far the coarsest values moved: them and the factored copy read.
+Traffic coarsest_check(const MultigridSolver& solver) {
+  const BrcMatrix& coarsest = solver.hierarchy().matrix(solver.hierarchy().num_levels() - 1);
+  return {2 * kBlockBytes * static_cast<double>(coarsest.col_index.size()),
+          3.0 * static_cast<double>(coarsest.values.size())};
+}
+
 }  // namespace
 
 std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
@@ -71,13 +85,16 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
   for (int level = 0; level + 1 < h.num_levels(); ++level)
     smoothers += solver.smoother(level).setup_traffic(h.matrix(level));
   parts["smoothers"] = smoothers;
-  // The coarsest level: its values converted to CHOLMOD's lower-triangular CSC (about half the
-  // blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's analysis counted.
+  // The coarsest level, in the updates that refactor it: its values converted to CHOLMOD's
+  // lower-triangular CSC (about half the blocks, 12 B an entry) and factorized: L written, and the
+  // flops CHOLMOD's analysis counted. In every update, the check of how far its values moved.
   const BrcMatrix& coarsest = h.matrix(h.num_levels() - 1);
-  parts["coarsest"] = {
-      kBlockBytes * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
-          8 * solver.coarsest_factor_nonzeros(),
-      solver.coarsest_factorization_flops()};
+  parts["coarsest"] =
+      refactor_share(solver) *
+      Traffic{kBlockBytes * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
+                  8 * solver.coarsest_factor_nonzeros(),
+              solver.coarsest_factorization_flops()};
+  parts["coarsest"] += coarsest_check(solver);
   return parts;
 }
 
@@ -120,11 +137,22 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   t["system"] = {n + 3 * 8 * n + n + supported_blocks * (2 * kBlockBytes + kIndexBytes) + 16 * n,
                  2 * n + 18 * supported_blocks};
   // The coarsest factorization and the smoothers' set-up count where they run: in the solve
-  // when the solver defers them to it (MultigridSolver::defers_update).
+  // when the solver defers them to it (MultigridSolver::defers_update), which it does in the
+  // updates that refactor; the check that decides it runs in every update.
   Traffic update, deferred;
-  for (const auto& [part, traffic] : update_traffic(solver))
-    (solver.defers_update() && (part == "coarsest" || part == "smoothers") ? deferred : update) +=
-        traffic;
+  const double share = solver.defers_update() ? refactor_share(solver) : 0;
+  const Traffic check = coarsest_check(solver);
+  for (const auto& [part, traffic] : update_traffic(solver)) {
+    if (part == "smoothers") {
+      deferred += share * traffic;
+      update += (1 - share) * traffic;
+    } else if (part == "coarsest" && share > 0) {
+      deferred += Traffic{traffic.bytes - check.bytes, traffic.flops - check.flops};
+      update += check;
+    } else {
+      update += traffic;
+    }
+  }
   t["update"] = update;
   // MG-PCG (linalg/preconditioned_cg.cpp): per iteration A p, one V-cycle and 14 vector passes
   // (two dots, two axpys, a norm, p = z + beta p); the start: r = b - A x, norms, r.z.

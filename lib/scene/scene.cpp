@@ -202,6 +202,7 @@ void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
   a.smoother = one_of(f, "smoother", a.smoother, smoother_names());
   a.chebyshev_degree = integer_in(f, "chebyshev_degree", a.chebyshev_degree, 1, 16);
   a.cycle = one_of(f, "cycle", a.cycle, kCycleShapes);
+  a.coarsest_refactor = number_in(f, "coarsest_refactor", a.coarsest_refactor, 0, 1);
   if (a.solver == SolverKind::PetscMg)
     // PETSc's PCMG on our transfers: its own V-cycle of Chebyshev-Jacobi smoothing (as many steps
     // as `smoothing`) and its coarse operators by MatPtAP. A setting it cannot honour is refused,

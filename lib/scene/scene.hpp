@@ -70,13 +70,14 @@ inline constexpr const char* kMultigridAnalysisKeys[] = {"levels",
                                                          "coarsest_max_vertices",
                                                          "coarsening",
                                                          "chebyshev_degree",
-                                                         "cycle"};
+                                                         "cycle",
+                                                         "coarsest_refactor"};
 
 /// The multigrid keys solver 'petsc-mg' cannot honour (PETSc's PCMG runs its own V-cycle of
 /// Chebyshev-Jacobi smoothing and its own Galerkin product): refused in a scene, dropped by
 /// drop_unused_multigrid_keys.
-inline constexpr const char* kKeysPetscMgCannotHonour[] = {"vcycles", "galerkin", "smoother",
-                                                           "chebyshev_degree", "cycle"};
+inline constexpr const char* kKeysPetscMgCannotHonour[] = {
+    "vcycles", "galerkin", "smoother", "chebyshev_degree", "cycle", "coarsest_refactor"};
 
 struct AnalysisSpec {
   AnalysisType type = AnalysisType::Static;
@@ -110,6 +111,9 @@ struct AnalysisSpec {
   std::string smoother = MultigridParams{}.smoother;
   int chebyshev_degree = MultigridParams{}.smoother_settings.chebyshev_degree;
   CycleShape cycle = MultigridParams{}.cycle;  ///< V | W
+  /// The coarsest factor is kept while the coarsest operator moved less than this, relative
+  /// (MultigridParams::coarsest_refactor_change; 0: refactored every update)
+  double coarsest_refactor = MultigridParams{}.coarsest_refactor_change;
   /// Dynamic, linearly implicit, corotated, iterative solvers on one process: the solve's start
   /// (start_history: the velocities projected on, 2..16).
   SolveStart start = SolveStart::Extrapolation;

@@ -22,6 +22,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   p.smoother = a.smoother;
   p.smoother_settings.chebyshev_degree = a.chebyshev_degree;
   p.cycle = a.cycle;
+  p.coarsest_refactor_change = a.coarsest_refactor;
   return p;
 }
 
