@@ -168,7 +168,9 @@ def render_thread_table(tables, md):
               "the same bits (verify/threads_test.cpp). The smoother is l1 hybrid Gauss-Seidel in both, its "
               "domains set by each level's size, not by the threads (README, Multigrid).\n")
     if any(r.get("coarsest_factorization_in") == "solve" for r in rows):
-        md.append(f"- At {n} threads MG-PCG factors the coarsest level (CHOLMOD, serial) and sets up the smoothers "
+        md.append(f"- The coarsest factor is kept while the coarsest operator moved less than "
+                  "`analysis.coarsest_refactor` (3%) since it was factorized. In an update that refactors, at "
+                  f"{n} threads MG-PCG factors the coarsest level (CHOLMOD, serial) and sets up the smoothers "
                   "at the start of the solve, on one thread beside the initial residual and the first V-cycle's "
                   "descent on the other (`MultigridSolver::defers_update`): there the update is the Galerkin "
                   "products alone and the solve carries the rest; the one-thread column keeps them in the update.\n")
