@@ -77,6 +77,9 @@ class BlockGaussSeidel {
   /// Hybrid: rows with a neighbour in another domain (coupled to it by Jacobi), and domain d's
   /// rows [domain_rows_begin(d), domain_rows_begin(d + 1)).
   int boundary_rows() const { return static_cast<int>(halo_rows_.size()); }
+  /// Hybrid: the blocks of the halo rows outside their domains (set_matrix reads them for the
+  /// l1 norms); 0 before the first set_matrix.
+  long long off_domain_blocks() const { return off_domain_blocks_; }
   int domain_rows_begin(int d) const { return domain_start_[d]; }
 
  private:
@@ -110,6 +113,7 @@ class BlockGaussSeidel {
   // Hybrid: domain d is rows [domain_start_[d], domain_start_[d + 1]); row i's in-domain blocks
   // are [own_begin_[i], own_end_[i]) (columns sorted, the domain contiguous).
   std::vector<int> own_begin_, own_end_;
+  long long off_domain_blocks_ = 0;
   std::vector<int> halo_rows_;  ///< hybrid: the rows with blocks outside their domain, ascending
   mutable Eigen::VectorXd frozen_;  ///< x at the start of a hybrid sweep
 };
