@@ -130,6 +130,30 @@ TEST(StepRoofline, ADeferredUpdateMovesItsTrafficToTheSolve) {
                    t.at("update").bytes + t.at("solve").bytes);
 }
 
+TEST(StepRoofline, TheCoarsestPartCountsOnlyTheUpdatesThatRefactor) {
+  // A coarsest factor kept while its operator barely moves (analysis.coarsest_refactor): each
+  // update is charged its share of the factorizations, and every update the check that decided
+  // (3 flops a value of the coarsest level). At 0 all 4 updates refactor; at 1 (a move of 100%)
+  // only the first does.
+  for (const double refactor : {0.0, 1.0}) {
+    nlohmann::json scene = box_scene();
+    scene["analysis"]["steps"] = 4;
+    scene["analysis"]["coarsest_refactor"] = refactor;
+    const ScopedThreadCount one(1);
+    SceneSimulation sim(parse_scene(scene, ".", "box"));
+    sim.run();
+    const auto& solver = dynamic_cast<const MultigridSolver&>(sim.solver());
+    const MultigridHierarchy& h = solver.hierarchy();
+    ASSERT_EQ(solver.updates(), 4) << refactor;
+    const int factorizations = refactor == 0 ? 4 : 1;
+    ASSERT_EQ(solver.coarsest_factorizations(), factorizations) << refactor;
+    const double values = static_cast<double>(h.matrix(h.num_levels() - 1).values.size());
+    EXPECT_DOUBLE_EQ(update_traffic(solver).at("coarsest").flops,
+                     factorizations / 4.0 * solver.coarsest_factorization_flops() + 3 * values)
+        << refactor;
+  }
+}
+
 TEST(StepRoofline, ChebyshevSmoothingCountsItsOwnProducts) {
   // The smoother counts its own traffic (linalg/smoother.hpp): Chebyshev of degree 3 reads the
   // fine matrix three times a smoothing (from x = 0: twice, and the V-cycle's residual once
