@@ -45,6 +45,16 @@ double refactor_share(const MultigridSolver& solver) {
              : 1.0;
 }
 
+/// One factorization of the coarsest level: its values converted to CHOLMOD's lower-triangular
+/// CSC (about half the blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's
+/// analysis counted.
+Traffic coarsest_factorization(const MultigridSolver& solver) {
+  const BrcMatrix& coarsest = solver.hierarchy().matrix(solver.hierarchy().num_levels() - 1);
+  return {kBlockBytes * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
+              8 * solver.coarsest_factor_nonzeros(),
+          solver.coarsest_factorization_flops()};
+}
+
 /// Every update's check of how far the coarsest values moved: them and the factored copy read.
 Traffic coarsest_check(const MultigridSolver& solver) {
   const BrcMatrix& coarsest = solver.hierarchy().matrix(solver.hierarchy().num_levels() - 1);
@@ -85,15 +95,9 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
   for (int level = 0; level + 1 < h.num_levels(); ++level)
     smoothers += solver.smoother(level).setup_traffic(h.matrix(level));
   parts["smoothers"] = smoothers;
-  // The coarsest level, in the updates that refactor it: its values converted to CHOLMOD's
-  // lower-triangular CSC (about half the blocks, 12 B an entry) and factorized: L written, and the
-  // flops CHOLMOD's analysis counted. In every update, the check of how far its values moved.
-  const BrcMatrix& coarsest = h.matrix(h.num_levels() - 1);
-  parts["coarsest"] =
-      refactor_share(solver) *
-      Traffic{kBlockBytes * static_cast<double>(coarsest.col_index.size()) * (1 + 12.0 / 8 / 2) +
-                  8 * solver.coarsest_factor_nonzeros(),
-              solver.coarsest_factorization_flops()};
+  // The coarsest level: its factorization in the updates that refactor it, in every update the
+  // check of how far its values moved.
+  parts["coarsest"] = refactor_share(solver) * coarsest_factorization(solver);
   parts["coarsest"] += coarsest_check(solver);
   return parts;
 }
@@ -141,14 +145,13 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // updates that refactor; the check that decides it runs in every update.
   Traffic update, deferred;
   const double share = solver.defers_update() ? refactor_share(solver) : 0;
-  const Traffic check = coarsest_check(solver);
   for (const auto& [part, traffic] : update_traffic(solver)) {
     if (part == "smoothers") {
       deferred += share * traffic;
       update += (1 - share) * traffic;
     } else if (part == "coarsest" && share > 0) {
-      deferred += Traffic{traffic.bytes - check.bytes, traffic.flops - check.flops};
-      update += check;
+      deferred += share * coarsest_factorization(solver);
+      update += coarsest_check(solver);
     } else {
       update += traffic;
     }
