@@ -21,6 +21,10 @@ nlohmann::json to_json(const HierarchyParams& p) {
     j["end_below_vertices"] = p.end_below_vertices;
     j["coarsening"] = p.coarsening;
   }
+  if (p.coarsest_vertices == kCoarsestSizedByFine)
+    j["coarsest_vertices_rule"] = "sqrt(40 x fine vertices)";  // sized by the scene
+  else if (p.coarsest_vertices > 0)
+    j["coarsest_vertices"] = p.coarsest_vertices;
   if (p.coarsest_max_vertices > 0) j["coarsest_max_vertices"] = p.coarsest_max_vertices;
   return j;
 }

@@ -1,6 +1,8 @@
 #include "multigrid/hierarchy_builder.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
@@ -27,6 +29,11 @@ std::string mesh_level_rejection(const std::vector<TetMesh>& coarse_meshes, int 
 
 }  // namespace
 
+int coarsest_vertex_limit(const HierarchyParams& params, int fine_vertices) {
+  if (params.coarsest_vertices != kCoarsestSizedByFine) return params.coarsest_vertices;
+  return static_cast<int>(std::ceil(std::sqrt(40.0 * std::max(fine_vertices, 0))));
+}
+
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes) {
@@ -37,7 +44,9 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
   double cell = params.first_cell_factor * mean_edge_length(fine);
   double spacing = mean_edge_length(fine);  // of the last level built
   std::string fallback;                     // why the meshes ended, once they have
+  const int limit = coarsest_vertex_limit(params, fine.num_vertices());
   for (int h = 1; h < params.levels; ++h) {
+    if (h > 1 && limit > 0 && static_cast<int>(points.size()) <= limit) break;  // small enough
     CoarseLevel coarse;
     CoarseLevelOrigin origin;
     if (params.kind == HierarchyKind::Meshes && fallback.empty()) {
@@ -74,8 +83,9 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
     level_fixed.clear();  // coarse levels have no fixed vertices
   }
   // Lattice levels below, while the coarsest is too big to factor cheaply every step.
-  const int limit = params.coarsest_max_vertices;
-  while (limit > 0 && static_cast<int>(points.size()) > limit && !built.transfers.empty()) {
+  const int lattice_limit = params.coarsest_max_vertices;
+  while (lattice_limit > 0 && static_cast<int>(points.size()) > lattice_limit &&
+         !built.transfers.empty()) {
     spacing *= 2;
     CoarseLevel coarse = make_lattice_level(points, level_fixed, spacing);
     if (2 * coarse.transfer.coarse > static_cast<int>(points.size())) break;  // not worth a level

@@ -17,9 +17,17 @@ enum class HierarchyKind { Meshes, Lattice };
 inline constexpr NameTable<HierarchyKind, 2> kHierarchyKinds{
     {{{HierarchyKind::Meshes, "meshes"}, {HierarchyKind::Lattice, "lattice"}}}};
 
+/// HierarchyParams::coarsest_vertices for a hierarchy sized by its fine mesh
+/// (coarsest_vertex_limit).
+inline constexpr int kCoarsestSizedByFine = -1;
+
 struct HierarchyParams {
   HierarchyKind kind = HierarchyKind::Lattice;
-  int levels = 3;                  ///< including the fine level
+  int levels = 3;  ///< including the fine level; with coarsest_vertices, the most there may be
+  /// The levels stop at the first coarse one with at most this many vertices (there is always one
+  /// coarse level; `levels` stays the cap). 0: exactly `levels`. kCoarsestSizedByFine: the limit
+  /// follows the fine mesh (coarsest_vertex_limit).
+  int coarsest_vertices = 0;
   double first_cell_factor = 1.5;  ///< lattice: level-1 cell = factor x mean fine edge length
   /// Below the `levels` levels, lattice levels (cell twice the last level's spacing, doubling)
   /// until the coarsest has at most this many vertices: its factorization, every step, then
@@ -44,6 +52,18 @@ struct HierarchyParams {
   double coarsening = 0;
 };
 
+/// The level count where a scene gives none: at most this many levels, down to the limit below.
+inline constexpr int kSizedHierarchyMaxLevels = 8;
+
+/// The coarsest level's vertex limit for `params` over a fine mesh of `fine_vertices` (0: none).
+/// Sized by the fine mesh: sqrt(40 x fine vertices), as the coarsest factorization's flops grow
+/// about as the square of its vertices (a 3D sparse Cholesky) and a step's work as the fine
+/// vertices. Measured on bare surfaces and the quadruped (lib/docs/multigrid.md, "Levels sized by
+/// the scene"): a level more paid below 1,130 vertices of 7,491 (the horse), 2,299 of 15,174 (the
+/// dragon) and 405 of 2,653 (the bunny), and cost 5-20% below 223 of 7,491, 466 of 15,174 and
+/// 735 of 14,716 (quadruped-67k: even).
+int coarsest_vertex_limit(const HierarchyParams& params, int fine_vertices);
+
 /// Where a coarse level came from: a coarse mesh of the body (its size, and how the level above
 /// fits in it) or a lattice (its cell).
 struct CoarseLevelOrigin {
@@ -66,7 +86,8 @@ struct BuiltHierarchy {
   std::string ended_early;
 };
 
-/// Transfers for `params.levels` levels below the fine mesh. `fixed` per fine vertex (its DOFs
+/// Transfers for `params.levels` levels below the fine mesh (fewer where the coarsest vertex limit
+/// is met first). `fixed` per fine vertex (its DOFs
 /// take no part in the transfer). Meshes: `coarse_meshes[h - 1]` is level h (at least
 /// levels - 1 of them; `names` for messages), down to the first that does not coarsen by
 /// params.min_coarsening: lattice levels from there on (fewer meshes than levels - 1 also end the

@@ -101,14 +101,27 @@ std::optional<SizedMesh> mesh_near_vertex_count(MeshSpec spec, double wanted,
 
 }  // namespace
 
+namespace {
+
+/// Whether coarse level h of `fine` can be derived where the scene gives none (a mesh file
+/// cannot be re-meshed).
+bool derivable(const MeshSpec& fine, int h) {
+  const int given = static_cast<int>(fine.levels.size());
+  return h <= given || (given > 0 ? fine.levels[given - 1] : fine).kind != MeshSpec::Kind::File;
+}
+
+}  // namespace
+
 std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name,
-                                   int fine_vertices, double coarsening) {
+                                   int fine_vertices, double coarsening, int coarsest_limit) {
   std::vector<TetMesh> meshes;
   int above = fine_vertices;
   double size_above = fine.size;
   std::optional<SurfaceMesh> surface;  // read once for every coarsened level
   const int given = static_cast<int>(fine.levels.size());
   for (int h = 1; h < levels; ++h) {
+    // A hierarchy that stops at a vertex limit takes the levels a mesh file gives, and no more.
+    if (h > 1 && coarsest_limit > 0 && !derivable(fine, h)) break;
     MeshSpec spec = coarse_mesh_spec(fine, h, name);
     if (spec.simplify_surface && !surface) surface = read_surface(spec.path);
     // Derived levels sized by their vertex count, each from the size of the level above (the
@@ -140,6 +153,8 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
     // The hierarchy replaces a mesh that does not coarsen, and every level below it, by lattice
     // levels (and says why): meshing those would be wasted.
     if (above > 0 && vertices * HierarchyParams{}.min_coarsening > above) break;
+    if (coarsest_limit > 0 && vertices <= coarsest_limit)
+      break;  // the coarsest (hierarchy_builder)
     above = vertices;
   }
   return meshes;
@@ -148,7 +163,10 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
 std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices) {
   const AnalysisSpec& a = scene.analysis;
   if (!builds_hierarchy(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
-  return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices, a.coarsening);
+  HierarchyParams limit;
+  limit.coarsest_vertices = a.coarsest_vertices;
+  return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices, a.coarsening,
+                       coarsest_vertex_limit(limit, fine_vertices));
 }
 
 }  // namespace corofem

@@ -25,9 +25,12 @@ MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_
 /// quadruped or surface level is re-meshed at the size that gives it about 1/coarsening of the
 /// level above's vertices (issue 36: doubling the size coarsened the quadruped 3.6x at 11k tets
 /// and 6.2x at 270k, and its convergence followed the ratio).
+/// With `coarsest_limit` > 0 they stop after the first of at most that many vertices
+/// (coarsest_vertex_limit), and after the last a mesh file gives.
 std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name,
                                    int fine_vertices = 0,
-                                   double coarsening = HierarchyParams{}.coarsening);
+                                   double coarsening = HierarchyParams{}.coarsening,
+                                   int coarsest_limit = 0);
 
 /// The scene's coarse meshes when it runs multigrid on the meshes hierarchy; otherwise none.
 std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices);

@@ -190,9 +190,16 @@ int integer_in(JsonFields& f, const std::string& key, int fallback, int lo, int 
   return value;
 }
 
-/// The multigrid solvers' settings (levels default to 3 for them, 1 for the others).
+/// The multigrid solvers' settings. Without `levels`, the hierarchy is sized by the scene: at most
+/// kSizedHierarchyMaxLevels levels, down to `coarsest_vertices` (by default a limit that follows
+/// the fine mesh). The other solvers have 1 level.
 void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
-  a.levels = integer_in(f, "levels", builds_hierarchy(a.solver) ? 3 : 1, 1, 16);
+  const bool sized = builds_hierarchy(a.solver) && !f.has("levels");
+  a.levels = integer_in(f, "levels", sized ? kSizedHierarchyMaxLevels : 1, 1, 16);
+  a.coarsest_vertices = f.has("coarsest_vertices")
+                            ? integer_in(f, "coarsest_vertices", 0, 1, 1'000'000)
+                        : sized ? kCoarsestSizedByFine
+                                : 0;
   a.coarsest_max_vertices =
       integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
   a.coarsening = number_in(f, "coarsening", a.coarsening, 0, 64);
@@ -288,6 +295,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
                 << " belong to multigrid solvers; ignored with solver '"
                 << kSolverKinds.name(a.solver) << "'\n";
     a.levels = 1;
+    a.coarsest_vertices = 0;
   }
   f.reject_unknown_keys();
 }

@@ -67,6 +67,7 @@ inline constexpr const char* kMultigridAnalysisKeys[] = {"levels",
                                                          "galerkin",
                                                          "hierarchy",
                                                          "smoother",
+                                                         "coarsest_vertices",
                                                          "coarsest_max_vertices",
                                                          "coarsening",
                                                          "chebyshev_degree",
@@ -95,7 +96,13 @@ struct AnalysisSpec {
   /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
   /// `mesh.levels` gives them) | lattice (covering Kuhn lattices)
   HierarchyKind hierarchy = MultigridParams{}.hierarchy.kind;
+  /// Levels including the fine one: as the scene gives them, or at most kSizedHierarchyMaxLevels
+  /// down to `coarsest_vertices` where it gives none.
   int levels = 1;
+  /// The levels stop at the first coarse one with at most this many vertices (HierarchyParams);
+  /// kCoarsestSizedByFine where the scene gives neither this nor `levels`, 0 where it gives only
+  /// `levels`.
+  int coarsest_vertices = 0;
   /// Lattice levels below the `levels` ones until the coarsest has at most this many vertices
   /// (0: none); see README "Multigrid"
   int coarsest_max_vertices = 0;

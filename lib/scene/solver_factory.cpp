@@ -13,6 +13,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   MultigridParams p;
   p.hierarchy.kind = a.hierarchy;
   p.hierarchy.levels = a.levels;
+  p.hierarchy.coarsest_vertices = a.coarsest_vertices;
   p.hierarchy.coarsest_max_vertices = a.coarsest_max_vertices;
   p.hierarchy.coarsening = a.coarsening;
   p.pre_smoothing = p.post_smoothing = a.smoothing;
