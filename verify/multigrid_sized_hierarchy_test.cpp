@@ -75,9 +75,9 @@ TEST(SizedHierarchy, LevelsStopAtTheFirstWithinTheLimitAndLevelsStayTheCap) {
     EXPECT_EQ(build_hierarchy(fine, fixed, p, coarse).transfers.size(), 1u);
     p.levels = static_cast<int>(v.size()) + 1;
     p.coarsest_vertices = 0;
-    const std::vector<TetMesh> all =
-        kind == HierarchyKind::Meshes ? coarse_meshes(spec, p.levels, "box", fine.num_vertices())
-                                      : std::vector<TetMesh>{};
+    const std::vector<TetMesh> all = kind == HierarchyKind::Meshes
+                                         ? coarse_meshes(spec, p.levels, "box", fine.num_vertices())
+                                         : std::vector<TetMesh>{};
     EXPECT_EQ(build_hierarchy(fine, fixed, p, all).transfers.size(), v.size());
   }
 }
@@ -87,8 +87,7 @@ TEST(SizedHierarchy, ThereIsAlwaysOneCoarseLevel) {
   HierarchyParams p;
   p.levels = kSizedHierarchyMaxLevels;
   p.coarsest_vertices = 10 * fine.num_vertices();  // the fine level is already within it
-  const BuiltHierarchy built =
-      build_hierarchy(fine, std::vector<char>(fine.num_vertices(), 0), p);
+  const BuiltHierarchy built = build_hierarchy(fine, std::vector<char>(fine.num_vertices(), 0), p);
   EXPECT_EQ(built.transfers.size(), 1u);
 }
 

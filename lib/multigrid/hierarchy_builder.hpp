@@ -87,13 +87,12 @@ struct BuiltHierarchy {
 };
 
 /// Transfers for `params.levels` levels below the fine mesh (fewer where the coarsest vertex limit
-/// is met first). `fixed` per fine vertex (its DOFs
-/// take no part in the transfer). Meshes: `coarse_meshes[h - 1]` is level h (at least
-/// levels - 1 of them; `names` for messages), down to the first that does not coarsen by
-/// params.min_coarsening: lattice levels from there on (fewer meshes than levels - 1 also end the
-/// meshes there). Lattice: stops early when nothing is left to coarsen. Then lattice levels down
-/// to `params.coarsest_max_vertices`. Throws InputError for a coarse mesh that does not cover the
-/// level above.
+/// is met first). `fixed` per fine vertex (its DOFs take no part in the transfer). Meshes:
+/// `coarse_meshes[h - 1]` is level h (at least levels - 1 of them; `names` for messages), down to
+/// the first that does not coarsen by params.min_coarsening: lattice levels from there on (fewer
+/// meshes than levels - 1 also end the meshes there). Lattice: stops early when nothing is left to
+/// coarsen. Then lattice levels down to `params.coarsest_max_vertices`. Throws InputError for a
+/// coarse mesh that does not cover the level above.
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes = {});

@@ -10,6 +10,7 @@
 #include "mesh/gmsh_mesh.hpp"
 #include "mesh/locality_order.hpp"
 #include "scene/scene_problem.hpp"
+#include "scene/solver_factory.hpp"
 
 namespace corofem {
 
@@ -99,10 +100,6 @@ std::optional<SizedMesh> mesh_near_vertex_count(MeshSpec spec, double wanted,
   return best;
 }
 
-}  // namespace
-
-namespace {
-
 /// Whether coarse level h of `fine` can be derived where the scene gives none (a mesh file
 /// cannot be re-meshed).
 bool derivable(const MeshSpec& fine, int h) {
@@ -163,10 +160,8 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
 std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices) {
   const AnalysisSpec& a = scene.analysis;
   if (!builds_hierarchy(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
-  HierarchyParams limit;
-  limit.coarsest_vertices = a.coarsest_vertices;
   return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices, a.coarsening,
-                       coarsest_vertex_limit(limit, fine_vertices));
+                       coarsest_vertex_limit(multigrid_params(a).hierarchy, fine_vertices));
 }
 
 }  // namespace corofem
