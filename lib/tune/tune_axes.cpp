@@ -129,28 +129,14 @@ std::string tolerance_label(double tolerance) {
   return "tol=" + general_number(tolerance);
 }
 
-/// The multigrid levels of a patch, as the scene sizes them: its `levels` and `coarsest_vertices`
-/// where it gives them, none where the hierarchy is sized by the scene (or the scene runs no
-/// multigrid: the multigrid settings then size it by the scene too).
-json hierarchy_size(const AnalysisSpec& a) {
-  json j = json::object();
-  if (a.levels < 2 || a.coarsest_vertices == kCoarsestSizedByFine) return j;
-  j["levels"] = a.levels;
-  if (a.coarsest_vertices > 0) j["coarsest_vertices"] = a.coarsest_vertices;
-  return j;
-}
-
 /// A linear solver's settings: CHOLMOD, then families of iterative solvers, each from its
 /// tightest tolerance to its loosest.
 TuneAxis linear_solver_axis(const Scene& scene) {
   TuneAxis axis{.name = "solver"};
   axis.values.push_back(
       {.label = "cholmod", .patch = {{"analysis", {{"solver", "cholmod"}}}}, .family = "cholmod"});
-  // The multigrid settings with the scene's hierarchy size (json::update merges the keys).
-  const auto mg = [&](json settings) {
-    settings.update(hierarchy_size(scene.analysis));
-    return settings;
-  };
+  // No patch names `levels`: merged onto the scene, each keeps the scene's own hierarchy size
+  // (its `levels` and `coarsest_vertices`, or the size the scene gives where it names neither).
   auto family = [&](const std::string& name, json settings, const std::vector<double>& tolerances) {
     for (double tolerance : tolerances) {
       json a = settings;
@@ -160,16 +146,14 @@ TuneAxis linear_solver_axis(const Scene& scene) {
                              .family = name});
     }
   };
-  family("mgpcg", mg({{"solver", "mgpcg"}}), {1e-8, 1e-6, 1e-4, 1e-3, 1e-2});
-  family("mgpcg W-cycle", mg({{"solver", "mgpcg"}, {"cycle", "W"}}), {1e-4, 1e-3, 1e-2});
-  family("mgpcg chebyshev", mg({{"solver", "mgpcg"}, {"smoother", "chebyshev"}}),
-         {1e-4, 1e-3, 1e-2});
-  family("mgpcg lattice", mg({{"solver", "mgpcg"}, {"hierarchy", "lattice"}}), {1e-4, 1e-3, 1e-2});
+  family("mgpcg", {{"solver", "mgpcg"}}, {1e-8, 1e-6, 1e-4, 1e-3, 1e-2});
+  family("mgpcg W-cycle", {{"solver", "mgpcg"}, {"cycle", "W"}}, {1e-4, 1e-3, 1e-2});
+  family("mgpcg chebyshev", {{"solver", "mgpcg"}, {"smoother", "chebyshev"}}, {1e-4, 1e-3, 1e-2});
+  family("mgpcg lattice", {{"solver", "mgpcg"}, {"hierarchy", "lattice"}}, {1e-4, 1e-3, 1e-2});
   for (int vcycles : {2, 1})
-    axis.values.push_back(
-        {.label = "multigrid vcycles=" + std::to_string(vcycles),
-         .patch = {{"analysis", mg({{"solver", "multigrid"}, {"vcycles", vcycles}})}},
-         .family = "multigrid"});
+    axis.values.push_back({.label = "multigrid vcycles=" + std::to_string(vcycles),
+                           .patch = {{"analysis", {{"solver", "multigrid"}, {"vcycles", vcycles}}}},
+                           .family = "multigrid"});
   family("jacobi-pcg", {{"solver", "jacobi-pcg"}}, {1e-6, 1e-4, 1e-3, 1e-2});
   // Where a solve's start counts (a corotated linearly implicit step): the iterative solvers
   // started from the projection on the last velocities, which pays where iterations are many
@@ -203,11 +187,8 @@ TuneAxis newton_tolerance_axis(const Scene& scene) {
   };
   family("newton", json::object());
   const AnalysisSpec& a = scene.analysis;
-  if (newton_tangent(a.type, a.integrator, a.formulation, a.solver) == NewtonTangent::Factored) {
-    json settings = hierarchy_size(a);
-    settings["solver"] = "mgpcg";
-    family("newton mgpcg", settings);
-  }
+  if (newton_tangent(a.type, a.integrator, a.formulation, a.solver) == NewtonTangent::Factored)
+    family("newton mgpcg", {{"solver", "mgpcg"}});
   return axis;
 }
 
