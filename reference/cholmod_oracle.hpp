@@ -1,8 +1,12 @@
 #pragma once
-// The direct-solve oracle: A x = b by CHOLMOD's simplicial LDL^T on the whole matrix, analysed and
-// factorized afresh at every call, with CHOLMOD's defaults. Deliberately a different path from
-// the production factorization (linalg/cholmod_factorization.hpp: supernodal, upper triangle,
-// analysis kept), so that a fault there does not hide in the oracle.
+// The direct-solve oracle: A x = b by CHOLMOD through Eigen's wrapper on the lower triangle,
+// analysed and factorized afresh at every call, with CHOLMOD's defaults (it picks a simplicial
+// LDL^T for a small matrix, a supernodal LL^T where the flops per entry of the factor make that
+// pay). Deliberately a different path from the production factorization
+// (linalg/cholmod_factorization.hpp: our wrapper, upper triangle, analysis kept and reused), so
+// that a fault there does not hide in the oracle; the numeric kernel they may share is CHOLMOD's.
+// Always simplicial, the report's three checked steps on quadruped-67k took about 7 s each
+// against 0.5 s.
 #include <Eigen/SparseCore>
 
 namespace corofem::reference {
