@@ -1,5 +1,6 @@
 // The procedural quadruped: a valid tet mesh with the documented extents, four hooves on the
-// ground, and a tet count that follows the mesh size (the report's sizes rely on it).
+// ground, a tet count that follows the mesh size (the report's sizes rely on it), and a kept mesh
+// that is its size's.
 #include <gtest/gtest.h>
 
 #include "core/errors.hpp"
@@ -48,6 +49,20 @@ TEST(QuadrupedMesh, FinerSizeGivesMoreTetsAsTheCube) {
   // Halving h multiplies the count by 4 to 8 (the thin legs are resolved by MeshSizeMin first).
   EXPECT_GT(fine, 3 * coarse);
   EXPECT_LT(fine, 12 * coarse);
+}
+
+// Each size is meshed once per process and kept: asked again after another size, it must be the
+// mesh of its own size, vertex for vertex, and not the other's.
+TEST(QuadrupedMesh, AKeptMeshIsTheMeshOfItsSize) {
+  const TetMesh first = make_quadruped_mesh(0.2);
+  const TetMesh other = make_quadruped_mesh(0.17);
+  const TetMesh again = make_quadruped_mesh(0.2);
+  ASSERT_NE(other.num_tets(), first.num_tets());
+  ASSERT_EQ(again.num_tets(), first.num_tets());
+  ASSERT_EQ(again.num_vertices(), first.num_vertices());
+  EXPECT_EQ(again.tets, first.tets);
+  EXPECT_EQ(again.rest, first.rest);
+  EXPECT_EQ(again.node_tags, first.node_tags);
 }
 
 TEST(QuadrupedMesh, RejectsBadSize) {

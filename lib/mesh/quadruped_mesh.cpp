@@ -1,6 +1,9 @@
 #include "mesh/quadruped_mesh.hpp"
 
 #include <cmath>
+#include <deque>
+#include <mutex>
+#include <utility>
 
 #include "mesh/gmsh_api.hpp"
 #include "mesh/gmsh_session.hpp"
@@ -8,9 +11,13 @@
 namespace corofem {
 namespace gmsh = gmsh_api;
 
-TetMesh make_quadruped_mesh(double size) {
-  if (!(size > 0) || !std::isfinite(size))
-    throw InputError("quadruped mesh size must be a positive number");
+namespace {
+
+/// The sizes a process keeps meshed: a report's (three Table 1 sizes, their coarse levels, the
+/// stability study's and the sweeps') with room to spare; 67k tets are about 5 MB.
+constexpr std::size_t kKeptMeshes = 24;
+
+TetMesh mesh_with_gmsh(double size) {
   const char* source = "quadruped";
   GmshSession session;
   call_gmsh(source, "build", [&] {
@@ -35,6 +42,25 @@ TetMesh make_quadruped_mesh(double size) {
     gmsh::model::mesh::generate(3);
   });
   return collect_tets(source);
+}
+
+}  // namespace
+
+TetMesh make_quadruped_mesh(double size) {
+  if (!(size > 0) || !std::isfinite(size))
+    throw InputError("quadruped mesh size must be a positive number");
+  // gmsh gives a size the same tets every time, and a report builds each scene many times (Table
+  // 1's quadruped-67k nine times, about 3 s of gmsh each, and its coarse levels with it): a process
+  // meshes each size once. Under one lock: gmsh runs one session at a time anyway.
+  static std::mutex lock;
+  static std::deque<std::pair<double, TetMesh>> kept;
+  const std::lock_guard<std::mutex> hold(lock);
+  for (const auto& [kept_size, mesh] : kept)
+    if (kept_size == size) return mesh;
+  TetMesh mesh = mesh_with_gmsh(size);
+  kept.emplace_back(size, mesh);
+  if (kept.size() > kKeptMeshes) kept.pop_front();
+  return mesh;
 }
 
 }  // namespace corofem

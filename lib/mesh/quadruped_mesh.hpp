@@ -12,7 +12,8 @@
 namespace corofem {
 
 /// The quadruped meshed with gmsh's Mesh.MeshSizeMax = `size` (m). About 11k tets at 0.062,
-/// 34k at 0.042 and 67k at 0.033 (see bench/scenes). Throws InputError for size <= 0.
+/// 34k at 0.042 and 67k at 0.033 (see bench/scenes). Each size is meshed once per process and
+/// kept. Throws InputError for size <= 0.
 TetMesh make_quadruped_mesh(double size);
 
 }  // namespace corofem
