@@ -5,8 +5,8 @@
 // pay). Deliberately a different path from the production factorization
 // (linalg/cholmod_factorization.hpp: our wrapper, upper triangle, analysis kept and reused), so
 // that a fault there does not hide in the oracle; the numeric kernel they may share is CHOLMOD's.
-// Always simplicial, the report's three checked steps on quadruped-67k took about 7 s each
-// against 0.5 s.
+// Always simplicial, each of the report's checked steps on quadruped-67k took about 8 s
+// (cholmod_rowfac); Table 1's main run there went from 37 to 10 s with this and the mesh kept.
 #include <Eigen/SparseCore>
 
 namespace corofem::reference {
