@@ -14,7 +14,7 @@ namespace gmsh = gmsh_api;
 namespace {
 
 /// The sizes a process keeps meshed: a report's (three Table 1 sizes, their coarse levels, the
-/// stability study's and the sweeps') with room to spare; 67k tets are about 5 MB.
+/// stability study's and the sweeps') with room to spare; 67k tets are about 2 MB.
 constexpr std::size_t kKeptMeshes = 24;
 
 TetMesh mesh_with_gmsh(double size) {
