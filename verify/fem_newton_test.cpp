@@ -260,28 +260,32 @@ TEST(SparseLuSolve, EveryPathEqualsTheDenseSolution) {
   // symmetric (the rotations' derivative), its symmetric part positive definite: GMRES on that
   // part's Cholesky factor. Negated, neither part is positive definite: the LU. Its symmetric
   // part alone: the Cholesky. Each against Eigen's dense LU of the same matrix, to 1e-9 (GMRES
-  // stops at 1e-12 of the residual; these matrices' condition numbers are below 1e3).
+  // stops at 1e-12 of the residual; these matrices' condition numbers are below 1e3), with
+  // either Cholesky factorization.
   const BentNewtonSystem system;
   const BrcMatrix& a = system.a;
   const Eigen::VectorXd& b = system.b;
   const Eigen::MatrixXd dense = Eigen::MatrixXd(to_eigen(a));
   ASSERT_GT((dense - dense.transpose()).norm(), 1e-6 * dense.norm()) << "a symmetric tangent";
-  SparseLuSolve solve(a);
-  const auto expect_dense = [&](const BrcMatrix& m, const Eigen::MatrixXd& d, bool symmetric) {
-    const Eigen::VectorXd x = solve.solve(m, b, symmetric);
-    const Eigen::VectorXd ref = dense_solution(d, b);
-    EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm()) << (symmetric ? "symmetric" : "general");
-  };
-  expect_dense(a, dense, false);
-  EXPECT_EQ(solve.krylov_solves(), 1);
-  BrcMatrix negated = a;
-  for (double& v : negated.values) v = -v;
-  expect_dense(negated, -dense, false);
-  EXPECT_EQ(solve.lu_solves(), 1);
-  BrcSymmetricPart symmetric_part(a);
-  expect_dense(symmetric_part.of(a), 0.5 * (dense + dense.transpose()), true);
-  EXPECT_EQ(solve.cholesky_solves(), 1);
-  EXPECT_EQ(solve.krylov_solves(), 1);
+  for (const Factorization kind : {Factorization::Supernodal, Factorization::Simplicial}) {
+    SCOPED_TRACE(kFactorizations.name(kind));
+    SparseLuSolve solve(a, kind);
+    const auto expect_dense = [&](const BrcMatrix& m, const Eigen::MatrixXd& d, bool symmetric) {
+      const Eigen::VectorXd x = solve.solve(m, b, symmetric);
+      const Eigen::VectorXd ref = dense_solution(d, b);
+      EXPECT_LT((x - ref).norm(), 1e-9 * ref.norm()) << (symmetric ? "symmetric" : "general");
+    };
+    expect_dense(a, dense, false);
+    EXPECT_EQ(solve.krylov_solves(), 1);
+    BrcMatrix negated = a;
+    for (double& v : negated.values) v = -v;
+    expect_dense(negated, -dense, false);
+    EXPECT_EQ(solve.lu_solves(), 1);
+    BrcSymmetricPart symmetric_part(a);
+    expect_dense(symmetric_part.of(a), 0.5 * (dense + dense.transpose()), true);
+    EXPECT_EQ(solve.cholesky_solves(), 1);
+    EXPECT_EQ(solve.krylov_solves(), 1);
+  }
 }
 
 TEST(KrylovNewtonSolve, PetscGmresAndItsLuFallbackEqualTheDenseSolution) {

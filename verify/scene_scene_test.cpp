@@ -263,6 +263,8 @@ const BadCase kBadCases[] = {
     {"OutputRotationsType", R"({"output": {"rotations": 1}})",
      "output.rotations must be true or false"},
     {"UnknownStart", R"({"analysis": {"start": "guess"}})", "analysis.start must be one of"},
+    {"UnknownFactorization", R"({"analysis": {"factorization": "dense"}})",
+     "analysis.factorization must be one of"},
     {"StartHistoryOfOne", R"({"analysis": {"start_history": 1}})",
      "analysis.start_history must be in [2, 16]"},
     {"LevelsOutOfRange", R"({"analysis": {"levels": 17}})", "analysis.levels must be in [1, 16]"},

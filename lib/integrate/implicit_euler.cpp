@@ -27,8 +27,8 @@ void add_lumped_mass(const FeProblem& problem, double factor, BrcMatrix& a) {
 
 /// What the Newton steps keep from step to step: the tangent's rest data, the LU, a matrix.
 struct NewtonStepper {
-  NewtonStepper(const FeProblem& problem, RotationMethod method)
-      : tangent(problem, method), lu(problem.stiffness), jacobian(problem.stiffness) {}
+  NewtonStepper(const FeProblem& problem, RotationMethod method, Factorization kind)
+      : tangent(problem, method), lu(problem.stiffness, kind), jacobian(problem.stiffness) {}
   RotationTangent tangent;
   SparseLuSolve lu;
   BrcMatrix jacobian;
@@ -352,7 +352,8 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
     linear.projection.emplace(options.start_history);
   }
   std::unique_ptr<NewtonStepper> newton;
-  if (options.newton) newton = std::make_unique<NewtonStepper>(problem, rotate.method());
+  if (options.newton)
+    newton = std::make_unique<NewtonStepper>(problem, rotate.method(), options.factorization);
   for (int step = 1; step <= options.steps; ++step) {
     const auto step_start = std::chrono::steady_clock::now();
     const std::map<std::string, double> before = result.timings_ms;

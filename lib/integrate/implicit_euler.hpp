@@ -43,6 +43,8 @@ struct DynamicOptions {
   /// moving halfway in the first), at most max_step_cuts halvings deep; then NotConverged.
   NewtonSettings newton_settings{};
   int max_step_cuts = 4;
+  /// Newton: the Cholesky factorizations of its tangent solves (SparseLuSolve).
+  Factorization factorization = Factorization::Supernodal;
   /// Linearly implicit, corotated: the iterative solve starts from the projection on the last
   /// start_history velocities (linalg/projected_start.hpp; at least 2), not from their linear
   /// extrapolation (0). Unused by small strain, whose A the solver keeps across steps.

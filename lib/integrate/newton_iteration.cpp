@@ -24,7 +24,8 @@ constexpr int kKrylovIterations = 40;
 }  // namespace
 
 struct SparseLuSolve::State {
-  explicit State(const BrcMatrix& pattern) : eigen(pattern) {}
+  State(const BrcMatrix& pattern, Factorization kind)
+      : eigen(pattern), cholesky(kind), symmetric_part(kind) {}
   BrcToEigen eigen;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   CholmodFactorization cholesky, symmetric_part;
@@ -71,7 +72,8 @@ struct SparseLuSolve::State {
   }
 };
 
-SparseLuSolve::SparseLuSolve(const BrcMatrix& pattern) : state_(std::make_unique<State>(pattern)) {}
+SparseLuSolve::SparseLuSolve(const BrcMatrix& pattern, Factorization kind)
+    : state_(std::make_unique<State>(pattern, kind)) {}
 SparseLuSolve::~SparseLuSolve() = default;
 void SparseLuSolve::set_krylov(bool enabled) {
   state_->krylov = enabled;

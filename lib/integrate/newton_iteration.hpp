@@ -100,7 +100,8 @@ class NewtonLinearSolve {
 /// definite (a buckled body) or GMRES misses.
 class SparseLuSolve : public NewtonLinearSolve {
  public:
-  explicit SparseLuSolve(const BrcMatrix& pattern);
+  /// `kind`: the Cholesky factorizations' (the LU is UMFPACK's).
+  explicit SparseLuSolve(const BrcMatrix& pattern, Factorization kind = Factorization::Supernodal);
   ~SparseLuSolve() override;
   /// x = A^{-1} b; throws NumericalFault when A is singular.
   Eigen::VectorXd solve(const BrcMatrix& a, const Eigen::VectorXd& b,

@@ -143,7 +143,7 @@ std::unique_ptr<NewtonLinearSolve> newton_linear_solve(FeProblem& problem, Linea
     return std::make_unique<PreconditionedGmresSolve>(
         solver, problem.stiffness, newton_tangent_tolerance(options.tolerance),
         corotated_stiffness_standin(problem, rotations));
-  return std::make_unique<SparseLuSolve>(problem.stiffness);
+  return std::make_unique<SparseLuSolve>(problem.stiffness, options.factorization);
 }
 
 /// Why a run stopped short of its load: stalled at a floor, or out of iterations.

@@ -52,6 +52,8 @@ struct StaticOptions {
   TangentSolve tangent_solve = TangentSolve::Factored;
   /// Called after every iteration and when an increment converges (progress).
   std::function<void(const StaticIteration&)> on_iteration{};
+  /// Newton, TangentSolve::Factored: the Cholesky factorizations of its tangent (SparseLuSolve).
+  Factorization factorization = Factorization::Supernodal;
 };
 
 /// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).

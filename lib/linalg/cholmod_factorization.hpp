@@ -1,16 +1,18 @@
 #pragma once
-// Direct sparse Cholesky by CHOLMOD's supernodal factorization (through Eigen's CholmodSupport),
-// for the production path: the multigrid's coarsest level and the `cholmod` solver. The analysis is
-// kept for the pattern, only the upper triangle is read, and CHOLMOD's own OpenMP stays serial.
+// Direct sparse Cholesky LL^T by CHOLMOD (through Eigen's CholmodSupport), for the production path:
+// the multigrid's coarsest level, the `cholmod` solver and Newton's tangent. The analysis is kept
+// for the pattern, only the upper triangle is read, and CHOLMOD's own OpenMP stays serial.
 // (The oracle the tests check solves against is reference/cholmod_oracle.hpp, a separate path.)
 #include <Eigen/SparseCore>
 #include <memory>
+
+#include "linalg/factorization_kind.hpp"
 
 namespace corofem {
 
 class CholmodFactorization {
  public:
-  CholmodFactorization();
+  explicit CholmodFactorization(Factorization kind = Factorization::Supernodal);
   ~CholmodFactorization();
   CholmodFactorization(CholmodFactorization&&) noexcept;
   CholmodFactorization& operator=(CholmodFactorization&&) noexcept;

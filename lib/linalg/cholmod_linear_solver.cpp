@@ -10,6 +10,7 @@ namespace {
 
 class CholmodLinearSolver : public LinearSolver {
  public:
+  explicit CholmodLinearSolver(Factorization kind) : solver_(kind) {}
   std::string name() const override { return "cholmod"; }
   void set_matrix(const BrcMatrix& a) override {
     if (!converter_) {
@@ -41,8 +42,8 @@ class CholmodLinearSolver : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_cholmod_solver() {
-  return std::make_unique<CholmodLinearSolver>();
+std::unique_ptr<LinearSolver> make_cholmod_solver(Factorization kind) {
+  return std::make_unique<CholmodLinearSolver>(kind);
 }
 
 }  // namespace corofem

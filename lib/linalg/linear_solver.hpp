@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "linalg/factorization_kind.hpp"
 #include "sparse/brc_matrix.hpp"
 
 namespace corofem {
@@ -50,6 +51,6 @@ class LinearSolver {
 };
 
 /// CHOLMOD: symbolic analysis at the first matrix, numeric refactorization at every later one.
-std::unique_ptr<LinearSolver> make_cholmod_solver();
+std::unique_ptr<LinearSolver> make_cholmod_solver(Factorization kind = Factorization::Supernodal);
 
 }  // namespace corofem

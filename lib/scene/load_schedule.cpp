@@ -84,6 +84,7 @@ DynamicOptions dynamic_options(const Scene& scene, FeProblem& problem, RankView 
   options.newton_settings.tolerance = a.tolerance;
   options.newton_settings.max_iterations = a.max_iterations;
   options.max_step_cuts = a.max_step_cuts;
+  options.factorization = a.factorization;
   options.start_history = projected_start_history(a, ranks.distributed());
   auto schedule = std::make_shared<const LoadSchedule>(scene, problem, ranks);
   options.ranks = std::move(ranks);

@@ -273,6 +273,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.tolerance = number_in(f, "tolerance", a.tolerance, kMinTolerance, 0.5);
   a.max_iterations = integer_in(f, "max_iterations", a.max_iterations, 1, 100000);
   a.max_step_cuts = integer_in(f, "max_step_cuts", a.max_step_cuts, 0, 10);
+  a.factorization = one_of(f, "factorization", a.factorization, kFactorizations);
   a.setup_reuse = f.boolean("setup_reuse", a.setup_reuse);
   if (a.setup_reuse && !is_library_amg(a.solver))
     std::cerr << "corofem: warning: scene '" << f.file() << "': " << f.path_of("setup_reuse")

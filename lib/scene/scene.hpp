@@ -136,6 +136,9 @@ struct AnalysisSpec {
   int max_iterations = 100;
   /// Dynamic Newton: halvings of a step that does not converge (DynamicOptions::max_step_cuts).
   int max_step_cuts = DynamicOptions{}.max_step_cuts;
+  /// CHOLMOD's factorization for the `cholmod` solver and Newton's tangent (the multigrid's
+  /// coarsest level stays supernodal: its operator is denser).
+  Factorization factorization = Factorization::Supernodal;
   double rayleigh_alpha = 0, rayleigh_beta = 0;
 };
 

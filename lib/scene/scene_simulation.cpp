@@ -177,10 +177,10 @@ SimulationResult SceneSimulation::run(
   const AnalysisSpec& a = scene_.analysis;
   SimulationResult result =
       dynamic_ ? solve_dynamic(problem_, *extractor_, *solver_, *dynamic_, on_step)
-               : solve_static(
-                     problem_, *extractor_, *solver_,
-                     {corotational(), a.load_steps, a.tolerance, a.max_iterations,
-                      a.integrator == Integrator::Newton, ranks_, tangent_solve(), on_iteration});
+               : solve_static(problem_, *extractor_, *solver_,
+                              {corotational(), a.load_steps, a.tolerance, a.max_iterations,
+                               a.integrator == Integrator::Newton, ranks_, tangent_solve(),
+                               on_iteration, a.factorization});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

@@ -56,7 +56,7 @@ PetscSolveSettings petsc_solve_settings(const AnalysisSpec& a) {
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem,
                                                  const std::vector<TetMesh>& coarse_meshes,
                                                  SolverObserver* observer) {
-  if (a.solver == SolverKind::Cholmod) return make_cholmod_solver();
+  if (a.solver == SolverKind::Cholmod) return make_cholmod_solver(a.factorization);
   if (a.solver == SolverKind::JacobiPcg) return make_jacobi_pcg_solver(a.tolerance, 100000);
   if (a.solver == SolverKind::Auto) {  // MG-PCG first: its solutions are the trial's
     std::vector<std::unique_ptr<LinearSolver>> candidates;
