@@ -38,34 +38,55 @@ echo "cache_profile: using $tool on $model, $updates updates per method" >&2
 
 # Prints "d1_misses ll_misses instructions" of one run of the driver.
 measure() {
-  local method=$1 n=$2
+  local method=$1 n=$2 run="$tmp/$1.$2"
   if [[ $tool == perf ]]; then
-    perf stat -x, -e L1-dcache-load-misses,LLC-load-misses,instructions -o "$tmp/perf.txt" \
+    perf stat -x, -e L1-dcache-load-misses,LLC-load-misses,instructions -o "$run.perf" \
       "$profile" "$method" "$model" "$n" "${models[@]}" > /dev/null
-    awk -F, '/L1-dcache-load-misses/{d=$1} /LLC-load-misses/{l=$1} /instructions/{i=$1} END{print d, l, i}' "$tmp/perf.txt"
+    awk -F, '/L1-dcache-load-misses/{d=$1} /LLC-load-misses/{l=$1} /instructions/{i=$1} END{print d, l, i}' "$run.perf"
   else
-    valgrind --tool=cachegrind --cache-sim=yes "${caches[@]}" --cachegrind-out-file="$tmp/cg.out" \
-      "$profile" "$method" "$model" "$n" "${models[@]}" > /dev/null 2> "$tmp/cg.err"
+    # One thread: valgrind runs a process's threads one at a time, and a second thread's
+    # spin-waits made the counts differ from run to run (step: 6.4e7 to 8.4e7 instructions).
+    OMP_NUM_THREADS=1 valgrind --tool=cachegrind --cache-sim=yes "${caches[@]}" --cachegrind-out-file="$run.cg" \
+      "$profile" "$method" "$model" "$n" "${models[@]}" > /dev/null 2> "$run.err"
     # events: Ir I1mr ILmr Dr D1mr DLmr Dw D1mw DLmw
-    awk '/^events:/{for(i=2;i<=NF;i++) idx[$i]=i-1} /^summary:/{print $(idx["D1mr"]+1)+$(idx["D1mw"]+1), $(idx["DLmr"]+1)+$(idx["DLmw"]+1), $(idx["Ir"]+1)}' "$tmp/cg.out"
+    awk '/^events:/{for(i=2;i<=NF;i++) idx[$i]=i-1} /^summary:/{print $(idx["D1mr"]+1)+$(idx["D1mw"]+1), $(idx["DLmr"]+1)+$(idx["DLmw"]+1), $(idx["Ir"]+1)}' "$run.cg"
   fi
 }
 
 blocks=$("$profile" stream "$model" 0 "${models[@]}" | awk '/^fine_blocks/{print $2}')
+methods=(naive reuse stream stream-full step)
+# cachegrind's simulated caches are each run's own: its runs go side by side, one a core (the
+# main job's profile 53 -> about 30 s on 2 cores). perf counts the real caches, which runs side by
+# side would share: one at a time.
+side_by_side=$(nproc)
+[[ $tool == perf ]] && side_by_side=1
+pids=()
+for method in step stream-full stream reuse naive; do  # the longest first
+  for n in 0 "$updates"; do
+    while (($(jobs -rp | wc -l) >= side_by_side)); do wait -n || true; done
+    echo "cache_profile: $method, $n updates" >&2
+    (measure "$method" "$n" > "$tmp/$method.$n.counts") &
+    pids+=($!)
+  done
+done
+for pid in "${pids[@]}"; do
+  wait "$pid" || { echo "cache_profile: a $tool run failed" >&2; exit 1; }
+done
 results=()
-for method in naive reuse stream stream-full step; do
-  echo "cache_profile: $method" >&2
-  read -r d0 l0 i0 < <(measure "$method" 0)
-  read -r d1 l1 i1 < <(measure "$method" "$updates")
+for method in "${methods[@]}"; do
+  read -r d0 l0 i0 < "$tmp/$method.0.counts"
+  read -r d1 l1 i1 < "$tmp/$method.$updates.counts"
   results+=("$method $d0 $l0 $i0 $d1 $l1 $i1")
 done
 
-python3 - "$out" "$tool" "$model" "$updates" "$blocks" "$cache_note" "${results[@]}" <<'PY'
+threads=$(nproc)
+[[ $tool == cachegrind ]] && threads=1
+python3 - "$out" "$tool" "$model" "$updates" "$blocks" "$cache_note" "$threads" "${results[@]}" <<'PY'
 import json, os, platform, subprocess, sys, tempfile, datetime
 out, tool, model, updates, blocks = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
-cache_note = sys.argv[6]
+cache_note, threads = sys.argv[6], int(sys.argv[7])
 rows = []
-for line in sys.argv[7:]:
+for line in sys.argv[8:]:
     m, d0, l0, i0, d1, l1, i1 = line.split()
     d = (float(d1) - float(d0)) / updates
     l = (float(l1) - float(l0)) / updates
@@ -81,7 +102,7 @@ except Exception:
 record = {"producer": "bench/cache_profile.sh", "tool": tool,
           "tool_note": "perf hardware counters" if tool == "perf" else
                        "valgrind cachegrind: simulated D1 and last-level caches (exact, repeatable), " + cache_note,
-          "model": model, "updates": updates, "fine_blocks": blocks,
+          "model": model, "updates": updates, "fine_blocks": blocks, "threads": threads,
           "context": {"commit": commit, "machine": platform.node(), "cpu": platform.processor(),
                       "date": datetime.datetime.utcnow().strftime("%Y-%m-%dT%H:%M:%SZ")},
           "results": rows}
