@@ -1,6 +1,6 @@
 // CHOLMOD's two factorizations (linalg/factorization_kind.hpp) against a dense Cholesky, failing
-// alike on a matrix that is not positive definite, and the simplicial one, which takes no BLAS turn,
-// giving the same bits in threads side by side as alone.
+// alike on a matrix that is not positive definite, and the simplicial one, which takes no BLAS
+// turn, giving the same bits in threads side by side as alone.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -45,11 +45,13 @@ TEST_P(BothFactorizations, RefuseAMatrixThatIsNotPositiveDefinite) {
 
 INSTANTIATE_TEST_SUITE_P(Kinds, BothFactorizations,
                          ::testing::Values(Factorization::Supernodal, Factorization::Simplicial),
-                         [](const auto& info) { return std::string(kFactorizations.name(info.param)); });
+                         [](const auto& info) {
+                           return std::string(kFactorizations.name(info.param));
+                         });
 
 /// Solves with each of `matrices` `rounds` times, each solution appended.
-std::vector<Eigen::VectorXd> factor_and_solve(const std::vector<Eigen::SparseMatrix<double>>& matrices,
-                                              int rounds) {
+std::vector<Eigen::VectorXd> factor_and_solve(
+    const std::vector<Eigen::SparseMatrix<double>>& matrices, int rounds) {
   std::vector<Eigen::VectorXd> out;
   for (int round = 0; round < rounds; ++round)
     for (const auto& m : matrices) {
@@ -66,8 +68,10 @@ TEST(SimplicialFactorization, ThreadsSideBySideGiveTheBitsOfOneThread) {
   std::mt19937 rng(17);
   std::vector<Eigen::SparseMatrix<double>> first, second;
   for (int k = 0; k < 3; ++k) {
-    first.push_back(BrcToEigen(test::random_spd_brc(120, rng), BrcToEigen::Part::SymmetricUpper).matrix());
-    second.push_back(BrcToEigen(test::random_spd_brc(120, rng), BrcToEigen::Part::SymmetricUpper).matrix());
+    first.push_back(
+        BrcToEigen(test::random_spd_brc(120, rng), BrcToEigen::Part::SymmetricUpper).matrix());
+    second.push_back(
+        BrcToEigen(test::random_spd_brc(120, rng), BrcToEigen::Part::SymmetricUpper).matrix());
   }
   const int rounds = 10;
   const std::vector<Eigen::VectorXd> alone_first = factor_and_solve(first, rounds);

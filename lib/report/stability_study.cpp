@@ -3,13 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
-#include <optional>
 #include <ostream>
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "core/line_stream.hpp"
 #include "core/threads.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "report/case_record.hpp"
@@ -17,6 +14,7 @@
 #include "report/section_progress.hpp"
 #include "report/stability_monitor.hpp"
 #include "report/timed_run.hpp"
+#include "report/units_side_by_side.hpp"
 #include "rotation/rotation_extractor.hpp"
 #include "scene/time_step_scaling.hpp"
 
@@ -417,10 +415,8 @@ MethodRuns run_method_on_scene(const json& scene, const std::string& id, Rotatio
 namespace {
 
 /// Every (scene, method) group of the study: groups[k] holds scene k's, in the extractors' order.
-/// The groups run side by side, one thread each (a small mesh's step does not use two cores; two
-/// groups do), their progress lines whole; the results are each group's own, so the study is the
-/// same at any thread count. With --vtu one at a time (the frame writers share the partial-file
-/// registry).
+/// The groups run side by side (report/units_side_by_side.hpp); with --vtu one at a time (the
+/// frame writers share the partial-file registry).
 std::vector<std::vector<MethodRuns>> run_groups(const ReportConfig& config,
                                                 const std::vector<std::string>& scenes,
                                                 const std::vector<json>& scene_specs) {
@@ -437,43 +433,30 @@ std::vector<std::vector<MethodRuns>> run_groups(const ReportConfig& config,
         groups[k].emplace_back();
       }
   const int total = static_cast<int>(plan_of.size());
-  std::vector<std::exception_ptr> failed(plan_of.size());
   SectionProgress progress(config.progress, "stability", total);
-  std::mutex line_lock;  // progress lines of the groups side by side, each whole
-  const int workers = config.vtu ? 1 : thread_count();
-  const ScopedThreadCount one_each(1);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(workers)
-  for (int g = 0; g < total; ++g) {
-    const auto& [k, slot, method] = plan_of[static_cast<std::size_t>(g)];
-    const std::string& id = scenes[k];
-    std::optional<LineStream> lines;
-    MethodPlan plan{config.stability_ramp(), config.stability_hold()};
-    plan.smaller_step_always = config.mode == ReportConfig::Mode::Full;
-    plan.smaller_step = config.mode != ReportConfig::Mode::Smoke;
-    plan.refined_reference = config.mode != ReportConfig::Mode::Smoke;
-    plan.progress_prefix = progress.begin(id + ": " + method.name());
-    if (config.progress) {
-      lines.emplace(*config.progress, line_lock);
-      plan.progress = &*lines;
-    }
-    if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
-    try {  // a unit, kept for --resume (a kept unit writes no VTU frames again)
-      const json unit = report_unit(
-          config, "stability", id + ": " + method.name(),
-          [&] {
-            const MethodRuns m = run_method_on_scene(scene_specs[k], id, method, plan);
-            return json{{"runs", m.runs}, {"reference", m.reference}, {"poses", m.poses}};
-          },
-          plan.progress_prefix);
-      groups[k][slot] = {unit["runs"].get<std::vector<json>>(), unit["reference"],
-                         unit["poses"].get<std::vector<json>>()};
-    } catch (...) {
-      failed[static_cast<std::size_t>(g)] = std::current_exception();  // none may leave the loop
-    }
-    progress.finish();
-  }
-  for (const std::exception_ptr& e : failed)
-    if (e) std::rethrow_exception(e);
+  run_units_side_by_side(
+      total, config.vtu ? 1 : thread_count(), config.progress, [&](int g, std::ostream* lines) {
+        const auto& [k, slot, method] = plan_of[static_cast<std::size_t>(g)];
+        const std::string& id = scenes[k];
+        MethodPlan plan{config.stability_ramp(), config.stability_hold()};
+        plan.smaller_step_always = config.mode == ReportConfig::Mode::Full;
+        plan.smaller_step = config.mode != ReportConfig::Mode::Smoke;
+        plan.refined_reference = config.mode != ReportConfig::Mode::Smoke;
+        plan.progress_prefix = progress.begin(id + ": " + method.name());
+        plan.progress = lines;
+        if (config.vtu) plan.vtu_dir = config.out_dir / "vtu" / id;
+        // A unit, kept for --resume (a kept unit writes no VTU frames again).
+        const json unit = report_unit(
+            config, "stability", id + ": " + method.name(),
+            [&] {
+              const MethodRuns m = run_method_on_scene(scene_specs[k], id, method, plan);
+              return json{{"runs", m.runs}, {"reference", m.reference}, {"poses", m.poses}};
+            },
+            plan.progress_prefix);
+        groups[k][slot] = {unit["runs"].get<std::vector<json>>(), unit["reference"],
+                           unit["poses"].get<std::vector<json>>()};
+        progress.finish();
+      });
   return groups;
 }
 
