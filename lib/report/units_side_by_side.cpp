@@ -16,7 +16,8 @@ void run_units_side_by_side(int count, int workers, std::ostream* out,
   std::mutex line_lock;
   const ScopedThreadCount one_each(1);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(workers)
-  for (int k = 0; k < count; ++k) {
+  for (int started = 0; started < count; ++started) {
+    const int k = count - 1 - started;
     std::optional<LineStream> lines;
     if (out) lines.emplace(*out, line_lock);
     try {

@@ -7,9 +7,11 @@
 
 namespace corofem {
 
-/// Runs body(k, progress) for every k in [0, count) on `workers` threads, in dynamic order, each
-/// at thread count 1; `progress` is a stream onto `out` that writes whole lines (nullptr without
-/// `out`). The first unit's exception (in k's order) is rethrown once every unit has ended.
+/// Runs body(k, progress) for every k in [0, count) on `workers` threads, each at thread count 1,
+/// from the last k down: callers list their units smallest first (the report's scenes are), so
+/// the largest start first and the small ones fill the cores at the end. `progress` is a stream
+/// onto `out` that writes whole lines (nullptr without `out`). The first unit's exception (in k's
+/// order) is rethrown once every unit has ended.
 void run_units_side_by_side(int count, int workers, std::ostream* out,
                             const std::function<void(int unit, std::ostream* progress)>& body);
 
