@@ -29,7 +29,8 @@ TEST(UnitsSideBySide, EveryUnitRunsOnceAtOneThreadAndItsLinesStayWhole) {
   std::istringstream written(out.str());
   int count = 0;
   for (std::string line; std::getline(written, line); ++count)
-    EXPECT_EQ(line.rfind("unit ", 0), 0u) << line;  // a line mixed from two units would not begin so
+    EXPECT_EQ(line.rfind("unit ", 0), 0u)
+        << line;  // a line mixed from two units would not begin so
   EXPECT_EQ(count, 40);
 }
 

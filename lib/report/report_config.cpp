@@ -67,6 +67,9 @@ int ReportConfig::table_warmup() const {
 int ReportConfig::table_measured() const {
   return mode == Mode::Smoke ? 3 : 20;
 }
+int ReportConfig::table_cholmod_measured() const {
+  return mode == Mode::Full ? table_measured() : std::min(5, table_measured());
+}
 
 SceneSize ReportConfig::sweep_size(const std::string& model) const {
   if (mode != Mode::Full) return SceneSize::Small;
