@@ -12,6 +12,7 @@
 #include "cli/entry_point.hpp"
 #include "mesh/box_mesh.hpp"
 #include "report/report_section.hpp"
+#include "report/scene_catalogue.hpp"
 #include "test_support.hpp"
 
 namespace corofem {
@@ -138,6 +139,26 @@ void register_and_report_a_section_of_ones_own() {
   idle.run = nullptr;
   refused(idle, "no run");
   std::exit(::testing::Test::HasFailure() ? 1 : 0);
+}
+
+TEST(ReportSections, TheUsageNamesEveryModelAndStabilitySceneOnlyTakes) {
+  const std::string help = stdout_of([] { corofem_main({"report", "--help"}); });
+  std::vector<std::string> names = stability_scene_ids(true), files = file_models(),
+                           procedural = procedural_models();
+  names.insert(names.end(), files.begin(), files.end());
+  names.insert(names.end(), procedural.begin(), procedural.end());
+  for (const std::string& name : names) {
+    // Each whole: followed by a comma or the list's closing parenthesis.
+    const bool named = help.find(" " + name + ",") != std::string::npos ||
+                       help.find("(" + name + ",") != std::string::npos ||
+                       help.find(" " + name + ")") != std::string::npos;
+    EXPECT_TRUE(named) << name << " in\n" << help;
+  }
+  // The list is wrapped at 100 columns.
+  const std::size_t from = help.find("  --only NAME"), to = help.find("  --NAME-only");
+  ASSERT_LT(from, to);
+  std::istringstream lines(help.substr(from, to - from));
+  for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 100u) << line;
 }
 
 TEST(ReportSectionRegistryDeathTest, ASectionOfOnesOwnHasItsFlagUsageAndRecord) {

@@ -18,6 +18,7 @@
 #include "core/threads.hpp"
 #include "report/report_driver.hpp"
 #include "report/report_section.hpp"
+#include "report/scene_catalogue.hpp"
 #include "scene/scene_paths.hpp"
 #include "scene/scene_simulation.hpp"
 #include "solver/mpi_launch.hpp"
@@ -81,7 +82,36 @@ level h to h+1) in Matrix Market coordinate real general, DOF index 3*vertex+com
 levels.json with the sizes. A<h+1> is exactly R<h> A<h> R<h>^T as the solver computed it.
 )";
 
-/// `corofem report --help`: the sections' flags and records come from their registry.
+/// `names` joined by ", ".
+std::string comma_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+/// `text` broken at spaces into lines of at most `width` characters, the first `first_used`
+/// characters of the first already taken, the others indented by `indent` spaces.
+std::string wrapped(const std::string& text, std::size_t width, std::size_t first_used,
+                    std::size_t indent) {
+  std::string out;
+  std::size_t used = first_used;
+  std::istringstream words(text);
+  for (std::string word; words >> word;) {
+    if (used + 1 + word.size() > width && used > indent) {
+      out += "\n" + std::string(indent, ' ');
+      used = indent;
+    } else if (!out.empty()) {
+      out += ' ';
+      ++used;
+    }
+    out += word;
+    used += word.size();
+  }
+  return out;
+}
+
+/// `corofem report --help`: the sections' flags and records come from their registry, the names
+/// --only takes from the scene catalogue.
 std::string report_help() {
   std::string flags, records;
   for (const std::string& name : report_section_names()) {
@@ -94,6 +124,12 @@ std::string report_help() {
       usage.insert(at + 1, std::string(23, ' '));
     records += file + usage + "\n";
   }
+  std::vector<std::string> models = procedural_models(), files = file_models();
+  models.insert(models.end(), files.begin(), files.end());
+  const std::string only_names =
+      wrapped("just one model (" + comma_list(models) + ") or stability scene (" +
+                  comma_list(stability_scene_ids(true)) + ")",
+              100, 17, 17);
   return R"(Usage: corofem report [--out DIR] [--full | --quick | --smoke] [--models DIR] [--only NAME]
                       [)" +
          flags + R"(]
@@ -112,9 +148,8 @@ both run by ci/report, are included.
   --quick        small versions of every section (about 5 minutes)
   --smoke        a seconds-long run for the report's own tests
   --models DIR   the bunny, horse and dragon surfaces instead of the procedural scenes
-  --only NAME    just one model (cantilever, twisting-bar, quadruped, bunny, horse, dragon) or
-                 stability scene (bar-twist, bar-stretch, block-squash, quadruped-stretched,
-                 quadruped-posed, horse-stretched, horse-stretched-paper, horse-posed)
+  --only NAME    )" +
+         only_names + R"(
   --NAME-only    just that section
   --vtu          VTU frames of the stability runs (every 10th step) under DIR/vtu/
   --no-render    JSON only
