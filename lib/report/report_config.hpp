@@ -61,6 +61,8 @@ struct ReportConfig {
   SceneSize stability_size() const { return SceneSize::Small; }
   int stability_ramp() const;
   int stability_hold() const;
+  /// The catalogue's stability scenes (report/scene_catalogue.hpp); outside --full without
+  /// quadruped-stretched (report_config.cpp says why).
   std::vector<std::string> stability_scenes() const;
 };
 
