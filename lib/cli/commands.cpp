@@ -142,7 +142,7 @@ A cache_profile.json (bench/cache_profile.sh) and an mpi_scaling.json (bench/mpi
 both run by ci/report, are included.
 
   (default)      Table 1 at the paper's three sizes, small versions of every other section
-                 (about 7 minutes on 2 cores; longer with --models)
+                 (about 5 minutes on 2 cores; longer with --models)
   --full         every table and sweep at the paper's sizes, the stability study at full length
                  (about an hour)
   --quick        small versions of every section (about 5 minutes)

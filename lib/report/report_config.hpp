@@ -13,7 +13,7 @@ class ReportCheckpoint;
 
 struct ReportConfig {
   /// standard (the default, the main job): Table 1 at the paper's three sizes and small versions
-  /// of every other section, about 8 minutes on 2 cores; full: every table and sweep at the
+  /// of every other section, about 5 minutes on 2 cores; full: every table and sweep at the
   /// paper's sizes and the stability study at its full length (about an hour); quick: small
   /// versions of every section (about 5 minutes); smoke: seconds-long, for the tests of the
   /// report itself.
