@@ -18,6 +18,7 @@
 #include "report/case_record.hpp"
 #include "report/report_config.hpp"
 #include "report/report_oracles.hpp"
+#include "report/scene_catalogue.hpp"
 #include "report/section_progress.hpp"
 #include "report/speed_accuracy.hpp"
 #include "solver/petsc_solver.hpp"
@@ -677,12 +678,20 @@ TEST(Report, StandardModeRunsTableOneAtThePapersThreeSizes) {
   EXPECT_TRUE(with_models.jacobi_table(SceneSize::M));
   EXPECT_TRUE(with_models.jacobi_table(SceneSize::L));
   EXPECT_FALSE(with_models.comparison_tables(SceneSize::L));
-  EXPECT_EQ(standard.stability_scenes().size(), 6u);  // every procedural stability scene
+  // Every procedural stability scene but quadruped-stretched (ReportConfig::stability_scenes),
+  // which --only still runs and --full keeps.
+  std::vector<std::string> every = stability_scene_ids(false), standard_scenes = every;
+  std::erase(standard_scenes, std::string("quadruped-stretched"));
+  EXPECT_EQ(standard.stability_scenes(), standard_scenes);
+  ReportConfig only_it;
+  only_it.only = "quadruped-stretched";
+  EXPECT_EQ(only_it.stability_scenes(), std::vector<std::string>{"quadruped-stretched"});
   ReportConfig full;
   full.mode = ReportConfig::Mode::Full;
   EXPECT_EQ(full.table_sizes("quadruped"), paper);
   EXPECT_TRUE(full.comparison_tables(SceneSize::L));
   EXPECT_GT(full.stability_hold(), standard.stability_hold());
+  EXPECT_EQ(full.stability_scenes(), every);
   ReportConfig quick;
   quick.mode = ReportConfig::Mode::Quick;
   EXPECT_EQ(quick.table_sizes("quadruped"), std::vector<SceneSize>{SceneSize::Small});
