@@ -54,14 +54,15 @@ measure() {
 }
 
 blocks=$("$profile" stream "$model" 0 "${models[@]}" | awk '/^fine_blocks/{print $2}')
-methods=(naive reuse stream stream-full step)
+methods=(naive reuse stream stream-full step)  # the record's order, the shortest run first
 # cachegrind's simulated caches are each run's own: its runs go side by side, one a core (the
 # main job's profile 53 -> about 30 s on 2 cores). perf counts the real caches, which runs side by
 # side would share: one at a time.
 side_by_side=$(nproc)
 [[ $tool == perf ]] && side_by_side=1
 pids=()
-for method in step stream-full stream reuse naive; do  # the longest first
+for ((m = ${#methods[@]} - 1; m >= 0; m--)); do  # the longest first
+  method=${methods[m]}
   for n in 0 "$updates"; do
     while (($(jobs -rp | wc -l) >= side_by_side)); do wait -n || true; done
     echo "cache_profile: $method, $n updates" >&2
