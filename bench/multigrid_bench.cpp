@@ -325,6 +325,75 @@ void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
   state.counters["threads"] = thread_count();
 }
 
+/// The smoothers' set-up (issue 70: within 3x its floor) of every smoothed level of the paper's
+/// hierarchy (the default hybrid smoother; the sequential one beside it), cold as in the step (the
+/// Galerkin products have run since the assembly wrote the fine level's diagonal blocks) and
+/// warm, against a pass with part of its compulsory traffic alone (every row's diagonal block
+/// read, 72 bytes a row written), cold too, alternated in one run. floor_ms: the bytes the
+/// roofline counts (GaussSeidelSmoother::setup_traffic) over a STREAM triad of this run.
+void BM_SmootherSetUp(benchmark::State& state, const std::string& model) {
+  MultigridHierarchy& h = paper_hierarchy(model);
+  h.update(paper_system(model).matrix, GalerkinMethod::Gather);
+  const int smoothed = h.num_levels() - 1;
+  std::vector<BlockGaussSeidel> hybrid(smoothed, BlockGaussSeidel(SmootherOrdering::Hybrid));
+  std::vector<BlockGaussSeidel> sequential(smoothed,
+                                           BlockGaussSeidel(SmootherOrdering::Sequential));
+  std::vector<std::vector<int>> diagonal(smoothed);
+  std::vector<std::vector<double>> copied(smoothed);
+  double bytes = 0, halo_rows = 0, off_domain_blocks = 0;
+  for (int l = 0; l < smoothed; ++l) {
+    const BrcMatrix& a = h.matrix(l);
+    hybrid[l].set_matrix(a);
+    sequential[l].set_matrix(a);
+    for (int i = 0; i < a.block_rows; ++i) diagonal[l].push_back(a.find(i, i));
+    copied[l].resize(9 * static_cast<std::size_t>(a.block_rows));
+    const double off = static_cast<double>(hybrid[l].off_domain_blocks());
+    bytes += (128.0 + 4 + 72 + 24) * a.block_rows + 72 * off;  // as setup_traffic counts
+    halo_rows += hybrid[l].boundary_rows();
+    off_domain_blocks += off;
+  }
+  const auto set_up = [&](std::vector<BlockGaussSeidel>& smoothers) {
+    return [&] {
+      for (int l = 0; l < smoothed; ++l) smoothers[l].set_matrix(h.matrix(l));
+    };
+  };
+  const auto copy_diagonals = [&] {
+    for (int l = 0; l < smoothed; ++l) {
+      const BrcMatrix& a = h.matrix(l);
+#pragma omp parallel for schedule(static) num_threads(threads_for(a.block_rows))
+      for (int i = 0; i < a.block_rows; ++i)
+        std::copy_n(a.values.data() + 9 * static_cast<std::size_t>(diagonal[l][i]), 9,
+                    copied[l].data() + 9 * static_cast<std::size_t>(i));
+    }
+  };
+  const auto cold_ms = [&](const std::function<void()>& f) {
+    evict_caches();
+    return time_ms(f);
+  };
+  std::vector<double> hybrid_cold, hybrid_warm, sequential_cold, sequential_warm, copy_cold;
+  for (auto _ : state) {
+    hybrid_cold.push_back(cold_ms(set_up(hybrid)));
+    sequential_cold.push_back(cold_ms(set_up(sequential)));
+    copy_cold.push_back(cold_ms(copy_diagonals));
+    hybrid_warm.push_back(warm_time_ms(set_up(hybrid)));
+    sequential_warm.push_back(warm_time_ms(set_up(sequential)));
+    benchmark::DoNotOptimize(copied.data());
+  }
+  const double floor_ms = bytes / (measure_stream_triad_gbps() * 1e9) * 1e3;
+  state.counters["hybrid_cold_ms"] = median(hybrid_cold);
+  state.counters["hybrid_warm_ms"] = median(hybrid_warm);
+  state.counters["sequential_cold_ms"] = median(sequential_cold);
+  state.counters["sequential_warm_ms"] = median(sequential_warm);
+  state.counters["copy_cold_ms"] = median(copy_cold);
+  state.counters["floor_ms"] = floor_ms;
+  state.counters["hybrid_cold_over_floor"] = median(hybrid_cold) / floor_ms;
+  state.counters["hybrid_cold_over_copy"] = median(hybrid_cold) / median(copy_cold);
+  state.counters["smoothed_rows"] = h.num_levels() > 1 ? h.matrix(0).block_rows : 0;
+  state.counters["halo_rows"] = halo_rows;
+  state.counters["off_domain_blocks"] = off_domain_blocks;
+  state.counters["threads"] = thread_count();
+}
+
 /// The block passes in their AVX2 form against the scalar one (sparse/block_kernels.hpp),
 /// alternated in one run: the product, and a hybrid forward plus backward sweep. And the
 /// V-cycle's sweep from zero with its residual in one pass against the two passes it replaces.
@@ -592,6 +661,9 @@ BENCHMARK(BM_NestedTwoGrid)
   BENCHMARK_CAPTURE(BM_VCycle, model, std::string(#model))->Unit(benchmark::kMillisecond);         \
   BENCHMARK_CAPTURE(BM_MgpcgSolve, model, std::string(#model))->Unit(benchmark::kMillisecond);     \
   BENCHMARK_CAPTURE(BM_SmootherSweep, model, std::string(#model))                                  \
+      ->Unit(benchmark::kMillisecond)                                                              \
+      ->Iterations(20);                                                                            \
+  BENCHMARK_CAPTURE(BM_SmootherSetUp, model, std::string(#model))                                  \
       ->Unit(benchmark::kMillisecond)                                                              \
       ->Iterations(20);                                                                            \
   BENCHMARK_CAPTURE(BM_UpdateSolveOverlap, model, std::string(#model))                             \

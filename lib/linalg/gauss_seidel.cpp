@@ -67,23 +67,29 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
   // One pass down the rows: each row's diagonal block, plus for the hybrid smoother the l1 norms
   // of the row's entries outside its domain (at its start and end: the columns are sorted),
   // inverted by its cofactors. The rows' blocks lie a row apart: the diagonal block and the
-  // row's ends are fetched kAhead rows ahead, or each read waits on memory. Against the two
-  // passes with Eigen's blocks and inverse this replaced: 1.21-1.28 against 2.03-2.22 ms a set-up
-  // on the 67k quadruped's two smoothed levels at one thread (4 alternated rounds, 2026-12-06).
+  // row's off-domain blocks, every line of them, are fetched kAhead rows ahead, or each read
+  // waits on memory. Against the two passes with Eigen's blocks and inverse this replaced:
+  // 1.21-1.28 against 2.03-2.22 ms a set-up on the 67k quadruped's two smoothed levels at one
+  // thread (4 alternated rounds, 2026-12-06). Fetching every line of the off-domain blocks, not
+  // only the first and the last: 0.29-0.40 against 0.33-0.54 ms on the horse's smoothed levels,
+  // 0.53-0.70 against 0.81-0.95 on the dragon's (BM_SmootherSetUp, cold, 3 alternated rounds).
   constexpr int kAhead = 16;
   const double* values = a.values.data();
-  const auto fetch = [&](int k) {
-    const double* block = values + 9 * static_cast<std::size_t>(k);
-    __builtin_prefetch(block);
-    __builtin_prefetch(block + 8);
+  const auto fetch_blocks = [&](int from, int to) {  // blocks [from, to): every line
+    const char* begin = reinterpret_cast<const char*>(values + 9 * static_cast<std::size_t>(from));
+    const char* end = reinterpret_cast<const char*>(values + 9 * static_cast<std::size_t>(to));
+    for (const char* line = begin; line < end; line += 64) __builtin_prefetch(line);
+    __builtin_prefetch(end - 1);
   };
 #pragma omp parallel for schedule(static) num_threads(threads_for(a.block_rows))
   for (int i = 0; i < a.block_rows; ++i) {
     if (i + kAhead < a.block_rows) {
       const int ahead = i + kAhead;
-      fetch(diagonal_block_[ahead]);
-      if (hybrid && own_begin_[ahead] != a.row_start[ahead]) fetch(a.row_start[ahead]);
-      if (hybrid && own_end_[ahead] != a.row_start[ahead + 1]) fetch(a.row_start[ahead + 1] - 1);
+      fetch_blocks(diagonal_block_[ahead], diagonal_block_[ahead] + 1);
+      if (hybrid && own_begin_[ahead] != a.row_start[ahead])
+        fetch_blocks(a.row_start[ahead], own_begin_[ahead]);
+      if (hybrid && own_end_[ahead] != a.row_start[ahead + 1])
+        fetch_blocks(own_end_[ahead], a.row_start[ahead + 1]);
     }
     double l1[3] = {0, 0, 0};
     if (hybrid) {
