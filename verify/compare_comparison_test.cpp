@@ -95,6 +95,31 @@ TEST(Compare, TheSameCodeTwiceIsTheSame) {
   EXPECT_EQ(row(c, "displacement").verdict, "equal");
 }
 
+TEST(Compare, CoresPlacedApartDifferentlyAreWarnedOf) {
+  // Two-thread timings move with the cores' handoff time (core/core_latency.hpp): sides whose
+  // medians differ by more than 1.5x get a warning naming both; within it, none.
+  std::mt19937 rng(7);
+  const auto with_handoff = [&](double ns) {
+    json r = run_record(rng, 2.0, 5.0);
+    r["context"]["core_to_core_ns"] = ns;
+    return r;
+  };
+  const auto warnings = [&](std::vector<double> base_ns, std::vector<double> new_ns) {
+    std::vector<json> a, b;
+    for (const double ns : base_ns) a.push_back(with_handoff(ns));
+    for (const double ns : new_ns) b.push_back(with_handoff(ns));
+    return compare_records(runs_of(a), runs_of(b), CompareOptions{}).warnings;
+  };
+  const std::vector<std::string> apart = warnings({45, 52, 48}, {220, 231, 226});
+  ASSERT_EQ(apart.size(), 1u);
+  EXPECT_NE(apart[0].find("core_to_core_ns differs: BASE 48 ns, NEW 226 ns"), std::string::npos)
+      << apart[0];
+  EXPECT_TRUE(warnings({200, 210, 205}, {226, 231, 220}).empty());
+  // One side's records without it (older ones, or one thread): nothing to compare.
+  std::vector<json> older{run_record(rng, 2.0, 5.0)}, newer{with_handoff(226)};
+  EXPECT_TRUE(compare_records(runs_of(older), runs_of(newer), CompareOptions{}).warnings.empty());
+}
+
 TEST(Compare, ManyRowsWithoutAChangeRarelyAlarmTogether) {
   // 40 phases, 10 runs a side, all from one distribution: at alpha = 0.01 per row, about a third
   // of such comparisons would alarm somewhere; Holm's adjustment holds the family at 1%.

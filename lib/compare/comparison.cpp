@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "core/statistics.hpp"
 
 namespace corofem {
@@ -150,6 +151,10 @@ RowComparison field(const RecordRow& b, const RecordRow& n, const CompareOptions
   return c;
 }
 
+/// Handoff times this many times apart are two placements of the cores (lib/docs/threads.md,
+/// "Where the host puts the two cores"); one placement measures within some percent.
+constexpr double kPlacementRatio = 1.5;
+
 /// Warnings where the two sides were produced differently.
 std::vector<std::string> context_warnings(const RecordSet& base, const RecordSet& contender) {
   auto values = [](const RecordSet& set, const char* key) {
@@ -168,6 +173,25 @@ std::vector<std::string> context_warnings(const RecordSet& base, const RecordSet
     if (!b.empty() && !n.empty() && b != n)
       warnings.push_back(std::string(key) + " differs: BASE " + b.front() + ", NEW " + n.front() +
                          " (timings compare the machines as much as the code)");
+  }
+  // Two-thread timings move with where the host put the two cores (core/core_latency.hpp): a
+  // 1.5x wider handoff time on one side is a different machine for them.
+  auto handoff_ns = [](const RecordSet& set) {
+    std::vector<double> out;
+    for (const auto& [file, context] : set.contexts)
+      if (context.is_object() && context.contains("core_to_core_ns") &&
+          context["core_to_core_ns"].is_number())
+        out.push_back(context["core_to_core_ns"].get<double>());
+    return out;
+  };
+  const std::vector<double> b = handoff_ns(base), n = handoff_ns(contender);
+  if (!b.empty() && !n.empty()) {
+    const double base_ns = median(b), new_ns = median(n);
+    if (std::max(base_ns, new_ns) > kPlacementRatio * std::min(base_ns, new_ns))
+      warnings.push_back("core_to_core_ns differs: BASE " + general_number(std::round(base_ns)) +
+                         " ns, NEW " + general_number(std::round(new_ns)) + " ns" +
+                         " (the host placed the two cores apart differently: two-thread timings "
+                         "compare the placements as much as the code)");
   }
   return warnings;
 }

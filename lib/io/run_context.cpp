@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/build_info.hpp"
+#include "core/core_latency.hpp"
 #include "core/huge_pages.hpp"
 #include "core/threads.hpp"
 #include "sparse/block_kernels.hpp"
@@ -55,6 +56,8 @@ std::string utc_now() {
 nlohmann::json run_context() {
   char host[256] = {0};
   gethostname(host, sizeof host - 1);
+  // Where the host put the two cores of a two-thread run (core/core_latency.hpp): null at one.
+  const double core_to_core_ns = thread_count() > 1 ? measure_core_to_core_ns() : 0;
   return {{"commit", build_commit()},
           {"version", build_version()},
           {"compiler", build_compiler()},
@@ -70,6 +73,8 @@ nlohmann::json run_context() {
           {"openmp", have_openmp()},
           {"block_kernels", block_kernels_name()},
           {"huge_pages", huge_pages_setting()},
+          {"core_to_core_ns",
+           core_to_core_ns > 0 ? nlohmann::json(core_to_core_ns) : nlohmann::json(nullptr)},
           {"host", host},
           {"date", utc_now()}};
 }
