@@ -13,14 +13,18 @@
 namespace corofem {
 namespace {
 
-/// The first two cores in this process's affinity mask, or fewer.
+/// The first two cores in the calling thread's affinity mask; where it holds one (OpenMP's
+/// OMP_PROC_BIND pins the initial thread to its place), the first two online cores, which the
+/// pins below then try (a core outside the process's cpuset refuses the pin: the thread runs
+/// unpinned).
 std::vector<int> first_two_cores() {
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
   std::vector<int> cores;
-  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return cores;
-  for (int c = 0; c < CPU_SETSIZE && cores.size() < 2; ++c)
-    if (CPU_ISSET(c, &allowed)) cores.push_back(c);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) == 0)
+    for (int c = 0; c < CPU_SETSIZE && cores.size() < 2; ++c)
+      if (CPU_ISSET(c, &allowed)) cores.push_back(c);
+  if (cores.size() < 2 && std::thread::hardware_concurrency() >= 2) cores = {0, 1};
   return cores;
 }
 

@@ -10,7 +10,7 @@ namespace corofem {
 
 /// The one-way time, in ns, of a cache line written by one thread and read by another, the two
 /// pinned to the first two cores this process may use: the median of 5 rounds of 2,000 round
-/// trips on one atomic (about 2-10 ms). 0 when the process may use fewer than two cores.
+/// trips on one atomic (about 2-10 ms). 0 when the machine has fewer than two cores.
 double measure_core_to_core_ns();
 
 }  // namespace corofem
