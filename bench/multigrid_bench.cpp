@@ -388,7 +388,7 @@ void BM_SmootherSetUp(benchmark::State& state, const std::string& model) {
   state.counters["floor_ms"] = floor_ms;
   state.counters["hybrid_cold_over_floor"] = median(hybrid_cold) / floor_ms;
   state.counters["hybrid_cold_over_copy"] = median(hybrid_cold) / median(copy_cold);
-  state.counters["smoothed_rows"] = h.num_levels() > 1 ? h.matrix(0).block_rows : 0;
+  state.counters["fine_rows"] = h.num_levels() > 1 ? h.matrix(0).block_rows : 0;
   state.counters["halo_rows"] = halo_rows;
   state.counters["off_domain_blocks"] = off_domain_blocks;
   state.counters["threads"] = thread_count();

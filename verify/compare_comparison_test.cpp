@@ -97,7 +97,8 @@ TEST(Compare, TheSameCodeTwiceIsTheSame) {
 
 TEST(Compare, CoresPlacedApartDifferentlyAreWarnedOf) {
   // Two-thread timings move with the cores' handoff time (core/core_latency.hpp): sides whose
-  // medians differ by more than 1.5x get a warning naming both; within it, none.
+  // medians differ by more than 2x get a warning naming both; within it (one placement's spread:
+  // 192-310 ns on one VM), none.
   std::mt19937 rng(7);
   const auto with_handoff = [&](double ns) {
     json r = run_record(rng, 2.0, 5.0);
@@ -115,6 +116,7 @@ TEST(Compare, CoresPlacedApartDifferentlyAreWarnedOf) {
   EXPECT_NE(apart[0].find("core_to_core_ns differs: BASE 48 ns, NEW 226 ns"), std::string::npos)
       << apart[0];
   EXPECT_TRUE(warnings({200, 210, 205}, {226, 231, 220}).empty());
+  EXPECT_TRUE(warnings({192}, {310}).empty());
   // One side's records without it (older ones, or one thread): nothing to compare.
   std::vector<json> older{run_record(rng, 2.0, 5.0)}, newer{with_handoff(226)};
   EXPECT_TRUE(compare_records(runs_of(older), runs_of(newer), CompareOptions{}).warnings.empty());
