@@ -30,16 +30,17 @@ constexpr const char* kRecords[] = {"tables.json", "speed_accuracy.json", "stabi
 /// Whether a leaf at `path` (its keys, outermost first) holds a time or what derives from times:
 /// phase times (*_ms, any value under a *_ms object, a one-thread column's phases), rates, roofs
 /// and the ratios to them, the choices made by time (Pareto fronts, the cheapest setting, a
-/// roofline's bound), and the date.
+/// roofline's bound), the date, and the cores' handoff time (core_to_core_ns).
 bool is_time(const std::vector<std::string>& path) {
   static const std::vector<std::string> phases = {"rotate", "assemble", "forces", "system",
                                                   "update", "solve",    "checks", "step"};
   for (std::size_t k = 0; k < path.size(); ++k) {
     const std::string& key = path[k];
-    if (key.ends_with("_ms") || key.ends_with("_s") || key == "tps" || key.ends_with("_tps") ||
-        key.find("GBps") != std::string::npos || key.find("gflops") != std::string::npos ||
-        key.find("over_") != std::string::npos || key.find("speedup") != std::string::npos ||
-        key == "bound" || key == "pareto" || key == "cheapest_meeting_target" || key == "date")
+    if (key.ends_with("_ms") || key.ends_with("_s") || key.ends_with("_ns") || key == "tps" ||
+        key.ends_with("_tps") || key.find("GBps") != std::string::npos ||
+        key.find("gflops") != std::string::npos || key.find("over_") != std::string::npos ||
+        key.find("speedup") != std::string::npos || key == "bound" || key == "pareto" ||
+        key == "cheapest_meeting_target" || key == "date")
       return true;
     if (k > 0 && path[k - 1] == "one_thread" &&
         std::find(phases.begin(), phases.end(), key) != phases.end())
