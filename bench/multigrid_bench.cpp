@@ -17,6 +17,7 @@
 #include "fem/dirichlet.hpp"
 #include "galerkin_oracle.hpp"
 #include "linalg/gauss_seidel.hpp"
+#include "linalg/gauss_seidel_smoother.hpp"
 #include "linalg/preconditioned_cg.hpp"
 #include "mesh/box_mesh.hpp"
 #include "multigrid/multigrid_solver.hpp"
@@ -330,29 +331,26 @@ void BM_SmootherSweep(benchmark::State& state, const std::string& model) {
 /// Galerkin products have run since the assembly wrote the fine level's diagonal blocks) and
 /// warm, against a pass with part of its compulsory traffic alone (every row's diagonal block
 /// read, 72 bytes a row written), cold too, alternated in one run. floor_ms: the bytes the
-/// roofline counts (GaussSeidelSmoother::setup_traffic) over a STREAM triad of this run.
+/// roofline counts (Smoother::setup_traffic) over a STREAM triad of this run.
 void BM_SmootherSetUp(benchmark::State& state, const std::string& model) {
   MultigridHierarchy& h = paper_hierarchy(model);
   h.update(paper_system(model).matrix, GalerkinMethod::Gather);
   const int smoothed = h.num_levels() - 1;
-  std::vector<BlockGaussSeidel> hybrid(smoothed, BlockGaussSeidel(SmootherOrdering::Hybrid));
-  std::vector<BlockGaussSeidel> sequential(smoothed,
-                                           BlockGaussSeidel(SmootherOrdering::Sequential));
+  std::vector<GaussSeidelSmoother> hybrid(smoothed, GaussSeidelSmoother(SmootherOrdering::Hybrid));
+  std::vector<GaussSeidelSmoother> sequential(smoothed,
+                                              GaussSeidelSmoother(SmootherOrdering::Sequential));
   std::vector<std::vector<int>> diagonal(smoothed);
   std::vector<std::vector<double>> copied(smoothed);
-  double bytes = 0, halo_rows = 0, off_domain_blocks = 0;
+  Traffic traffic;
   for (int l = 0; l < smoothed; ++l) {
     const BrcMatrix& a = h.matrix(l);
     hybrid[l].set_matrix(a);
     sequential[l].set_matrix(a);
+    traffic += hybrid[l].setup_traffic(a);
     for (int i = 0; i < a.block_rows; ++i) diagonal[l].push_back(a.find(i, i));
     copied[l].resize(9 * static_cast<std::size_t>(a.block_rows));
-    const double off = static_cast<double>(hybrid[l].off_domain_blocks());
-    bytes += (128.0 + 4 + 72 + 24) * a.block_rows + 72 * off;  // as setup_traffic counts
-    halo_rows += hybrid[l].boundary_rows();
-    off_domain_blocks += off;
   }
-  const auto set_up = [&](std::vector<BlockGaussSeidel>& smoothers) {
+  const auto set_up = [&](std::vector<GaussSeidelSmoother>& smoothers) {
     return [&] {
       for (int l = 0; l < smoothed; ++l) smoothers[l].set_matrix(h.matrix(l));
     };
@@ -379,7 +377,7 @@ void BM_SmootherSetUp(benchmark::State& state, const std::string& model) {
     sequential_warm.push_back(warm_time_ms(set_up(sequential)));
     benchmark::DoNotOptimize(copied.data());
   }
-  const double floor_ms = bytes / (measure_stream_triad_gbps() * 1e9) * 1e3;
+  const double floor_ms = traffic.bytes / (measure_stream_triad_gbps() * 1e9) * 1e3;
   state.counters["hybrid_cold_ms"] = median(hybrid_cold);
   state.counters["hybrid_warm_ms"] = median(hybrid_warm);
   state.counters["sequential_cold_ms"] = median(sequential_cold);
@@ -389,8 +387,6 @@ void BM_SmootherSetUp(benchmark::State& state, const std::string& model) {
   state.counters["hybrid_cold_over_floor"] = median(hybrid_cold) / floor_ms;
   state.counters["hybrid_cold_over_copy"] = median(hybrid_cold) / median(copy_cold);
   state.counters["fine_rows"] = h.num_levels() > 1 ? h.matrix(0).block_rows : 0;
-  state.counters["halo_rows"] = halo_rows;
-  state.counters["off_domain_blocks"] = off_domain_blocks;
   state.counters["threads"] = thread_count();
 }
 

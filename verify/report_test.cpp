@@ -678,8 +678,8 @@ TEST(Report, StandardModeRunsTableOneAtThePapersThreeSizes) {
   EXPECT_TRUE(with_models.jacobi_table(SceneSize::M));
   EXPECT_TRUE(with_models.jacobi_table(SceneSize::L));
   EXPECT_FALSE(with_models.comparison_tables(SceneSize::L));
-  // Every procedural stability scene but quadruped-stretched (ReportConfig::stability_scenes),
-  // which --only still runs and --full keeps.
+  // Every procedural stability scene but quadruped-stretched (stability_scene_full_only), which
+  // --only still runs and --full keeps.
   std::vector<std::string> every = stability_scene_ids(false), standard_scenes = every;
   std::erase(standard_scenes, std::string("quadruped-stretched"));
   EXPECT_EQ(standard.stability_scenes(), standard_scenes);

@@ -155,16 +155,22 @@ RowComparison field(const RecordRow& b, const RecordRow& n, const CompareOptions
 /// "Where the host puts the two cores": one VM's two measured 49-72 and 192-310 ns).
 constexpr double kPlacementRatio = 2.0;
 
+/// Every record's context[key] in `set`, where it has one.
+std::vector<nlohmann::json> context_fields(const RecordSet& set, const char* key) {
+  std::vector<nlohmann::json> out;
+  for (const auto& [file, context] : set.contexts)
+    if (context.is_object() && context.contains(key)) out.push_back(context[key]);
+  return out;
+}
+
 /// Warnings where the two sides were produced differently.
 std::vector<std::string> context_warnings(const RecordSet& base, const RecordSet& contender) {
-  auto values = [](const RecordSet& set, const char* key) {
+  auto values = [](const RecordSet& set, const char* key) {  // distinct, as text
     std::vector<std::string> out;
-    for (const auto& [file, context] : set.contexts)
-      if (context.is_object() && context.contains(key)) {
-        const std::string v =
-            context[key].is_string() ? context[key].get<std::string>() : context[key].dump();
-        if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
-      }
+    for (const nlohmann::json& field : context_fields(set, key)) {
+      const std::string v = field.is_string() ? field.get<std::string>() : field.dump();
+      if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+    }
     return out;
   };
   std::vector<std::string> warnings;
@@ -176,12 +182,10 @@ std::vector<std::string> context_warnings(const RecordSet& base, const RecordSet
   }
   // Two-thread timings move with where the host put the two cores (core/core_latency.hpp): a
   // handoff time twice as long on one side is a different machine for them.
-  auto handoff_ns = [](const RecordSet& set) {
+  auto handoff_ns = [](const RecordSet& set) {  // null at one thread: left out
     std::vector<double> out;
-    for (const auto& [file, context] : set.contexts)
-      if (context.is_object() && context.contains("core_to_core_ns") &&
-          context["core_to_core_ns"].is_number())
-        out.push_back(context["core_to_core_ns"].get<double>());
+    for (const nlohmann::json& field : context_fields(set, "core_to_core_ns"))
+      if (field.is_number()) out.push_back(field.get<double>());
     return out;
   };
   const std::vector<double> b = handoff_ns(base), n = handoff_ns(contender);

@@ -95,10 +95,7 @@ int ReportConfig::stability_hold() const {
 std::vector<std::string> ReportConfig::stability_scenes() const {
   if (mode == Mode::Smoke) return keep_only({"bar-twist", "block-squash"}, only);
   std::vector<std::string> ids = stability_scene_ids(with_models());
-  // Outside --full, quadruped-stretched only where --only names it: stable under every method
-  // and integrator, it decides no verdict, and quadruped-stretched-far is the same scene pulled
-  // 2.5x as hard. It took 35-40 s of the main job (2026-12-07).
-  if (mode != Mode::Full && only.empty()) std::erase(ids, std::string("quadruped-stretched"));
+  if (mode != Mode::Full && only.empty()) std::erase_if(ids, stability_scene_full_only);
   return keep_only(ids, only);
 }
 

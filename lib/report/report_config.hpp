@@ -62,7 +62,7 @@ struct ReportConfig {
   int stability_ramp() const;
   int stability_hold() const;
   /// The catalogue's stability scenes (report/scene_catalogue.hpp); outside --full without
-  /// quadruped-stretched (report_config.cpp says why).
+  /// those it runs only at full length (stability_scene_full_only), which --only still names.
   std::vector<std::string> stability_scenes() const;
 };
 

@@ -194,6 +194,10 @@ std::vector<std::string> stability_scene_ids(bool with_models) {
   return ids;
 }
 
+bool stability_scene_full_only(const std::string& id) {
+  return id == "quadruped-stretched";
+}
+
 namespace {
 
 /// A load or move ramped in over the first ramp_steps steps.

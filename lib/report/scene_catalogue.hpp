@@ -48,6 +48,11 @@ nlohmann::json probe_box(const std::string& model);
 /// "horse-posed" (the paper's pose). Load for `ramp_steps`, hold for
 /// `hold_steps` (the squash is released at the start of the hold). Solver: CHOLMOD.
 std::vector<std::string> stability_scene_ids(bool with_models);
+/// Whether the study runs scene `id` only at full length (or where --only names it): true for
+/// "quadruped-stretched", stable under every method and integrator, which decides no verdict
+/// ("quadruped-stretched-far" is the same scene pulled 2.5x as hard); it took 35-40 s of the main
+/// job (2026-12-07).
+bool stability_scene_full_only(const std::string& id);
 nlohmann::json stability_scene(const std::string& id, SceneSize size, int ramp_steps,
                                int hold_steps, const std::filesystem::path& models_dir = {});
 
