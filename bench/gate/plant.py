@@ -3,13 +3,24 @@
 
 Usage: bench/gate/plant.py slowdown PHASE PERCENT [--ref REF] > plant.patch
        bench/gate/plant.py rotation-offset RADIANS [--ref REF] > plant.patch
-then:  ci/bench-gate REF REF --patch plant.patch
+       bench/gate/plant.py assembly-work ITERATIONS [--ref REF] > plant.patch
+       bench/gate/plant.py extra-pass [--ref REF] > plant.patch
+       bench/gate/plant.py scattered-order [--ref REF] > plant.patch
+then:  ci/bench-gate REF REF --patch plant.patch   (timings)
+       bench/gate/count_calibration.py             (counts: it plants the last three)
 
 slowdown: every timed PHASE of a step (solve, update, assemble, rotate, ...) busy-waits PERCENT of
 its own time before the phase clock stops (lib/fem/simulation_result.hpp's PhaseClock), so that
 phase, and the step by its share, are that much slower, at any thread count.
 rotation-offset: the energy-newton extractor turns every element's rotation by RADIANS about z
 after its Newton solve (lib/rotation/energy_rotation.cpp): an accuracy fault, every else equal.
+The faults of real work, for the counted gate (ci/count-gate), each in one phase:
+assembly-work: the assembly does ITERATIONS more turns of an empty loop per element (each about
+three instructions: 4 of them add about 1% to the assembly's instructions).
+extra-pass: every multigrid update reads the fine level's matrix once more after its Galerkin
+products (a sum over its values): the update's instructions and misses grow.
+scattered-order: the assembly visits each part's elements in a strided order (n * 7919 modulo
+their count) instead of the locality order: the same work, its accesses scattered.
 The patch is made against REF's file (default HEAD) and applied only in bench-gate's worktree:
 the production code has no switch for it.
 """
@@ -20,6 +31,8 @@ import sys
 
 CLOCK = "lib/fem/simulation_result.hpp"
 ENERGY = "lib/rotation/energy_rotation.cpp"
+ASSEMBLY = "lib/fem/corotated_assembly.cpp"
+MULTIGRID = "lib/multigrid/multigrid_solver.cpp"
 
 
 def file_at(ref, path):
@@ -64,20 +77,66 @@ def rotation_offset(ref, radians):
     return ENERGY, text, replaced(text, old, new, ENERGY)
 
 
+def assembly_work(ref, iterations):
+    text = file_at(ref, ASSEMBLY)
+    old = ("  for (std::size_t n = 0; n < list.size(); ++n) {\n"
+           "    const int e = list[n];\n")
+    new = old + (f"    for (int planted = 0; planted < {iterations}; ++planted)  // planted work\n"
+                 "      asm volatile(\"\");\n")
+    return ASSEMBLY, text, replaced(text, old, new, ASSEMBLY)
+
+
+def extra_pass(ref):
+    text = file_at(ref, MULTIGRID)
+    old = ("  timed(SolverPart::Galerkin, [&] { hierarchy_.take_update(a, params_.galerkin); });\n"
+           "  update_levels();\n")
+    new = ("  timed(SolverPart::Galerkin, [&] { hierarchy_.take_update(a, params_.galerkin); });\n"
+           "  {  // planted: the fine level's matrix read once more\n"
+           "    double sum = 0;\n"
+           "    for (double v : hierarchy_.matrix(0).values) sum += v;\n"
+           "    asm volatile(\"\" : : \"x\"(sum));\n"
+           "  }\n"
+           "  update_levels();\n")
+    return MULTIGRID, text, replaced(text, old, new, MULTIGRID)
+
+
+def scattered_order(ref):
+    text = file_at(ref, ASSEMBLY)
+    old = ("  const std::vector<int>& list = rows.elements[part];\n"
+           "  for (std::size_t n = 0; n < list.size(); ++n) {\n")
+    new = ("  std::vector<int> list = rows.elements[part];  // planted: a strided order\n"
+           "  {\n"
+           "    const std::vector<int>& ordered = rows.elements[part];\n"
+           "    const std::size_t count = ordered.size(), stride = count % 7919 ? 7919 : 1;\n"
+           "    for (std::size_t n = 0; n < count; ++n) list[n] = ordered[n * stride % count];\n"
+           "  }\n"
+           "  for (std::size_t n = 0; n < list.size(); ++n) {\n")
+    return ASSEMBLY, text, replaced(text, old, new, ASSEMBLY)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("kind", choices=["slowdown", "rotation-offset"])
-    parser.add_argument("values", nargs="+")
+    parser.add_argument("kind", choices=["slowdown", "rotation-offset", "assembly-work",
+                                         "extra-pass", "scattered-order"])
+    parser.add_argument("values", nargs="*")
     parser.add_argument("--ref", default="HEAD")
     args = parser.parse_args()
     if args.kind == "slowdown":
         if len(args.values) != 2:
             parser.error("slowdown PHASE PERCENT")
         path, before, after = slowdown(args.ref, args.values[0], float(args.values[1]))
-    else:
+    elif args.kind == "rotation-offset":
         if len(args.values) != 1:
             parser.error("rotation-offset RADIANS")
         path, before, after = rotation_offset(args.ref, float(args.values[0]))
+    elif args.kind == "assembly-work":
+        if len(args.values) != 1:
+            parser.error("assembly-work ITERATIONS")
+        path, before, after = assembly_work(args.ref, int(args.values[0]))
+    else:
+        if args.values:
+            parser.error(f"{args.kind} takes no values")
+        path, before, after = (extra_pass if args.kind == "extra-pass" else scattered_order)(args.ref)
     sys.stdout.writelines(difflib.unified_diff(before.splitlines(True), after.splitlines(True),
                                                f"a/{path}", f"b/{path}"))
 

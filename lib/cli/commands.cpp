@@ -53,6 +53,7 @@ Exit status: 0 success, 1 did not converge or numerical fault, 2 bad input.
 )";
 
 const char* kRunHelp = R"(Usage: corofem run SCENE.json --out RESULT.json [--threads N]
+                   [--count-phases perf|callgrind[:FILE]]
 
 Runs one scene (see README, "Scene format") and writes RESULT.json: node_tags, rest,
 displacement (input node order), converged, iterations, residual, timings_ms, the scene and the
@@ -61,6 +62,14 @@ context (commit, compiler, flags, machine); with output.rotations also element_t
   --threads N    threads of the step's kernels (default: all cores, or OMP_NUM_THREADS; "all";
                  under mpirun, the cores shared among the machine's ranks); the result is
                  bit-identical at every count
+  --count-phases SOURCE
+                 also count each phase's and solver part's instructions, D1 and last-level
+                 misses from the first step on, into RESULT.json's phase_counts: "perf" from the
+                 hardware's counters (where the machine has none, the record says why and holds
+                 timings only), "callgrind" from valgrind's simulated caches, exact and the same
+                 on every host: run under valgrind --tool=callgrind --instr-atstart=no
+                 --combine-dumps=yes --cache-sim=yes (bench/count_phases.py does; FILE: the
+                 --callgrind-out-file given to valgrind). Counts are one thread's at --threads 1
 Under `mpirun -np N` with analysis.solver petsc-gamg, hypre-boomeramg or petsc-mg, the linear
 solves are distributed over the N ranks (each owns a contiguous share of the vertices). A dynamic
 linearly implicit or a static scene (lagged or Newton: the corotated tangent by PETSc's GMRES)
@@ -201,7 +210,8 @@ converging; the budget); 2 bad input.
 
 const char* kCompareHelp =
     R"(Usage: corofem compare BASE NEW [--threshold T] [--alpha A] [--accuracy-factor F]
-                       [--field-tolerance E] [--min-ms M] [--out DIR]
+                       [--field-tolerance E] [--min-ms M] [--count-threshold C]
+                       [--miss-threshold D] [--min-count N] [--out DIR]
 
 BASE and NEW are each a `corofem run` record, a report folder (tables.json, speed_accuracy.json,
 cache_profile.json), Google Benchmark JSON from corofem_bench, or a folder of such records: records
@@ -219,9 +229,17 @@ refused. Warns where machine, compiler or flags differ.
   accuracy       (errors against the oracles, static residuals) worse when grown more than F
                  times and past 1e-12
   displacements  the two runs' final fields, |u_new - u_base| / |u_base| above E is a regression
+  work counts    (a counted run's phase_counts: each phase's instructions, D1 and LL misses;
+                 run --count-phases, bench/count_phases.py) more or fewer when moved by more
+                 than C (instructions) or D (misses), relative; more is a regression, fewer says
+                 the baseline is stale; rows whose BASE is under N are shown, not gated; counts
+                 made by another tool, compiler, flags or simulated caches are not compared. A
+                 timed row whose phase was also counted on both sides says whether its counts
+                 moved (the code's) or not (the machine's)
   --threshold T  default 0.05       --alpha A            default 0.01
   --accuracy-factor F  default 2    --field-tolerance E  default 1e-8
-  --min-ms M     default 0.05
+  --min-ms M     default 0.05       --count-threshold C  default 0.005
+  --miss-threshold D  default 0.02  --min-count N        default 20000
   --out DIR      also writes DIR/compare.md, compare.json (the verdict) and compare.svg (the
                  ratios with their intervals)
 The Markdown table goes to stdout.
@@ -283,12 +301,28 @@ void apply_threads_option(const ParsedArgs& parsed) {
     set_thread_count(parse_thread_count(parsed.options.at("--threads")));
 }
 
+/// --count-phases perf | callgrind[:FILE]
+std::optional<PhaseCounting> parse_phase_counting(const ParsedArgs& parsed) {
+  if (!parsed.options.count("--count-phases")) return std::nullopt;
+  const std::string value = parsed.options.at("--count-phases");
+  const std::size_t colon = value.find(':');
+  const std::optional<CountSource> source = kCountSources.find(value.substr(0, colon));
+  if (!source || (colon != std::string::npos && *source != CountSource::Callgrind) ||
+      (colon != std::string::npos && colon + 1 == value.size()))
+    throw InputError("--count-phases: '" + value +
+                     "' is neither perf nor callgrind[:FILE] (see run --help)");
+  PhaseCounting counting{*source, {}};
+  if (colon != std::string::npos) counting.callgrind_file = value.substr(colon + 1);
+  return counting;
+}
+
 int run_command(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(args, {"--out", "--threads"}, {});
+  ParsedArgs parsed = parse_args(args, {"--out", "--threads", "--count-phases"}, {});
   if (parsed.help) {
     std::cout << kRunHelp;
     return 0;
   }
+  const std::optional<PhaseCounting> counting = parse_phase_counting(parsed);
   const MpiLaunch mpi = mpi_launch();
   apply_threads_option(parsed);
   if (mpi.size > 1 && !parsed.options.count("--threads") && !std::getenv("OMP_NUM_THREADS"))
@@ -305,7 +339,7 @@ int run_command(const std::vector<std::string>& args) {
   const bool distributed_mesh = SceneSimulation::distributes_mesh(scene, mpi.size);
   if (!writer && !distributed_mesh) scene.output.vtu.reset();  // distributed: a piece per rank
   if (scene.output.vtu) check_writable(*scene.output.vtu);
-  SceneRun run = run_scene(scene, writer ? &std::cerr : nullptr);
+  SceneRun run = run_scene(scene, writer ? &std::cerr : nullptr, counting);
   run.record["mpi"] = {
       {"ranks", mpi.size},
       {"distributed",
@@ -488,10 +522,11 @@ int tune_command(const std::vector<std::string>& args) {
 }
 
 int compare_command(const std::vector<std::string>& args) {
-  ParsedArgs parsed = parse_args(
-      args,
-      {"--threshold", "--alpha", "--accuracy-factor", "--field-tolerance", "--min-ms", "--out"},
-      {});
+  ParsedArgs parsed =
+      parse_args(args,
+                 {"--threshold", "--alpha", "--accuracy-factor", "--field-tolerance", "--min-ms",
+                  "--out", "--count-threshold", "--miss-threshold", "--min-count"},
+                 {});
   if (parsed.help) {
     std::cout << kCompareHelp;
     return 0;
@@ -503,11 +538,16 @@ int compare_command(const std::vector<std::string>& args) {
   options.accuracy_factor = number_option(parsed, "--accuracy-factor", options.accuracy_factor);
   options.field_tolerance = number_option(parsed, "--field-tolerance", options.field_tolerance);
   options.min_ms = number_option(parsed, "--min-ms", options.min_ms);
+  options.count_threshold = number_option(parsed, "--count-threshold", options.count_threshold);
+  options.miss_threshold = number_option(parsed, "--miss-threshold", options.miss_threshold);
+  options.min_count = number_option(parsed, "--min-count", options.min_count);
   if (!(options.threshold >= 0) || !(options.alpha > 0 && options.alpha < 1) ||
-      !(options.accuracy_factor >= 1) || !(options.field_tolerance >= 0) || !(options.min_ms >= 0))
+      !(options.accuracy_factor >= 1) || !(options.field_tolerance >= 0) ||
+      !(options.min_ms >= 0) || !(options.count_threshold >= 0) || !(options.miss_threshold >= 0) ||
+      !(options.min_count >= 0))
     throw InputError(
-        "compare: --threshold, --field-tolerance and --min-ms need >= 0, --alpha a number in "
-        "(0, 1), --accuracy-factor >= 1");
+        "compare: --threshold, --field-tolerance, --min-ms, --count-threshold, --miss-threshold "
+        "and --min-count need >= 0, --alpha a number in (0, 1), --accuracy-factor >= 1");
   const std::string& base = parsed.positional[0];
   const std::string& contender = parsed.positional[1];
   if (parsed.options.count("--out")) prepare_output_folder(parsed.options["--out"], "compare.json");
@@ -524,6 +564,8 @@ int compare_command(const std::vector<std::string>& args) {
   }
   for (const std::string& w : c.warnings) std::cerr << "compare: warning: " << w << "\n";
   std::cerr << "compare: " << (c.regressed() ? "regression" : "no regression") << "\n";
+  if (c.counts_fell())
+    std::cerr << "compare: work counts fell beyond their threshold: BASE's counts are stale\n";
   return c.regressed() ? 1 : 0;
 }
 

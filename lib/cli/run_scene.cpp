@@ -14,6 +14,8 @@
 #include "core/memory_usage.hpp"
 #include "core/number_text.hpp"
 #include "core/statistics.hpp"
+#include "core/threads.hpp"
+#include "io/phase_counts_record.hpp"
 #include "io/run_context.hpp"
 #include "io/solver_record.hpp"
 #include "io/vtu_writer.hpp"
@@ -162,7 +164,8 @@ void add_fields(SceneSimulation& simulation, const SimulationResult& result, nlo
 
 }  // namespace
 
-SceneRun run_scene(const Scene& scene, std::ostream* progress) {
+SceneRun run_scene(const Scene& scene, std::ostream* progress,
+                   const std::optional<PhaseCounting>& counting) {
   if (progress) *progress << "corofem: building '" << scene.name << "'\n";
   const MpiLaunch mpi = mpi_launch();
   SceneSimulation simulation = SceneSimulation::distributes_mesh(scene, mpi.size)
@@ -183,9 +186,19 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
                 << " of the halo\n";
   }
   StepProgress steps(progress, progress == &std::cerr && isatty(STDERR_FILENO),
-                     scene.analysis.steps);
-  StaticProgress iterations(progress, progress == &std::cerr && isatty(STDERR_FILENO),
+                     scene.analysis.steps, !counting);
+  // A counted static run reports no iterations: their lines follow the clock (see StepProgress).
+  StaticProgress iterations(counting ? nullptr : progress,
+                            progress == &std::cerr && isatty(STDERR_FILENO),
                             scene.analysis.tolerance);
+  // Counted from here: the steps, not the set-up.
+  std::unique_ptr<SectionCounter> counter;
+  std::string not_counted;
+  if (counting) {
+    counter = SectionCounter::start(counting->source, not_counted, counting->callgrind_file);
+    if (!counter && progress) *progress << "corofem: phases not counted: " << not_counted << "\n";
+    simulation.mark_sections(counter.get());
+  }
   // Every step's phase times, the evidence behind timings_ms for `corofem compare`.
   nlohmann::json step_samples = nlohmann::json::object();
   SimulationResult result = simulation.run(
@@ -196,8 +209,16 @@ SceneRun run_scene(const Scene& scene, std::ostream* progress) {
       },
       [&](const StaticIteration& at) { iterations.iteration_done(at); });
 
+  if (counter) {
+    simulation.mark_sections(nullptr);
+    counter->finish();
+  }
+
   nlohmann::json r = run_summary(simulation, result);
   if (!step_samples.empty()) r["step_samples_ms"] = std::move(step_samples);
+  if (counting)
+    r["phase_counts"] = counter ? to_json(*counter, thread_count())
+                                : unavailable_counts(counting->source, not_counted);
   if (part) {
     r["mesh"]["vertices"] = vertices;
     r["mesh"]["tets"] = tets;

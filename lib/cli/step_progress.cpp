@@ -17,9 +17,10 @@ std::string time_left(double elapsed_s, int done, int steps) {
 
 }  // namespace
 
-StepProgress::StepProgress(std::ostream* out, bool terminal, int steps)
+StepProgress::StepProgress(std::ostream* out, bool terminal, int steps, bool clocked)
     : out_(out),
-      terminal_(terminal),
+      terminal_(terminal && clocked),
+      clocked_(clocked),
       line_(out),
       steps_(steps),
       every_(std::max(1, steps / 10)),
@@ -44,7 +45,8 @@ void StepProgress::step_done(int step) {
     return;
   }
   if (step % every_ == 0 || step == steps_)
-    *out_ << counts << (step < steps_ ? ", " + time_left(elapsed, step, steps_) : "") << "\n";
+    *out_ << counts << (step < steps_ && clocked_ ? ", " + time_left(elapsed, step, steps_) : "")
+          << "\n";
 }
 
 }  // namespace corofem

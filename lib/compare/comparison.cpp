@@ -110,6 +110,37 @@ RowComparison counter(const RecordRow& b, const RecordRow& n) {
   return c;
 }
 
+/// A phase's work counted on both sides: exact, so a threshold and no test; what moves it without a
+/// change to the phase's code (the heap's layout shifted by other code) sets the threshold.
+RowComparison work_count(const RecordRow& b, const RecordRow& n, const CompareOptions& o) {
+  RowComparison c;
+  c.base_value = median(b.values);
+  c.new_value = median(n.values);
+  if (b.provenance != n.provenance) {
+    c.verdict = "not compared";
+    c.note = "counted otherwise (see the warnings)";
+    return c;
+  }
+  const bool misses = b.quantity.size() > 7 && b.quantity.ends_with(" misses");
+  const double limit = misses ? o.miss_threshold : o.count_threshold;
+  const double growth = c.base_value > 0  ? c.new_value / c.base_value - 1
+                        : c.new_value > 0 ? INFINITY
+                                          : 0.0;
+  c.test.ratio = 1 + growth;
+  c.verdict = c.new_value == c.base_value ? "equal"
+              : growth > limit            ? "more"
+              : growth < -limit           ? "fewer"
+                                          : "within threshold";
+  const bool moved = c.verdict == "more" || c.verdict == "fewer";
+  if (moved && c.base_value < o.min_count) {
+    c.note = "under --min-count: shown, not gated";
+  } else {
+    c.regression = c.verdict == "more";
+    if (c.verdict == "fewer") c.note = "the baseline is stale: refresh it";
+  }
+  return c;
+}
+
 RowComparison accuracy(const RecordRow& b, const RecordRow& n, const CompareOptions& o) {
   RowComparison c;
   c.base_value = *std::max_element(b.values.begin(), b.values.end());
@@ -149,6 +180,13 @@ RowComparison field(const RecordRow& b, const RecordRow& n, const CompareOptions
   if (!finite) c.note = "NEW holds values that are not finite";
   c.regression = c.verdict == "changed";
   return c;
+}
+
+/// "+3.1%" without the sign: a relative change in percent, to 2 significant digits past 1%.
+std::string fixed_percent(double change) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g%%", 100 * change);
+  return text;
 }
 
 /// Handoff times this many times apart are two placements of the cores (lib/docs/threads.md,
@@ -200,6 +238,30 @@ std::vector<std::string> context_warnings(const RecordSet& base, const RecordSet
   return warnings;
 }
 
+/// Where one side's counts were made otherwise than the other's (another compiler, flags, tool,
+/// simulated caches or processor seen): what differs, once. Their count rows are not compared;
+/// the counters (iterations, the hierarchy's sizes) still are.
+std::string provenance_warning(const RecordSet& base, const RecordSet& contender) {
+  std::map<std::string, const RecordRow*> counted;
+  for (const RecordRow& r : contender.rows)
+    if (r.kind == RowKind::Count) counted.emplace(r.key(), &r);
+  for (const RecordRow& b : base.rows) {
+    const auto it = b.kind == RowKind::Count ? counted.find(b.key()) : counted.end();
+    if (it == counted.end() || it->second->provenance == b.provenance) continue;
+    const nlohmann::json x = nlohmann::json::parse(b.provenance),
+                         y = nlohmann::json::parse(it->second->provenance);
+    std::string what;
+    for (const auto& [key, value] : x.items())
+      if (!y.contains(key) || y[key] != value)
+        what += (what.empty() ? "" : "; ") + key + ": BASE " + value.dump() + ", NEW " +
+                (y.contains(key) ? y[key].dump() : std::string("none"));
+    return "work counts made otherwise (" + what +
+           "): instruction and miss counts are not compared; iterations and the hierarchy's "
+           "sizes still are";
+  }
+  return {};
+}
+
 nlohmann::json first_context(const RecordSet& set) {
   for (const auto& [file, context] : set.contexts)
     if (context.is_object()) return context;
@@ -210,6 +272,13 @@ nlohmann::json first_context(const RecordSet& set) {
 
 bool Comparison::regressed() const {
   return std::any_of(rows.begin(), rows.end(), [](const RowComparison& r) { return r.regression; });
+}
+
+bool Comparison::counts_fell() const {
+  return std::any_of(rows.begin(), rows.end(), [](const RowComparison& r) {
+    return r.kind == RowKind::Count && r.verdict == "fewer" &&
+           r.note.find("not gated") == std::string::npos;
+  });
 }
 
 namespace {
@@ -270,8 +339,58 @@ RowComparison compare_pair(const RecordRow& b, const RecordRow& n, const Compare
       return accuracy(b, n, options);
     case RowKind::Field:
       return field(b, n, options);
+    case RowKind::Count:
+      return work_count(b, n, options);
   }
   throw std::logic_error("compare_pair: unhandled kind");
+}
+
+/// The phase a count row counts ("update/galerkin" of "update/galerkin D1 misses"), and its event.
+std::pair<std::string, std::string> counted_phase(const std::string& quantity) {
+  for (const char* event : {" instructions", " D1 misses", " LL misses"})
+    if (quantity.ends_with(event))
+      return {quantity.substr(0, quantity.size() - std::string(event).size()), event + 1};
+  return {quantity, ""};
+}
+
+/// Where a timed row also has counts of its phase on both sides, whether the timing moved with
+/// the work or without it. A phase's counts include its parts' ("update" holds
+/// "update/galerkin"); a step's are every phase's and what runs between them. Counts are taken at
+/// one thread: at two they are the same work, spread.
+void attribute_timings(std::vector<RowComparison>& rows) {
+  struct Moves {
+    bool counted = false;
+    double largest = 0;  ///< the largest relative move beyond its threshold, signed
+    std::string what;
+  };
+  std::map<std::string, Moves> by_case_phase;  // "case | phase"; "all cases | phase" for any case
+  for (const RowComparison& r : rows) {
+    if (r.kind != RowKind::Count || r.verdict == "not compared" || r.verdict == "missing in new" ||
+        r.verdict == "new row")
+      continue;
+    const auto [phase, event] = counted_phase(r.quantity);
+    const bool top = phase.find('/') == std::string::npos;  // parts are in their phase's counts
+    const bool moved = r.verdict == "more" || r.verdict == "fewer";
+    const double change = r.test.ratio - 1;
+    for (const std::string& key : {r.case_name + " | " + phase, "all cases | " + phase,
+                                   r.case_name + " | step", std::string("all cases | step")}) {
+      if (!top && key.ends_with("| step")) continue;
+      Moves& m = by_case_phase[key];
+      m.counted = true;
+      if (moved && std::abs(change) > std::abs(m.largest)) {
+        m.largest = change;
+        m.what =
+            r.case_name + " " + r.quantity + " " + (change > 0 ? "+" : "") + fixed_percent(change);
+      }
+    }
+  }
+  for (RowComparison& r : rows) {
+    if (r.kind != RowKind::Timed) continue;
+    const auto it = by_case_phase.find(r.case_name + " | " + r.quantity);
+    if (it == by_case_phase.end() || !it->second.counted) continue;
+    r.attribution = it->second.largest != 0 ? "code" : "machine";
+    r.attribution_note = it->second.largest != 0 ? it->second.what : "its counts did not move";
+  }
 }
 
 /// A row only one side has: its verdict and the file it came from.
@@ -326,6 +445,9 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
   for (const auto& [key, n] : new_rows) out.rows.push_back(labelled(unpaired(*n, "new row"), *n));
   strata.append_rows(out.rows, options);
   holm_verdicts(out.rows, options);
+  attribute_timings(out.rows);
+  if (const std::string w = provenance_warning(base, contender); !w.empty())
+    out.warnings.push_back(w);
   if (paired == 0)
     throw InputError(
         "no row of BASE pairs with a row of NEW (different cases, thread counts or "

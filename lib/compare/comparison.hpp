@@ -26,6 +26,13 @@ struct CompareOptions {
   /// by 1e-6 rad move the gate suite's fields by 0.9-3.6e-7 (bench/gate/plant.py), found 10x over.
   double field_tolerance = 1e-8;
   double min_ms = 0.05;  ///< timed rows whose BASE median is shorter are shown, not gated
+  /// A phase's instructions (callgrind or perf counts) are "more" or "fewer" when they move by
+  /// more than this, relative; its D1 and LL misses by more than miss_threshold. Counted twice,
+  /// one binary's counts are equal; what they move by when unrelated code shifts the heap's
+  /// layout sets these (lib/docs/comparing.md, "Counted phases").
+  double count_threshold = 0.005;
+  double miss_threshold = 0.02;
+  double min_count = 20000;  ///< count rows whose BASE is smaller are shown, not gated
 };
 
 struct RowComparison {
@@ -34,7 +41,8 @@ struct RowComparison {
   RowKind kind = RowKind::Timed;
   /// faster, slower, same, inconclusive (too few samples), short (under min_ms); for counters
   /// equal, increased, decreased; for accuracy better, worse, within tolerance; for fields equal,
-  /// within tolerance, changed; missing in new, new row.
+  /// within tolerance, changed; for work counts equal, within threshold, more, fewer, not compared
+  /// (counted otherwise); missing in new, new row.
   std::string verdict;
   bool regression = false;
   double base_value = 0, new_value = 0;  ///< medians (timed), values (counters, accuracy), |du|/|u|
@@ -43,6 +51,11 @@ struct RowComparison {
   double p_adjusted = 1;
   std::string unit_of_sample;  ///< "runs" (medians of >= 3 runs each side) or "steps" (pooled)
   std::string note;
+  /// Timed rows whose case (or, for `all cases`, any case) also has counts of the phase on both
+  /// sides: "code" where the counts moved beyond their threshold, "machine" where none did (the
+  /// timing moved with the same work: placement, noise); empty without counts.
+  std::string attribution;
+  std::string attribution_note;  ///< the largest count change behind it, e.g. "instructions +3.1%"
 };
 
 struct Comparison {
@@ -51,6 +64,8 @@ struct Comparison {
   std::vector<std::string> warnings;  ///< machine, compiler or flags that differ
   nlohmann::json base_context, new_context;
   bool regressed() const;
+  /// Work counts that fell beyond their threshold: the baseline they were compared with is stale.
+  bool counts_fell() const;
 };
 
 /// Pairs the rows by key. Throws InputError where a case of both sides was run on different

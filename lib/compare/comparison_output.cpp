@@ -16,6 +16,14 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
+/// A count as digits in groups of three: 743,384,102.
+std::string count_text(double v) {
+  if (!std::isfinite(v) || v < 0 || v > 9e18) return general_number(v);
+  std::string digits = std::to_string(static_cast<unsigned long long>(std::llround(v)));
+  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(i, ",");
+  return digits;
+}
+
 /// A stratified row spans every thread count: "all".
 std::string threads_text(int threads) {
   return threads > 0 ? std::to_string(threads) : "all";
@@ -75,8 +83,46 @@ const char* kind_name(RowKind kind) {
       return "accuracy";
     case RowKind::Field:
       return "field";
+    case RowKind::Count:
+      return "count";
   }
   return "?";
+}
+
+/// The work counts' table: the rows that moved beyond their threshold (or could not be
+/// compared), and how many did not.
+std::string work_counts_markdown(const Comparison& c) {
+  std::map<std::string, int> quiet;
+  std::ostringstream moved;
+  for (const RowComparison& r : c.rows) {
+    if (r.kind != RowKind::Count) continue;
+    if (r.verdict == "equal" || r.verdict == "within threshold") {
+      ++quiet[r.verdict];
+      continue;
+    }
+    const bool flag =
+        r.regression || (r.verdict == "fewer" && r.note.find("not gated") == std::string::npos);
+    moved << "| " << r.case_name << " | " << r.quantity << " | " << count_text(r.base_value)
+          << " | " << count_text(r.new_value) << " | "
+          << (r.base_value > 0 && std::isfinite(r.test.ratio)
+                  ? (r.test.ratio >= 1 ? "+" : "") + fixed(100 * (r.test.ratio - 1), 2) + "%"
+                  : std::string("-"))
+          << " | " << (flag ? "**" + r.verdict + "**" : r.verdict)
+          << (r.note.empty() ? "" : " (" + r.note + ")") << " |\n";
+  }
+  if (quiet.empty() && moved.str().empty()) return {};
+  const CompareOptions& o = c.options;
+  std::ostringstream md;
+  md << "\nWork counts (more or fewer: instructions moved by more than "
+     << general_number(100 * o.count_threshold) << "%, D1 or LL misses by more than "
+     << general_number(100 * o.miss_threshold) << "%; BASE under " << general_number(o.min_count)
+     << " shown, not gated): " << quiet["equal"] << " equal, " << quiet["within threshold"]
+     << " within threshold";
+  if (moved.str().empty()) return md.str() + ".\n";
+  md << ", and these:\n\n| case | quantity | BASE | NEW | change | verdict |\n"
+     << "|---|---|---|---|---|---|\n"
+     << moved.str();
+  return md.str();
 }
 
 }  // namespace
@@ -95,8 +141,12 @@ std::string comparison_markdown(const Comparison& c, const std::string& base,
   for (const std::string& w : c.warnings) md << "- warning: " << w << "\n";
   if (!c.warnings.empty()) md << "\n";
 
-  md << "| case | threads | quantity | BASE ms | NEW ms | NEW/BASE | interval | p | p (Holm) | "
-        "samples | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  const bool timed_rows = std::any_of(c.rows.begin(), c.rows.end(), [](const RowComparison& r) {
+    return r.kind == RowKind::Timed && r.verdict != "missing in new" && r.verdict != "new row";
+  });
+  if (timed_rows)
+    md << "| case | threads | quantity | BASE ms | NEW ms | NEW/BASE | interval | p | p (Holm) | "
+          "samples | verdict |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const RowComparison& r : c.rows) {
     if (r.kind != RowKind::Timed || r.verdict == "missing in new" || r.verdict == "new row")
       continue;
@@ -107,11 +157,15 @@ std::string comparison_markdown(const Comparison& c, const std::string& base,
        << fixed(r.test.ratio_high, 3) << " | " << general_number(r.test.p_value) << " | "
        << general_number(r.p_adjusted) << " | " << r.test.base_count << "/" << r.test.new_count
        << " " << r.unit_of_sample << " | " << (flag ? "**" + r.verdict + "**" : r.verdict)
-       << (r.note.empty() ? "" : " (" + r.note + ")") << " |\n";
+       << (r.note.empty() ? "" : " (" + r.note + ")")
+       << (r.attribution.empty() ? "" : "; the " + r.attribution + "'s: " + r.attribution_note)
+       << " |\n";
   }
+  md << work_counts_markdown(c);
   int equal_counters = 0;
   std::ostringstream changed;
   for (const RowComparison& r : c.rows) {
+    if (r.kind == RowKind::Count) continue;
     if (r.kind == RowKind::Counter && r.verdict == "equal") {
       ++equal_counters;
     } else if (r.kind != RowKind::Timed || r.verdict == "missing in new" ||
@@ -153,7 +207,10 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
                      {"samples", {r.test.base_count, r.test.new_count}},
                      {"unit_of_sample", r.unit_of_sample}};
     if (!std::isfinite(r.new_value)) row["new"] = nullptr;
+    if (r.kind == RowKind::Count && std::isfinite(r.test.ratio)) row["ratio"] = r.test.ratio;
     if (!r.note.empty()) row["note"] = r.note;
+    if (!r.attribution.empty())
+      row["attribution"] = {{"to", r.attribution}, {"because", r.attribution_note}};
     rows.push_back(std::move(row));
   }
   nlohmann::json counts = nlohmann::json::object();
@@ -170,10 +227,14 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
             {"accuracy_floor", o.accuracy_floor},
             {"field_tolerance", o.field_tolerance},
             {"min_ms", o.min_ms},
+            {"count_threshold", o.count_threshold},
+            {"miss_threshold", o.miss_threshold},
+            {"min_count", o.min_count},
             {"test",
              "Mann-Whitney U (two-sided) on log times, p adjusted over the gated rows (Holm); "
              "Hodges-Lehmann ratio and its distribution-free interval"}}},
           {"regression", c.regressed()},
+          {"counts_fell", c.counts_fell()},
           {"verdicts", counts},
           {"warnings", c.warnings},
           {"rows", rows}};

@@ -48,6 +48,18 @@ class RowSink {
     if (!v.is_number()) throw InputError(file_ + ": " + row + ": " + quantity + " is not a number");
     row_for(case_name, scene, threads, quantity, kind, row).values.push_back(v.get<double>());
   }
+  void count(const std::string& case_name, const std::string& scene, int threads,
+             const std::string& quantity, const json& v, const std::string& provenance,
+             const std::string& row) {
+    if (!v.is_number_unsigned() && !v.is_number_integer())
+      throw InputError(file_ + ": " + row + ": " + quantity + " is not a count");
+    RecordRow& r = row_for(case_name, scene, threads, quantity, RowKind::Count, row);
+    if (!r.values.empty() && r.provenance != provenance)
+      throw InputError(file_ + ": " + row + ": " + quantity + " was counted otherwise than in " +
+                       r.source + " (the repetitions of one case must be counted alike)");
+    r.provenance = provenance;
+    r.values.push_back(v.get<double>());
+  }
   void field(const std::string& case_name, const std::string& scene, int threads,
              const std::string& quantity, std::vector<double> values, const std::string& row) {
     RecordRow& r = row_for(case_name, scene, threads, quantity, RowKind::Field, row);
@@ -91,17 +103,28 @@ std::vector<double> numbers(const json& array, const std::string& what) {
   return out;
 }
 
-/// `corofem run`: per-step phase times (dynamic), whole-run times, counters, the final field.
-void run_rows(const json& r, const std::string& file, RowSink& sink) {
-  if (!r.contains("scene") || !r.contains("timings_ms"))
-    throw InputError(file + ": a corofem run record without scene or timings_ms");
-  // The scene file's name, not its path: records made in two checkouts pair (the digest still
-  // refuses two different scenes of one name).
-  const std::string name =
-      "run " +
-      std::filesystem::path(r.value("scene_file", std::string("scene"))).filename().string();
-  const std::string scene = digest(r["scene"]);
-  const int threads = threads_of(r);
+/// A run record's counters (iterations, steps, the hierarchy's sizes) and its static residual.
+void run_counter_rows(const json& r, const std::string& name, const std::string& scene, int threads,
+                      RowSink& sink) {
+  for (const char* counter : {"linear_iterations", "iterations", "steps", "inverted_max"})
+    if (r.contains(counter))
+      sink.value(name, scene, threads, counter, RowKind::Counter, r[counter], counter);
+  // The hierarchy's size: vertices and nonzero 3x3 blocks per level.
+  if (r.contains("multigrid") && r["multigrid"].is_object())
+    for (const json& level : r["multigrid"].value("levels", json::array()))
+      for (const char* what : {"vertices", "blocks"})
+        if (level.contains(what))
+          sink.value(name, scene, threads,
+                     "level " + std::to_string(level.value("level", 0)) + " " + what,
+                     RowKind::Counter, level[what], "multigrid.levels");
+  if (r.value("analysis", json::object()).value("type", "") == "static" && r.contains("residual"))
+    sink.value(name, scene, threads, "equilibrium residual", RowKind::Accuracy, r["residual"],
+               "residual");
+}
+
+/// A run record's times: per step and phase (dynamic), and the whole run's set-up and total.
+void run_time_rows(const json& r, const std::string& file, const std::string& name,
+                   const std::string& scene, int threads, RowSink& sink) {
   if (r.contains("step_samples_ms")) {
     for (const auto& [phase, samples] : r["step_samples_ms"].items())
       sink.timed(name, scene, threads, phase, numbers(samples, file + ": step_samples_ms." + phase),
@@ -119,20 +142,55 @@ void run_rows(const json& r, const std::string& file, RowSink& sink) {
     if (r["timings_ms"].contains(total))
       sink.timed(name, scene, threads, std::string("run ") + total,
                  {r["timings_ms"][total].get<double>()}, "timings_ms");
-  for (const char* counter : {"linear_iterations", "iterations", "steps", "inverted_max"})
-    if (r.contains(counter))
-      sink.value(name, scene, threads, counter, RowKind::Counter, r[counter], counter);
-  // The hierarchy's size: vertices and nonzero 3x3 blocks per level.
-  if (r.contains("multigrid") && r["multigrid"].is_object())
-    for (const json& level : r["multigrid"].value("levels", json::array()))
-      for (const char* what : {"vertices", "blocks"})
-        if (level.contains(what))
-          sink.value(name, scene, threads,
-                     "level " + std::to_string(level.value("level", 0)) + " " + what,
-                     RowKind::Counter, level[what], "multigrid.levels");
-  if (r.value("analysis", json::object()).value("type", "") == "static" && r.contains("residual"))
-    sink.value(name, scene, threads, "equilibrium residual", RowKind::Accuracy, r["residual"],
-               "residual");
+}
+
+/// What made a record's phase counts, as canonical JSON (RecordRow::provenance).
+std::string count_provenance(const json& r, const json& counts) {
+  json p = json::object();
+  for (const char* key : {"source", "tool", "events", "simulated_caches", "processor_seen"})
+    p[key] = counts.value(key, json());
+  const json& context = r.value("context", json::object());
+  for (const char* key : {"compiler", "flags", "build_type", "block_kernels"})
+    p[key] = context.is_object() ? context.value(key, json()) : json();
+  return p.dump();
+}
+
+/// A counted run's `phase_counts`: each section's instructions and misses, and the stretches
+/// between the sections.
+void phase_count_rows(const json& r, const json& counts, const std::string& name,
+                      const std::string& scene, RowSink& sink) {
+  const std::string provenance = count_provenance(r, counts);
+  const int threads = counts.value("threads", 1);
+  static const std::pair<const char*, const char*> kEvents[] = {
+      {"instructions", "instructions"}, {"d1_misses", "D1 misses"}, {"ll_misses", "LL misses"}};
+  const auto add = [&](const std::string& section, const json& c, const std::string& row) {
+    for (const auto& [key, label] : kEvents)
+      if (c.contains(key))
+        sink.count(name, scene, threads, section + " " + label, c[key], provenance, row);
+  };
+  for (const auto& [section, c] : counts["sections"].items())
+    add(section, c, "phase_counts.sections." + section);
+  if (counts.contains("outside")) add("between phases", counts["outside"], "phase_counts.outside");
+}
+
+/// `corofem run`: per-step phase times (dynamic), whole-run times, counters, phase counts, the
+/// final field. A run counted under callgrind gives no timed rows: its times are valgrind's.
+void run_rows(const json& r, const std::string& file, RowSink& sink) {
+  if (!r.contains("scene") || !r.contains("timings_ms"))
+    throw InputError(file + ": a corofem run record without scene or timings_ms");
+  // The scene file's name, not its path: records made in two checkouts pair (the digest still
+  // refuses two different scenes of one name).
+  const std::string name =
+      "run " +
+      std::filesystem::path(r.value("scene_file", std::string("scene"))).filename().string();
+  const std::string scene = digest(r["scene"]);
+  const int threads = threads_of(r);
+  const json counts = r.value("phase_counts", json());
+  const bool counted = counts.is_object() && counts.value("sections", json()).is_object();
+  if (counted) phase_count_rows(r, counts, name, scene, sink);
+  if (!counted || counts.value("source", std::string()) != "callgrind")
+    run_time_rows(r, file, name, scene, threads, sink);
+  run_counter_rows(r, name, scene, threads, sink);
   if (r.contains("displacement") && r["displacement"].is_array()) {
     std::vector<double> u;
     for (const json& v : r["displacement"])

@@ -16,6 +16,7 @@ enum class RowKind {
   Counter,   ///< a cost that does not wobble (iterations, bytes, flops, nonzeros, cache misses)
   Accuracy,  ///< an error against an oracle or a residual: smaller is better
   Field,     ///< the final displacements, compared between the two sides
+  Count,     ///< a phase's instructions or cache misses (core/section_counter.hpp): a threshold
 };
 
 /// One quantity of one case, e.g. the solve phase of Table 1's bunny at 2 threads.
@@ -29,6 +30,10 @@ struct RecordRow {
   std::vector<double> values;             ///< Counter, Accuracy: per run
   std::vector<double> field;              ///< Field: the first run's values
   std::string source;                     ///< file and row, for messages
+  /// Count: what counted and what it counted (source, tool, simulated caches, the processor the
+  /// code saw, compiler, flags, block kernels), as canonical JSON: counts compare only with
+  /// counts made alike.
+  std::string provenance;
 
   /// What pairs it: case, threads and quantity.
   std::string key() const;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/section_observer.hpp"
 #include "element/element_stiffness.hpp"
 
 namespace corofem {
@@ -38,10 +39,12 @@ struct SimulationResult {
   std::string message;                       ///< why it did not converge, if it did not
 };
 
-/// Accumulates wall time per phase into SimulationResult::timings_ms.
+/// Accumulates wall time per phase into SimulationResult::timings_ms, and marks each phase as a
+/// section for `sections` (counted runs: core/section_counter.hpp).
 class PhaseClock {
  public:
-  explicit PhaseClock(std::map<std::string, double>& totals) : totals_(totals) {}
+  explicit PhaseClock(std::map<std::string, double>& totals, SectionObserver* sections = nullptr)
+      : totals_(totals), sections_(sections) {}
   template <class F>
   auto time(const std::string& phase, F&& f) {
     const auto start = std::chrono::steady_clock::now();
@@ -55,11 +58,12 @@ class PhaseClock {
                 .count();
       }
     } add{totals_, phase, start};
-    return f();
+    return in_section(sections_, phase, std::forward<F>(f));
   }
 
  private:
   std::map<std::string, double>& totals_;
+  SectionObserver* sections_;
 };
 
 }  // namespace corofem

@@ -328,7 +328,7 @@ SimulationResult solve_dynamic(FeProblem& problem, RotationExtractor& extractor,
                                LinearSolver& solver, const DynamicOptions& options,
                                const std::function<void(const StepState&)>& on_step) {
   SimulationResult result;
-  PhaseClock clock(result.timings_ms);
+  PhaseClock clock(result.timings_ms, options.sections);
   IdentityExtractor small_strain;
   RotationExtractor& rotate = options.corotational ? extractor : small_strain;
   const int n = problem.num_dofs();

@@ -52,6 +52,8 @@ struct DynamicOptions {
   /// Linearly implicit only: the problem is this rank's part of a distributed mesh; the inverted
   /// count and the final residual are the whole body's (the solver distributed to match).
   RankView ranks{};
+  /// Marks each step's phases (rotate, assemble, update, solve, ...) as sections for it.
+  SectionObserver* sections = nullptr;
 };
 
 /// State after each step, for records that follow a run (flutter, energy, VTU frames, timings).

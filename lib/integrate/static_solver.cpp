@@ -167,7 +167,7 @@ std::string static_failure_message(IncrementEnd end, const StaticIteration& at,
 SimulationResult solve_static(FeProblem& problem, RotationExtractor& extractor,
                               LinearSolver& solver, const StaticOptions& options) {
   SimulationResult result;
-  PhaseClock clock(result.timings_ms);
+  PhaseClock clock(result.timings_ms, options.sections);
   IdentityExtractor small_strain;
   RotationExtractor& rotate = options.corotational ? extractor : small_strain;
   Eigen::VectorXd& u = result.displacement;

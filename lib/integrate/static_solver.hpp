@@ -54,6 +54,8 @@ struct StaticOptions {
   std::function<void(const StaticIteration&)> on_iteration{};
   /// Newton, TangentSolve::Factored: the Cholesky factorizations of its tangent (SparseLuSolve).
   Factorization factorization = Factorization::Supernodal;
+  /// Marks each iteration's phases as sections for it.
+  SectionObserver* sections = nullptr;
 };
 
 /// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).

@@ -11,6 +11,7 @@
 namespace corofem {
 
 class MultigridSolver;
+class SectionObserver;
 struct SolverChoice;
 
 struct SolveStats {
@@ -48,6 +49,10 @@ class LinearSolver {
   /// What a solver that chooses among others (linalg/solver_choice.hpp) measured and kept; null
   /// for every other solver.
   virtual const SolverChoice* choice() const { return nullptr; }
+  /// Marks the solver's parts (a multigrid's Galerkin products, smoothers, coarsest level, its
+  /// cycle's levels) as sections for `sections` (kept; null stops the marks). A solver without
+  /// parts marks none: its work counts in the phase that called it.
+  virtual void mark_sections(SectionObserver* /*sections*/) {}
 };
 
 /// CHOLMOD: symbolic analysis at the first matrix, numeric refactorization at every later one.

@@ -2,6 +2,7 @@
 // What a solver marks while it runs, for an observer a timed run attaches (in the manner of
 // PETSc's log events or Ginkgo's loggers): the numerical classes keep no clocks' totals, no
 // counts and no logs, and without an observer their cycles read no clock.
+#include "core/name_table.hpp"
 #include "linalg/linear_solver.hpp"
 
 namespace corofem {
@@ -19,6 +20,22 @@ enum class SolverPart {
   CoarseLevels,     ///< solve: all of the above on the levels between
   CoarsestSolve,    ///< solve: the coarsest level's triangular solves
 };
+
+/// Each part's name as a section (core/section_observer.hpp) and in the records: the update's
+/// and the solve's parts are keyed apart by the phase they run in ("update/coarsest" is the
+/// factorization, "solve/coarsest" its triangular solves).
+inline constexpr NameTable<SolverPart, 10> kSolverParts{{{
+    {SolverPart::Transfers, "transfers"},
+    {SolverPart::GalerkinStreams, "galerkin_streams"},
+    {SolverPart::Galerkin, "galerkin"},
+    {SolverPart::Smoothers, "smoothers"},
+    {SolverPart::Coarsest, "coarsest"},
+    {SolverPart::FineSmooth, "fine_smooth"},
+    {SolverPart::FineResidual, "fine_residual"},
+    {SolverPart::FineTransfer, "fine_transfer"},
+    {SolverPart::CoarseLevels, "coarse_levels"},
+    {SolverPart::CoarsestSolve, "coarsest"},
+}}};
 
 /// Counted, not timed.
 enum class SolverEvent {

@@ -28,8 +28,10 @@ double wall_ms(const F& f) {
 
 template <class F>
 void MultigridSolver::timed(SolverPart part, const F& f) {
-  if (!observer_) return f();
-  observer_->on_part(part, wall_ms(f));
+  in_section(sections_, kSolverParts.name(part), [&] {
+    if (!observer_) return f();
+    observer_->on_part(part, wall_ms(f));
+  });
 }
 
 struct MultigridSolver::Coarsest {
@@ -86,7 +88,10 @@ void MultigridSolver::update_levels() {
   // (run_overlapped_pcg). The first update, which analyses the pattern, runs in full here, and so
   // does one that keeps the coarsest factor (the smoothers' set-up then has both threads).
   ++updates_;
-  check_ms_ = wall_ms([&] { refactor_pending_ = coarsest_moved(); });
+  check_ms_ = wall_ms([&] {
+    in_section(sections_, kSolverParts.name(SolverPart::Coarsest),
+               [&] { refactor_pending_ = coarsest_moved(); });
+  });
   update_pending_ = true;
   if (!(defers_update() && refactor_pending_ && coarsest_->converter)) complete_update();
 }
@@ -127,17 +132,26 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
   // once (`beside` calls it).
   const int last = hierarchy_.num_levels() - 1;
   double smoothers_ms = 0, coarsest_ms = 0;
+  // Side by side, the parts run on two threads at once: no sections then (counted runs take one
+  // thread, where they run one after the other).
+  const bool side_by_side = overlaps_update() && refactor_pending_;
+  SectionObserver* sections = side_by_side ? nullptr : sections_;
   auto set_up_smoothers = [&] {
-    for (int h = 0; h < last; ++h) smoothers_[h]->set_matrix(hierarchy_.matrix(h));
+    in_section(sections, kSolverParts.name(SolverPart::Smoothers), [&] {
+      for (int h = 0; h < last; ++h) smoothers_[h]->set_matrix(hierarchy_.matrix(h));
+    });
   };
   auto factorize = [&] {
-    if (refactor_pending_) coarsest_ms = wall_ms([&] { update_coarsest(); });
+    if (refactor_pending_)
+      coarsest_ms = wall_ms([&] {
+        in_section(sections, kSolverParts.name(SolverPart::Coarsest), [&] { update_coarsest(); });
+      });
   };
   auto rest = [&] {
     smoothers_ms = wall_ms(set_up_smoothers);
     if (beside) beside();
   };
-  if (overlaps_update() && refactor_pending_) {
+  if (side_by_side) {
     run_side_by_side(factorize, rest);
   } else {  // the same operations, one after the other: the same bits
     factorize();

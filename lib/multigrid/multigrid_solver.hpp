@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/section_observer.hpp"
 #include "linalg/linear_solver.hpp"
 #include "linalg/smoother.hpp"
 #include "linalg/solver_observer.hpp"
@@ -64,6 +65,7 @@ class MultigridSolver : public LinearSolver {
   void take_matrix(BrcMatrix& a) override;  ///< the fine values swapped in, not copied
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
   const MultigridSolver* multigrid() const override { return this; }
+  void mark_sections(SectionObserver* sections) override { sections_ = sections; }
 
   /// One V-cycle from level h for A_h x = b, x the initial guess on entry; `zero_guess`: x starts
   /// at 0 whatever it holds (a correction: every coarse level, and the preconditioner), so the
@@ -124,7 +126,7 @@ class MultigridSolver : public LinearSolver {
   void ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   /// The rest of a V-cycle from level 0 whose descent has run: the coarsest solve, the ascents.
   void finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x);
-  /// Runs f; with an observer, tells it f's wall time as `part`.
+  /// Runs f as the section `part`; with an observer, tells it f's wall time.
   template <class F>
   void timed(SolverPart part, const F& f);
   MultigridParams params_;
@@ -135,6 +137,7 @@ class MultigridSolver : public LinearSolver {
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
   SolverObserver* observer_;
+  SectionObserver* sections_ = nullptr;
   bool update_pending_ = false;
   bool refactor_pending_ = false;  ///< the pending update factorizes the coarsest level
   double check_ms_ = 0;            ///< coarsest_moved's time in the pending update

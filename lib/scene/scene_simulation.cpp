@@ -170,6 +170,12 @@ TangentSolve SceneSimulation::tangent_solve() const {
   return is_petsc_solver(a.solver) ? TangentSolve::BySolver : TangentSolve::PreconditionedBySolver;
 }
 
+void SceneSimulation::mark_sections(SectionObserver* sections) {
+  sections_ = sections;
+  if (dynamic_) dynamic_->sections = sections;
+  solver_->mark_sections(sections);
+}
+
 SimulationResult SceneSimulation::run(
     const std::function<void(const StepState&)>& on_step,
     const std::function<void(const StaticIteration&)>& on_iteration) {
@@ -180,7 +186,7 @@ SimulationResult SceneSimulation::run(
                : solve_static(problem_, *extractor_, *solver_,
                               {corotational(), a.load_steps, a.tolerance, a.max_iterations,
                                a.integrator == Integrator::Newton, ranks_, tangent_solve(),
-                               on_iteration, a.factorization});
+                               on_iteration, a.factorization, sections_});
   result.timings_ms["setup"] = setup_ms_;
   result.timings_ms["total"] = setup_ms_ + ms_since(start);
   return result;

@@ -62,6 +62,10 @@ class SceneSimulation {
     if (dynamic_) dynamic_->keep_stiffness = true;
   }
 
+  /// Marks the run's phases and the solver's parts as sections for `sections` (kept; counted
+  /// runs: core/section_counter.hpp).
+  void mark_sections(SectionObserver* sections);
+
   /// Static or dynamic, as the scene says; `on_step` follows every dynamic step, `on_iteration`
   /// every static iteration. Phase times include "setup" (building) and "total".
   SimulationResult run(const std::function<void(const StepState&)>& on_step = {},
@@ -87,6 +91,7 @@ class SceneSimulation {
   /// multigrid_summary reads it. Held by pointer, so that it stays where the solver points.
   std::unique_ptr<MultigridLog> solver_log_ = std::make_unique<MultigridLog>();
   std::unique_ptr<LinearSolver> solver_;
+  SectionObserver* sections_ = nullptr;
   double setup_ms_ = 0;
   double coarse_meshing_ms_ = 0;
 };
