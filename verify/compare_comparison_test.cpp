@@ -269,6 +269,131 @@ TEST(Compare, RefusesToPairACaseRunOnDifferentScenes) {
                InputError);
 }
 
+/// A callgrind-counted run record (bench/count_phases.py's): each phase's counts, no field, and
+/// valgrind's times, which compare must not read.
+json counted_record(double solve_instructions, double assemble_d1, double rotate_ll = 5e5,
+                    const std::string& compiler = "GNU 12.2.0") {
+  json r;
+  r["producer"] = "corofem run";
+  r["context"] = {{"commit", "abc"},
+                  {"cpu", "AMD EPYC"},
+                  {"compiler", compiler},
+                  {"flags", "-O3"},
+                  {"threads_used", 1},
+                  {"build_type", "Release"},
+                  {"block_kernels", "avx2-fma"}};
+  r["scene"] = {{"material", {{"young", 1e5}}}, {"analysis", {{"type", "dynamic"}}}};
+  r["scene_file"] = "bar.json";
+  r["analysis"] = {{"type", "dynamic"}};
+  r["timings_ms"] = {{"setup", 5000.0}, {"total", 90000.0}, {"solve", 40000.0}};
+  r["linear_iterations"] = 100;
+  r["steps"] = 20;
+  const auto counts = [](double i, double d1, double ll) {
+    return json{{"instructions", i}, {"d1_misses", d1}, {"ll_misses", ll}};
+  };
+  r["phase_counts"] = {{"source", "callgrind"},
+                       {"tool", "callgrind-3.19.0"},
+                       {"processor_seen", "Intel(R) Core(TM) i7-4910MQ CPU @ 2.90GHz"},
+                       {"simulated_caches", {{"D1", "32768 B, 64 B, 8-way associative"}}},
+                       {"events", {{"instructions", "Ir"}}},
+                       {"threads", 1},
+                       {"sections",
+                        {{"solve", counts(solve_instructions, 4e6, 1e5)},
+                         {"solve/fine_smooth", counts(0.6 * solve_instructions, 3e6, 5e4)},
+                         {"assemble", counts(3e8, assemble_d1, 2e5)},
+                         {"rotate", counts(2e8, 1e6, rotate_ll)},
+                         {"checks", counts(1e5, 3000, 10)}}},
+                       {"outside", counts(1e6, 5e4, 1e3)}};
+  return r;
+}
+
+TEST(Compare, WorkCountsBeyondTheirThresholdsAreFoundAndAStaleBaselineSaid) {
+  const RecordSet base = runs_of({counted_record(1e9, 2e6)});
+  // Equal: no regression, and valgrind's times give no timed row.
+  const Comparison same = compare_records(base, runs_of({counted_record(1e9, 2e6)}), {});
+  EXPECT_FALSE(same.regressed());
+  EXPECT_FALSE(same.counts_fell());
+  for (const RowComparison& r : same.rows) EXPECT_NE(r.kind, RowKind::Timed) << r.quantity;
+  EXPECT_EQ(row(same, "solve instructions").verdict, "equal");
+  // 1% more instructions in the solve (the default threshold 0.5%): more, a regression, and the
+  // part that did not move stays within its threshold.
+  const Comparison more = compare_records(base, runs_of({counted_record(1.01e9, 2e6)}), {});
+  EXPECT_EQ(row(more, "solve instructions").verdict, "more");
+  EXPECT_TRUE(more.regressed());
+  EXPECT_EQ(row(more, "assemble instructions").verdict, "equal");
+  // 0.3% more: within the threshold (the layout noise an unrelated change brings).
+  const Comparison within = compare_records(base, runs_of({counted_record(1.003e9, 2e6)}), {});
+  EXPECT_EQ(row(within, "solve instructions").verdict, "within threshold");
+  EXPECT_FALSE(within.regressed());
+  // --count-threshold tightens it.
+  CompareOptions tight;
+  tight.count_threshold = 0.002;
+  EXPECT_EQ(row(compare_records(base, runs_of({counted_record(1.003e9, 2e6)}), tight),
+                "solve instructions")
+                .verdict,
+            "more");
+  // Misses have their own threshold (2%): 1.5% more is within it, 3% more is more.
+  EXPECT_EQ(
+      row(compare_records(base, runs_of({counted_record(1e9, 2.03e6)}), {}), "assemble D1 misses")
+          .verdict,
+      "within threshold");
+  EXPECT_EQ(
+      row(compare_records(base, runs_of({counted_record(1e9, 2.06e6)}), {}), "assemble D1 misses")
+          .verdict,
+      "more");
+  // 10% fewer misses: an improvement, and the baseline is stale.
+  const Comparison fewer = compare_records(base, runs_of({counted_record(1e9, 1.8e6)}), {});
+  EXPECT_EQ(row(fewer, "assemble D1 misses").verdict, "fewer");
+  EXPECT_FALSE(fewer.regressed());
+  EXPECT_TRUE(fewer.counts_fell());
+  // A row whose BASE is under --min-count (checks: 3,000 D1 misses) is shown, not gated.
+  json tiny = counted_record(1e9, 2e6);
+  tiny["phase_counts"]["sections"]["checks"]["d1_misses"] = 6000;
+  const Comparison small = compare_records(base, runs_of({tiny}), {});
+  EXPECT_EQ(row(small, "checks D1 misses").verdict, "more");
+  EXPECT_FALSE(small.regressed());
+  EXPECT_NE(row(small, "checks D1 misses").note.find("not gated"), std::string::npos);
+}
+
+TEST(Compare, CountsMadeByAnotherCompilerAreNotComparedAndTheCountersStillAre) {
+  json other = counted_record(2e9, 4e6, 5e5, "GNU 13.1.0");
+  other["linear_iterations"] = 120;
+  const Comparison c =
+      compare_records(runs_of({counted_record(1e9, 2e6)}), runs_of({other}), CompareOptions{});
+  EXPECT_EQ(row(c, "solve instructions").verdict, "not compared");
+  EXPECT_EQ(row(c, "linear_iterations").verdict, "increased");  // still paired, exactly
+  bool warned = false;
+  for (const std::string& w : c.warnings)
+    warned |= w.find("compiler: BASE \"GNU 12.2.0\", NEW \"GNU 13.1.0\"") != std::string::npos;
+  EXPECT_TRUE(warned) << (c.warnings.empty() ? "no warning" : c.warnings.front());
+}
+
+TEST(Compare, ATimingIsTheCodesWhereItsCountsMovedAndTheMachinesWhereTheyDidNot) {
+  // Timings of 8 runs a side (2 threads) with the solve 20% slower, and the case's counts beside
+  // them (1 thread): once with the solve's instructions equal, once 10% more.
+  std::mt19937 rng(23);
+  std::vector<json> base, slow;
+  for (int k = 0; k < 8; ++k) {
+    base.push_back(run_record(rng, 2.0, 5.0));
+    slow.push_back(run_record(rng, 2.4, 5.4));
+  }
+  std::vector<json> base_counted = base, machine = slow, code = slow;
+  base_counted.push_back(counted_record(1e9, 2e6));
+  machine.push_back(counted_record(1e9, 2e6));
+  code.push_back(counted_record(1.1e9, 2e6));
+  const Comparison by_machine = compare_records(runs_of(base_counted), runs_of(machine), {});
+  const Comparison by_code = compare_records(runs_of(base_counted), runs_of(code), {});
+  EXPECT_EQ(row(by_machine, "solve").verdict, "slower");
+  EXPECT_EQ(row(by_machine, "solve").attribution, "machine");
+  EXPECT_EQ(row(by_code, "solve").attribution, "code");
+  EXPECT_NE(row(by_code, "solve").attribution_note.find("solve instructions +10%"),
+            std::string::npos)
+      << row(by_code, "solve").attribution_note;
+  // The step holds every phase: its counts moved with the solve's.
+  EXPECT_EQ(row(by_code, "step").attribution, "code");
+  EXPECT_EQ(row(by_machine, "step").attribution, "machine");
+}
+
 TEST(Compare, CliExitCodesAndOutputs) {
   test::TempDir dir;
   std::mt19937 rng(19);

@@ -105,10 +105,14 @@ void expect_mesh_refused(const fs::path& file, const std::string& fragment) {
 }
 
 CliResult run_cli(const std::string& args, const std::string& launcher) {
+  return run_command(without_mpi_singleton() + launcher + (launcher.empty() ? "" : " ") + "'" +
+                     COROFEM_CLI + "' " + args);
+}
+
+CliResult run_command(const std::string& shell_command) {
   TempDir dir;
-  const std::string command = without_mpi_singleton() + launcher + (launcher.empty() ? "" : " ") +
-                              "'" + COROFEM_CLI + "' " + args + " > '" + (dir / "out").string() +
-                              "' 2> '" + (dir / "err").string() + "'";
+  const std::string command =
+      shell_command + " > '" + (dir / "out").string() + "' 2> '" + (dir / "err").string() + "'";
   const int status = std::system(command.c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

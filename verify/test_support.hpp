@@ -53,6 +53,8 @@ struct CliResult {
 /// Runs the corofem binary with `args` (a shell-quoted string), behind `launcher` if given
 /// ("mpirun -np 2").
 CliResult run_cli(const std::string& args, const std::string& launcher = "");
+/// Runs a shell command line, its stdout and stderr captured.
+CliResult run_command(const std::string& shell_command);
 
 /// "mpirun -np N". Open MPI refuses root without two variables (CI runs as root) and machines
 /// with fewer cores than ranks without oversubscription; all three are set for the launched

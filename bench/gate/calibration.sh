@@ -13,7 +13,7 @@ ci/build release corofem >/dev/null  # the comparing binary
 pool() {  # NAME RUNS [PATCH]
   local name=$1 runs=$2 patch=${3:-}
   echo "calibration: $name ($runs runs a side)" >&2
-  ci/bench-gate "$ref" "$ref" --runs "$runs" --out "$out/$name" ${patch:+--patch "$patch"} \
+  ci/bench-gate "$ref" "$ref" --runs "$runs" --no-counts --out "$out/$name" ${patch:+--patch "$patch"} \
     >"$out/$name.md" 2>"$out/$name.log" || (($? == 1))
 }
 trials() {  # NAME [PHASE]: gates of 10 runs and of 15 (bench-gate's default)

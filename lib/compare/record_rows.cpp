@@ -51,7 +51,7 @@ class RowSink {
   void count(const std::string& case_name, const std::string& scene, int threads,
              const std::string& quantity, const json& v, const std::string& provenance,
              const std::string& row) {
-    if (!v.is_number_unsigned() && !v.is_number_integer())
+    if (!v.is_number() || !(v.get<double>() >= 0))
       throw InputError(file_ + ": " + row + ": " + quantity + " is not a count");
     RecordRow& r = row_for(case_name, scene, threads, quantity, RowKind::Count, row);
     if (!r.values.empty() && r.provenance != provenance)

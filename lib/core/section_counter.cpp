@@ -63,10 +63,15 @@ SectionCounter::~SectionCounter() {
 std::unique_ptr<SectionCounter> SectionCounter::start(CountSource source, std::string& why_not,
                                                       const std::string& callgrind_file) {
   std::unique_ptr<SectionCounter> counter(new SectionCounter(source));
+  if (source == CountSource::Reader) {
+    why_not = "a reader's counts start with SectionCounter::reading";
+    return nullptr;
+  }
   if (source == CountSource::Perf) {
     counter->perf_ = PerfCounters::open(why_not);
     if (!counter->perf_) return nullptr;
-    counter->last_ = counter->perf_->read();
+    counter->read_ = [perf = &*counter->perf_] { return perf->read(); };
+    counter->last_ = counter->read_();
     return counter;
   }
 #if COROFEM_HAVE_CALLGRIND
@@ -88,6 +93,15 @@ std::unique_ptr<SectionCounter> SectionCounter::start(CountSource source, std::s
 #endif
 }
 
+std::unique_ptr<SectionCounter> SectionCounter::reading(std::function<WorkCounts()> read,
+                                                        std::string tool) {
+  std::unique_ptr<SectionCounter> counter(new SectionCounter(CountSource::Reader));
+  counter->read_ = std::move(read);
+  counter->tool_ = std::move(tool);
+  counter->last_ = counter->read_();
+  return counter;
+}
+
 int SectionCounter::path_index() {
   const auto [it, added] = path_indices_.try_emplace(path_, static_cast<int>(paths_.size()));
   if (added) paths_.push_back(path_);
@@ -98,8 +112,8 @@ void SectionCounter::mark() {
   // Little work, and the same at every mark: it counts in the stretch it closes.
   ++marks_;
   const int index = path_index();
-  if (source_ == CountSource::Perf) {
-    const WorkCounts now = perf_->read();
+  if (read_) {
+    const WorkCounts now = read_();
     exclusive_[paths_[index]] += now - last_;
     last_ = now;
     return;
@@ -187,6 +201,8 @@ void SectionCounter::read_callgrind_output() {
 }
 
 std::map<std::string, std::string> SectionCounter::event_definitions() const {
+  if (source_ == CountSource::Reader)
+    return {{"instructions", tool_}, {"d1_misses", tool_}, {"ll_misses", tool_}};
   if (source_ == CountSource::Perf)
     return {{"instructions", "instructions (user space)"},
             {"d1_misses", "L1-dcache-load-misses"},

@@ -15,6 +15,7 @@
 //     valgrind --tool=callgrind --instr-atstart=no --combine-dumps=yes --cache-sim=yes
 //   (bench/count_phases.py does): counting starts with start(), not with the process, so the
 //   set-up's meshing does not pay for the cache simulation.
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,9 +29,11 @@
 
 namespace corofem {
 
-enum class CountSource { Perf, Callgrind };
-inline constexpr NameTable<CountSource, 2> kCountSources{
-    {{{CountSource::Perf, "perf"}, {CountSource::Callgrind, "callgrind"}}}};
+/// Reader: counts a caller reads itself (SectionCounter::reading: counters of one's own, tests).
+enum class CountSource { Perf, Callgrind, Reader };
+inline constexpr NameTable<CountSource, 3> kCountSources{{{{CountSource::Perf, "perf"},
+                                                           {CountSource::Callgrind, "callgrind"},
+                                                           {CountSource::Reader, "reader"}}}};
 
 class SectionCounter : public SectionObserver {
  public:
@@ -39,6 +42,10 @@ class SectionCounter : public SectionObserver {
   /// valgrind (--callgrind-out-file); empty for its default, callgrind.out.<pid>.
   static std::unique_ptr<SectionCounter> start(CountSource source, std::string& why_not,
                                                const std::string& callgrind_file = {});
+  /// Counts read in-process from `read` at each mark (the counts since any fixed start); `tool`
+  /// names it in the record.
+  static std::unique_ptr<SectionCounter> reading(std::function<WorkCounts()> read,
+                                                 std::string tool);
   ~SectionCounter() override;
 
   void begin(std::string_view section) override;
@@ -68,6 +75,7 @@ class SectionCounter : public SectionObserver {
 
   CountSource source_;
   std::optional<PerfCounters> perf_;
+  std::function<WorkCounts()> read_;  ///< perf and reader: the counts now
   WorkCounts last_{};
   std::string path_;               ///< the open sections, "update/galerkin"
   std::vector<std::size_t> open_;  ///< path_'s length before each open section
