@@ -82,6 +82,38 @@ TEST(Compare, RepetitionsBecomeRunsAndAPlantedSlowdownOfOnePhaseIsFound) {
   EXPECT_TRUE(c.regressed());
 }
 
+TEST(Compare, HolmsStepDownRejectsWhatBonferroniWouldNot) {
+  // Two gated rows, 5 runs a side, at alpha = 0.05: `a` completely separated (exact p = 2 / 252 =
+  // 0.0079), `b` with two of its 25 pairs reversed (p = 2 * 4 / 252 = 0.0317). Bonferroni would
+  // multiply both by 2 and leave b at 0.063; Holm's second step multiplies b's p by 1: 0.0317,
+  // slower. A Bonferroni in its place fails here.
+  const std::vector<double> a_base = {1.00, 1.01, 1.02, 1.03, 1.04},
+                            a_new = {1.30, 1.31, 1.32, 1.33, 1.34},
+                            b_base = {1.00, 1.01, 1.02, 1.03, 1.315},
+                            b_new = {1.30, 1.31, 1.32, 1.33, 1.34};
+  std::vector<json> base, slower;
+  for (int k = 0; k < 5; ++k) {
+    json r;
+    r["producer"] = "corofem run";
+    r["scene"] = {{"analysis", {{"type", "dynamic"}}}};
+    r["scene_file"] = "bar.json";
+    r["timings_ms"] = json::object();
+    json fast = r, slow = r;
+    fast["step_samples_ms"] = {{"a", {a_base[k]}}, {"b", {b_base[k]}}};
+    slow["step_samples_ms"] = {{"a", {a_new[k]}}, {"b", {b_new[k]}}};
+    base.push_back(fast);
+    slower.push_back(slow);
+  }
+  CompareOptions o;
+  o.alpha = 0.05;
+  const Comparison c = compare_records(runs_of(base), runs_of(slower), o);
+  EXPECT_NEAR(row(c, "a").test.p_value, 2.0 / 252, 1e-12);
+  EXPECT_NEAR(row(c, "b").test.p_value, 8.0 / 252, 1e-12);
+  EXPECT_NEAR(row(c, "a").p_adjusted, 4.0 / 252, 1e-12);
+  EXPECT_NEAR(row(c, "b").p_adjusted, 8.0 / 252, 1e-12);
+  EXPECT_EQ(row(c, "b").verdict, "slower");
+}
+
 TEST(Compare, TheSameCodeTwiceIsTheSame) {
   std::mt19937 rng(5);
   std::vector<json> a, b;

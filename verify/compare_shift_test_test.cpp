@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "compare/shift_test.hpp"
 
@@ -39,6 +40,35 @@ TEST(ShiftTest, ExactPValueMatchesEnumeratedArrangements) {
     }
   // Complete separation of 5 against 5: 2 / C(10, 5).
   EXPECT_NEAR(shift_test({1, 2, 3, 4, 5}, {6, 7, 8, 9, 10}, 0.01).p_value, 2.0 / 252, 1e-15);
+}
+
+TEST(ShiftTest, IntervalEndpointsAreTheOrderStatisticsOfThePublishedCriticalValues) {
+  // The Mann-Whitney critical values, two-sided (reject where U <= c), as tabled in Hollander and
+  // Wolfe (1999, Table A.6, as U) and in the common tables of the U test: the Hodges-Lehmann
+  // interval at 1 - alpha is [d_(c+1), d_(nm-c)] of the nm pairwise differences (Hollander and
+  // Wolfe, ch. 4.3). An off-by-one in the code's k moves each endpoint by one difference.
+  struct Row {
+    int n;
+    double alpha;
+    int critical;
+  };
+  for (const Row& r : {Row{5, 0.05, 2}, Row{6, 0.05, 5}, Row{7, 0.05, 8}, Row{8, 0.05, 13},
+                       Row{10, 0.05, 23}, Row{20, 0.05, 127}, Row{5, 0.01, 0}, Row{8, 0.01, 7},
+                       Row{10, 0.01, 16}, Row{20, 0.01, 105}}) {
+    // log x_i = i, log y_j = n j + 0.5: the differences n j - i + 0.5 are every integer from
+    // -(n-1) to n(n-1), plus 0.5, once each; the k-th smallest is k - n + 0.5.
+    std::vector<double> x, y;
+    for (int i = 0; i < r.n; ++i) {
+      x.push_back(std::exp(i));
+      y.push_back(std::exp(r.n * i + 0.5));
+    }
+    const ShiftTest t = shift_test(x, y, r.alpha);
+    ASSERT_TRUE(t.exact);
+    const int k = r.critical + 1, pairs = r.n * r.n;
+    EXPECT_NEAR(std::log(t.ratio_low), k - r.n + 0.5, 1e-9) << r.n << " at " << r.alpha;
+    EXPECT_NEAR(std::log(t.ratio_high), (pairs + 1 - k) - r.n + 0.5, 1e-9)
+        << r.n << " at " << r.alpha;
+  }
 }
 
 TEST(ShiftTest, TiedSamplesUseTheTieCorrectedNormalApproximation) {

@@ -10,15 +10,21 @@
 namespace corofem {
 namespace {
 
+/// A cache line's one-way trip between two cores: some 20-40 ns between SMT siblings and on one
+/// die, 50-310 ns measured between these VMs' vCPUs (lib/docs/threads.md), under a microsecond
+/// across sockets. 5 ns is below any coherence trip (a measurement that timed its own core's
+/// cache); 5 us is a time slice's sliver (one that timed a descheduled thread, not the line).
+void expect_a_cache_line_handoff(double ns) {
+  EXPECT_GT(ns, 5.0);
+  EXPECT_LT(ns, 5000.0);
+}
+
 TEST(CoreLatency, TwoCoresHandOffALineInABoundedTime) {
   cpu_set_t allowed;
   ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
   if (CPU_COUNT(&allowed) < 2) GTEST_SKIP() << "this process may use one core";
   const double ns = measure_core_to_core_ns();
-  // A handoff is at least a cache line's trip between two cores (tens of ns on any machine, not
-  // under 1) and, with both running, far below a scheduler's time slice (milliseconds).
-  EXPECT_GT(ns, 1.0);
-  EXPECT_LT(ns, 1e6);
+  expect_a_cache_line_handoff(ns);
 }
 
 TEST(CoreLatency, ACallerPinnedToOneCoreStillMeasuresAndKeepsItsMask) {
@@ -36,8 +42,7 @@ TEST(CoreLatency, ACallerPinnedToOneCoreStillMeasuresAndKeepsItsMask) {
   ASSERT_EQ(sched_getaffinity(0, sizeof after, &after), 0);
   ASSERT_EQ(sched_setaffinity(0, sizeof before, &before), 0);
   EXPECT_TRUE(CPU_EQUAL(&after, &one));
-  EXPECT_GT(ns, 1.0);
-  EXPECT_LT(ns, 1e6);
+  expect_a_cache_line_handoff(ns);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // keys, which that solver would warn about.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "report/analysis_variant.hpp"
 #include "scene/scene.hpp"
 
@@ -52,16 +54,22 @@ TEST(AnalysisVariant, AnotherSolverDropsTheMultigridKeys) {
                         "galerkin",
                         "hierarchy",
                         "smoother",
+                        "coarsest_vertices",
                         "coarsest_max_vertices",
                         "coarsening",
                         "chebyshev_degree",
                         "cycle",
                         "coarsest_refactor"};
+  // And the spelled list is the production one, key for key: a key added there is spelled here.
+  EXPECT_EQ(
+      std::set<std::string>(std::begin(keys), std::end(keys)),
+      std::set<std::string>(std::begin(kMultigridAnalysisKeys), std::end(kMultigridAnalysisKeys)));
   nlohmann::json scene = mgpcg_scene();
   scene["analysis"].update({{"vcycles", 30},
                             {"galerkin", "stream"},
                             {"hierarchy", "lattice"},
                             {"smoother", "multicolour"},
+                            {"coarsest_vertices", 300},
                             {"coarsest_max_vertices", 500},
                             {"coarsening", 3.5},
                             {"chebyshev_degree", 3},

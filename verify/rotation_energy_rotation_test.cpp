@@ -314,16 +314,18 @@ TEST(RotationEnergy, ExtractorMatchesTheExactMinimizerInBothKernelForms) {
 }
 
 TEST(RotationEnergy, NewtonDetectsSingularHessianAndFallsBack) {
-  // F = diag(1.5, 0.5, -0.5) with isotropic C: S has singular values 1.5, 0.5, 0.5 and det < 0,
-  // so a whole circle of rotations minimizes E; Newton must not divide by zero.
-  const Mat3 s = Vec3(1.5, 0.5, -0.5).asDiagonal();
-  const NewtonOutcome out = energy_newton_rotation(s, 2.75, Mat3::Identity(), 1e-12, 20);
+  // S = R0 diag(1.5, 0.5, -0.5) with isotropic C: singular values 1.5, 0.5, 0.5 and det S < 0, so
+  // a whole circle of rotations (R0 times the turns about x) minimizes E, and the Hessian at R0,
+  // Newton's start, is singular along it; Newton must not divide by zero.
+  const Mat3 r0 = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Mat3 s = r0 * Vec3(1.5, 0.5, -0.5).asDiagonal();
+  const NewtonOutcome out = energy_newton_rotation(s, 2.75, r0, 1e-12, 20);
   EXPECT_TRUE(out.fell_back) << "Newton went on through a singular Hessian";
   EXPECT_TRUE(out.rotation.allFinite());
   EXPECT_NEAR(out.rotation.determinant(), 1.0, 1e-12);
-  // A maximizer of tr(Q^T S) (any point of the circle): the oracle's, from Eigen's SVD.
-  EXPECT_NEAR((out.rotation.transpose() * s).trace(),
-              (rotation_factor_svd(s).transpose() * s).trace(), 1e-12);
+  // The maximum of tr(Q^T S) over proper rotations, analytic: s1 + s2 - s3 for det S < 0
+  // (the proper rotation factor flips the smallest singular value's axis) = 1.5.
+  EXPECT_NEAR((out.rotation.transpose() * s).trace(), 1.5, 1e-12);
 }
 
 }  // namespace

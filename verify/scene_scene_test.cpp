@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 
 #include "core/errors.hpp"
 #include "scene/scene_paths.hpp"
@@ -159,12 +160,16 @@ TEST(Scene, MultigridKeysOfAnotherSolverAreIgnoredWithAWarning) {
 TEST(Scene, PetscMgRefusesTheSettingsItCannotHonour) {
   // PETSc's PCMG takes our levels, hierarchy and smoothing count; its own smoother, cycle and
   // Galerkin product are not ours to choose: a scene that asks for them is refused, naming the key.
-  for (const auto& [key, value] :
-       std::vector<std::pair<std::string, nlohmann::json>>{{"smoother", "chebyshev"},
-                                                           {"cycle", "W"},
-                                                           {"galerkin", "stream"},
-                                                           {"vcycles", 20},
-                                                           {"chebyshev_degree", 3}}) {
+  // Every key spelled out here, not read from the production list: a key dropped from that list
+  // must fail this gate; and the two lists are the same (a key added there is spelled here).
+  const std::vector<std::pair<std::string, nlohmann::json>> refused = {
+      {"smoother", "chebyshev"}, {"cycle", "W"},          {"galerkin", "stream"},
+      {"vcycles", 20},           {"chebyshev_degree", 3}, {"coarsest_refactor", 0.1}};
+  std::set<std::string> spelled;
+  for (const auto& entry : refused) spelled.insert(entry.first);
+  EXPECT_EQ(spelled, std::set<std::string>(std::begin(kKeysPetscMgCannotHonour),
+                                           std::end(kKeysPetscMgCannotHonour)));
+  for (const auto& [key, value] : refused) {
     auto j = minimal();
     j["analysis"] = {{"solver", "petsc-mg"}, {"levels", 2}, {key, value}};
     try {
