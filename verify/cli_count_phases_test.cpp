@@ -18,7 +18,9 @@ using test::run_cli;
 using test::run_command;
 using test::TempDir;
 
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+std::string quoted(const std::filesystem::path& p) {
+  return "'" + p.string() + "'";
+}
 
 /// The words joined by spaces: a shell command line.
 std::string words(std::initializer_list<std::string> parts) {
@@ -32,7 +34,9 @@ std::filesystem::path gate_scene() {
 }
 
 /// The folder of the corofem binary the gates test, for the scripts' --bin.
-std::filesystem::path bin_dir() { return std::filesystem::path(COROFEM_CLI).parent_path(); }
+std::filesystem::path bin_dir() {
+  return std::filesystem::path(COROFEM_CLI).parent_path();
+}
 
 bool can_count_under_valgrind() {
 #ifdef COROFEM_ASAN_BUILD
@@ -73,9 +77,9 @@ TEST(CliCountPhases, CallgrindCountsEveryPartTheSameTwiceAndLeavesTheNumericsAlo
   if (!can_count_under_valgrind()) GTEST_SKIP() << "no valgrind here, or a sanitized build";
   TempDir dir;
   for (const char* side : {"a", "b"}) {
-    const auto r = run_command(words({"python3", quoted(test::source_dir() / "bench/count_phases.py"),
-                                      quoted(gate_scene()), "--keep-fields --bin",
-                                      quoted(bin_dir()), "--out", quoted(dir / side)}));
+    const auto r = run_command(words(
+        {"python3", quoted(test::source_dir() / "bench/count_phases.py"), quoted(gate_scene()),
+         "--keep-fields --bin", quoted(bin_dir()), "--out", quoted(dir / side)}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   const json a = json::parse(test::read_text(dir / "a" / "cantilever_small.json"));
@@ -108,10 +112,10 @@ TEST(CliCountPhases, TheGatePassesOnItsOwnCountsAndNamesAPhaseThatGrew) {
   TempDir dir;
   std::filesystem::create_directories(dir / "suite");
   std::filesystem::copy_file(gate_scene(), dir / "suite" / "cantilever_small.json");
-  const std::string gate = words(
-      {"python3", quoted(test::source_dir() / "ci/count-gate"), "--suite", quoted(dir / "suite"),
-       "--bin", quoted(bin_dir()), "--baseline", quoted(dir / "baseline"), "--out",
-       quoted(dir / "out")});
+  const std::string gate =
+      words({"python3", quoted(test::source_dir() / "ci/count-gate"), "--suite",
+             quoted(dir / "suite"), "--bin", quoted(bin_dir()), "--baseline",
+             quoted(dir / "baseline"), "--out", quoted(dir / "out")});
   const auto first = run_command(words({gate, "--update"}));
   ASSERT_EQ(first.exit_code, 0) << first.err;
   const auto again = run_command(gate);

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -112,6 +114,182 @@ TEST(Compare, HolmsStepDownRejectsWhatBonferroniWouldNot) {
   EXPECT_NEAR(row(c, "a").p_adjusted, 4.0 / 252, 1e-12);
   EXPECT_NEAR(row(c, "b").p_adjusted, 8.0 / 252, 1e-12);
   EXPECT_EQ(row(c, "b").verdict, "slower");
+}
+
+/// The run record of `run_record` for another scene file: another case of the suite.
+json of_case(json r, const std::string& scene_file) {
+  r["scene_file"] = scene_file;
+  return r;
+}
+
+TEST(Compare, APhaseSlowerInEveryCaseIsFoundAcrossThem) {
+  // Three cases of 4 runs a side, each solve 12% slower: 4 against 4 gives a row p of at least
+  // 2 / 70 = 0.029, so no single case can reach alpha = 0.01; the stratified row (van Elteren)
+  // over all three can, and decides (a gate without it: no verdict at all).
+  std::mt19937 rng(29);
+  std::vector<json> base, slow;
+  for (const char* scene : {"a.json", "b.json", "c.json"})
+    for (int k = 0; k < 4; ++k) {
+      base.push_back(of_case(run_record(rng, 2.0, 5.0), scene));
+      slow.push_back(of_case(run_record(rng, 2.24, 5.24), scene));
+    }
+  const Comparison c = compare_records(runs_of(base), runs_of(slow), CompareOptions{});
+  int per_case = 0;
+  for (const RowComparison& r : c.rows)
+    if (r.quantity == "solve" && r.case_name != "all cases") {
+      ++per_case;
+      // 4 against 4: its smallest p, 2 / 70, is above alpha: no single case can decide.
+      EXPECT_EQ(r.verdict, "inconclusive") << r.case_name;
+    }
+  EXPECT_EQ(per_case, 3);
+  const RowComparison* all = nullptr;
+  for (const RowComparison& r : c.rows)
+    if (r.case_name == "all cases" && r.quantity == "solve") all = &r;
+  ASSERT_NE(all, nullptr);
+  EXPECT_EQ(all->verdict, "slower");
+  EXPECT_NEAR(all->test.ratio, 1.12, 0.03);
+  EXPECT_NE(all->note.find("3 cases stratified"), std::string::npos) << all->note;
+}
+
+TEST(Compare, OneRunASideIsInconclusiveAndAShortPhaseIsNotGated) {
+  std::mt19937 rng(31);
+  // One record a side: its 20 steps are pooled, but the U test over them is no test of the runs
+  // (noted); one sample a side (the run totals) cannot reach alpha at all: inconclusive.
+  const Comparison one = compare_records(runs_of({run_record(rng, 2.0, 5.0)}),
+                                         runs_of({run_record(rng, 4.0, 7.0)}), CompareOptions{});
+  EXPECT_EQ(row(one, "run total").verdict, "inconclusive");
+  EXPECT_NE(row(one, "solve").note.find("steps pooled"), std::string::npos);
+  // A phase under --min-ms: shown, its slowdown not gated ("short").
+  std::vector<json> base, slow;
+  for (int k = 0; k < 6; ++k) {
+    base.push_back(run_record(rng, 0.02, 5.0));
+    slow.push_back(run_record(rng, 0.03, 5.0));
+  }
+  const Comparison c = compare_records(runs_of(base), runs_of(slow), CompareOptions{});
+  EXPECT_EQ(row(c, "solve").verdict, "short");
+  EXPECT_FALSE(row(c, "solve").regression);
+  EXPECT_NE(row(c, "solve").note.find("under --min-ms"), std::string::npos);
+}
+
+TEST(Compare, ARowOrACaseMissingInNew) {
+  std::mt19937 rng(37);
+  json fewer_phases = run_record(rng, 2.0, 5.0);
+  fewer_phases["step_samples_ms"].erase("solve");
+  const Comparison phase = compare_records(runs_of({run_record(rng, 2.0, 5.0)}),
+                                           runs_of({fewer_phases}), CompareOptions{});
+  EXPECT_EQ(row(phase, "solve").verdict, "missing in new");
+  EXPECT_FALSE(row(phase, "solve").regression);  // a quantity alone: listed
+  // A whole case NEW no longer has: a failure, not a speed-up.
+  const Comparison gone = compare_records(
+      runs_of({run_record(rng, 2.0, 5.0), of_case(run_record(rng, 2.0, 5.0), "other.json")}),
+      runs_of({run_record(rng, 2.0, 5.0)}), CompareOptions{});
+  bool case_missing = false;
+  for (const RowComparison& r : gone.rows)
+    if (r.case_name == "run other.json") {
+      EXPECT_EQ(r.verdict, "missing in new");
+      case_missing |= r.regression;
+    }
+  EXPECT_TRUE(case_missing);
+  EXPECT_TRUE(gone.regressed());
+}
+
+TEST(Compare, EachFlagMovesTheVerdictItNames) {
+  test::TempDir dir;
+  std::mt19937 rng(41);
+  for (const char* side : {"base", "new"}) std::filesystem::create_directories(dir / side);
+  for (int k = 0; k < 8; ++k) {
+    // NEW: solve 8% slower, the static residual 3x, the displacements moved by 1e-7 relative.
+    json b = run_record(rng, 2.0, 5.0), n = run_record(rng, 2.16, 5.0, 100, 1e5, 1 + 1e-7);
+    b["analysis"]["type"] = n["analysis"]["type"] = "static";
+    b["residual"] = 1e-6;
+    n["residual"] = 3e-6;
+    test::write_text(dir / "base" / ("r" + std::to_string(k) + ".json"), b.dump());
+    test::write_text(dir / "new" / ("r" + std::to_string(k) + ".json"), n.dump());
+  }
+  const auto verdicts = [&](const std::string& flags) {
+    const test::CliResult r =
+        test::run_cli("compare '" + (dir / "base").string() + "' '" + (dir / "new").string() +
+                      "' --out '" + (dir / "out").string() + "' " + flags);
+    EXPECT_NE(r.exit_code, 2) << r.err;
+    std::map<std::string, std::string> out;
+    const json verdict = json::parse(test::read_text(dir / "out" / "compare.json"));
+    for (const json& r : verdict["rows"])
+      if (r["case"] != "all cases") out[r["quantity"].get<std::string>()] = r["verdict"];
+    for (const char* quantity : {"solve", "equilibrium residual", "displacement"})
+      if (!out.count(quantity)) ADD_FAILURE() << "no row " << quantity << " with " << flags;
+    return out;
+  };
+  const auto defaults = verdicts("");
+  EXPECT_EQ(defaults.at("solve"), "slower");
+  EXPECT_EQ(defaults.at("equilibrium residual"), "worse");
+  EXPECT_EQ(defaults.at("displacement"), "changed");
+  EXPECT_EQ(verdicts("--threshold 0.1").at("solve"), "same");  // 8% < 10%
+  // p = 2 / 12870 = 1.6e-4 under 5e-4, but Holm'd over the 4 gated rows 6.2e-4 above it.
+  EXPECT_EQ(verdicts("--alpha 5e-4").at("solve"), "same");
+  EXPECT_EQ(verdicts("--min-ms 3").at("solve"), "short");  // 2 ms under 3
+  EXPECT_EQ(verdicts("--accuracy-factor 4").at("equilibrium residual"), "within tolerance");
+  EXPECT_EQ(verdicts("--field-tolerance 1e-6").at("displacement"), "within tolerance");
+  EXPECT_EQ(test::run_cli("compare '" + (dir / "base").string() + "' '" + (dir / "new").string() +
+                          "' --alpha 2")
+                .exit_code,
+            2);  // outside (0, 1): bad input
+}
+
+TEST(Compare, ReportRecordsGiveTheirTableAndSpeedAccuracyRows) {
+  // The golden report's records (a smoke report's): Table 1's samples at its threads and at one,
+  // the roofline's bytes as counters, the verification's errors as accuracy fields; the
+  // speed-accuracy points' steps, iterations and errors.
+  const std::filesystem::path golden = test::source_dir() / "verify" / "golden" / "report";
+  const RecordSet set = read_records(golden / "tables.json");
+  const json tables = json::parse(test::read_text(golden / "tables.json"));
+  const json& first = tables["table1"][0];
+  const std::string model = first["model"];
+  const auto find = [&](const RecordSet& s, const std::string& key) -> const RecordRow* {
+    for (const RecordRow& r : s.rows)
+      if (r.key() == key) return &r;
+    return nullptr;
+  };
+  const int threads = tables["context"]["threads_used"];
+  const RecordRow* solve =
+      find(set, "table1 " + model + " | " + std::to_string(threads) + " threads | solve");
+  ASSERT_NE(solve, nullptr);
+  EXPECT_EQ(solve->kind, RowKind::Timed);
+  EXPECT_EQ(solve->runs.front(), first["samples_ms"]["solve"].get<std::vector<double>>());
+  ASSERT_NE(find(set, "table1 " + model + " | 1 thread | solve"), nullptr);  // one_thread's
+  const RecordRow* bytes =
+      find(set, "table1 " + model + " | " + std::to_string(threads) + " threads | solve bytes");
+  ASSERT_NE(bytes, nullptr);
+  EXPECT_EQ(bytes->kind, RowKind::Counter);
+  EXPECT_EQ(bytes->values.front(), first["roofline"]["phases"]["solve"]["bytes"].get<double>());
+  bool accuracy = false;
+  for (const RecordRow& r : set.rows) accuracy |= r.kind == RowKind::Accuracy;
+  EXPECT_TRUE(accuracy) << "no verification row";
+
+  const RecordSet points = read_records(golden / "speed_accuracy.json");
+  const json sweep = json::parse(test::read_text(golden / "speed_accuracy.json"));
+  const json& scene = sweep["scenes"][0];
+  for (const json& p : scene["points"]) {
+    if (!p.value("completed", false)) continue;
+    const std::string name =
+        "speed-accuracy " + scene["model"].get<std::string>() + " " +
+        p["label"].get<std::string>() + " | " +
+        std::to_string(sweep["context"].value("threads_used", 1)) +
+        (sweep["context"].value("threads_used", 1) == 1 ? " thread" : " threads");
+    const RecordRow* step = find(points, name + " | step");
+    ASSERT_NE(step, nullptr) << name;
+    // Its steps' samples, or where the point kept none (the resolution sweep's), its mean.
+    EXPECT_EQ(step->runs.front(), p.contains("step_samples_ms")
+                                      ? p["step_samples_ms"].get<std::vector<double>>()
+                                      : std::vector<double>{p["time_per_step_ms"].get<double>()})
+        << name;
+    if (p.contains("iterations_per_step")) {
+      const RecordRow* iterations = find(points, name + " | iterations_per_step");
+      ASSERT_NE(iterations, nullptr) << name;
+      EXPECT_EQ(iterations->values.front(), p["iterations_per_step"].get<double>());
+    }
+    EXPECT_EQ(find(points, name + " | rel_error") != nullptr, !p.value("is_reference", false))
+        << name;
+  }
 }
 
 TEST(Compare, TheSameCodeTwiceIsTheSame) {

@@ -35,9 +35,8 @@ TEST(SectionCounter, EachStretchGoesToTheInnermostOpenSection) {
     in_section(counter.get(), "smoothers", [&] { hand.work(300, 30, 3); });
   });
   in_section(counter.get(), "solve", [&] { hand.work(5000, 500, 50); });
-  in_section(counter.get(), "update", [&] {
-    in_section(counter.get(), "galerkin", [&] { hand.work(1000, 100, 10); });
-  });
+  in_section(counter.get(), "update",
+             [&] { in_section(counter.get(), "galerkin", [&] { hand.work(1000, 100, 10); }); });
   hand.work(3);
   counter->finish();
   const auto& own = counter->exclusive();
@@ -116,8 +115,8 @@ TEST(SectionCounter, CallgrindCountsTheKnownWorkOfEachSection) {
   const std::string out = (dir / "callgrind.out").string();
   const nlohmann::json c = probe_counts(
       "valgrind --tool=callgrind --instr-atstart=no --combine-dumps=yes --cache-sim=yes "
-      "--I1=32768,8,64 --D1=32768,8,64 --LL=4194304,16,64 --callgrind-out-file='" + out + "' '" +
-      COROFEM_COUNT_PROBE + "' callgrind:'" + out + "'");
+      "--I1=32768,8,64 --D1=32768,8,64 --LL=4194304,16,64 --callgrind-out-file='" +
+      out + "' '" + COROFEM_COUNT_PROBE + "' callgrind:'" + out + "'");
   // Instructions: the spins' 2 n + 1, plus the share of the marks' own work that falls in each
   // section (a map look-up and a vector's append around callgrind's request: measured 1,000-2,500
   // instructions a section here, where each path is new; 3,000 bounds it).

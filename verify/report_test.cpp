@@ -6,6 +6,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -472,6 +473,85 @@ TEST(Report, SinceTheSnapshotShowsWhatMovedWithItsInterval) {
       << md;
   EXPECT_NE(md.find("| linear_iterations | counter | 138 | 140 |"), std::string::npos) << md;
   EXPECT_EQ(md.find("| step | timed"), std::string::npos) << "a row that did not move is listed";
+}
+
+/// printf's rendering of `value` in `format`: the expectation's own arithmetic and format.
+std::string printed(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+TEST(Report, TableOneShowsItsRecordsNumbers) {
+  // Hand-written expectations: Table 1's row drawn from the golden tables.json carries that
+  // record's numbers, each worked out here from the record (ms to 3 significant digits, steps per
+  // second 1000 / step ms to the unit, errors and ratios to 2), not the renderer's output captured.
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  TempDir dir;
+  ASSERT_EQ(render_golden_fixture(dir, "", "/dev/null"), 0);
+  const json row = json::parse(read_text(golden_dir() / "tables.json"))["table1"][0];
+  const json& accuracy = row["solve_accuracy"];
+  const std::string expected =
+      "| " + row["model"].get<std::string>() + " | " + std::to_string(row["tets"].get<int>()) +
+      " | " + std::to_string(row["vertices"].get<int>()) + " | " +
+      std::to_string(row["levels"].get<int>()) + " | " + printed("%.3g", row["rotate_ms"]) + " | " +
+      printed("%.3g", row["assemble_ms"]) + " | " + printed("%.3g", row["update_ms"]) + " | " +
+      printed("%.3g", row["update_naive_ms"]) + " | " + printed("%.3g", row["solve_ms"]) + " | " +
+      printed("%.0f", 1000 / row["step_ms"].get<double>()) + " | " +
+      printed("%.1e", accuracy["relative_residual_max"]) + " / " +
+      printed("%.1e", accuracy["error_vs_cholmod_max"]) + " | " +
+      printed("%.3g", row["cholmod_step_ms"]) + " | " +
+      printed("%.2g", row["cholmod_step_ms"].get<double>() / row["step_ms"].get<double>()) + " |";
+  const std::string md = read_text(dir / "REPORT.md");
+  EXPECT_NE(md.find(expected), std::string::npos) << "expected\n"
+                                                  << expected << "\nin\n"
+                                                  << md.substr(0, 1500);
+}
+
+TEST(Report, SinceTheSnapshotDrawsARealComparison) {
+  // A compare.json as corofem compare writes it, from two folders of Table 1 records: 8 runs a
+  // side, NEW's solve 30% slower. The section shows that row with compare's own ratio.
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  TempDir dir;
+  const json tables = json::parse(read_text(golden_dir() / "tables.json"));
+  for (const char* side : {"base", "new"}) fs::create_directories(dir / side);
+  for (int run = 0; run < 8; ++run) {
+    json base = tables, slow = tables;
+    for (json* t : {&base, &slow}) {
+      json& samples = (*t)["table1"][0]["samples_ms"];
+      for (auto& [phase, values] : samples.items())
+        for (json& v : values) v = v.get<double>() * (1 + 0.001 * run);  // distinct runs
+    }
+    for (json& v : slow["table1"][0]["samples_ms"]["solve"]) v = v.get<double>() * 1.3;
+    test::write_text(dir / "base" / ("r" + std::to_string(run) + ".json"), base.dump());
+    test::write_text(dir / "new" / ("r" + std::to_string(run) + ".json"), slow.dump());
+  }
+  const test::CliResult compared =
+      test::run_cli("compare '" + (dir / "base").string() + "' '" + (dir / "new").string() +
+                    "' --out '" + (dir / "compare").string() + "'");
+  ASSERT_EQ(compared.exit_code, 1) << compared.err;  // a regression
+  const json verdict = json::parse(read_text(dir / "compare" / "compare.json"));
+  json solve;
+  for (const json& r : verdict["rows"])
+    if (r["quantity"] == "solve" && r["case"] != "all cases" &&
+        r["threads"] == tables["context"]["threads_used"])  // the slowed runs, not one_thread's
+      solve = r;
+  ASSERT_FALSE(solve.is_null());
+  EXPECT_EQ(solve["verdict"], "slower");
+  EXPECT_NEAR(solve["test"]["ratio"].get<double>(), 1.3, 0.01);
+  TempDir render;
+  ASSERT_EQ(render_golden_fixture(
+                render, "", "/dev/null",
+                [&](json&) { test::write_text(render / "since_snapshot.json", verdict.dump()); }),
+            0);
+  const std::string md = read_text(render / "REPORT.md");
+  const std::string expected = "| " + solve["case"].get<std::string>() + " | " +
+                               std::to_string(solve["threads"].get<int>()) + " | solve | timed | " +
+                               printed("%.3g", solve["base"]) + " | " +
+                               printed("%.3g", solve["new"]) + " | " +
+                               printed("%.3g", solve["test"]["ratio"]) + " | ";
+  EXPECT_NE(md.find(expected), std::string::npos) << expected << "\n" << md;
+  EXPECT_NE(md.find("**a regression**"), std::string::npos);
 }
 
 TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {

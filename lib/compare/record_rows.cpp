@@ -215,11 +215,14 @@ void table1_run_rows(const json& run, const std::string& name, const std::string
   if (run.contains("linear_iterations"))
     sink.value(name, scene, threads, "linear_iterations", RowKind::Counter,
                run["linear_iterations"], row);
-  if (run.contains("roofline") && run["roofline"].is_object())
-    for (const auto& [phase, t] : run["roofline"].value("phases", json::object()).items())
+  if (run.contains("roofline") && run["roofline"].is_object()) {
+    // Held here: items() keeps a reference, which a temporary of value() would leave dangling.
+    const json phases = run["roofline"].value("phases", json::object());
+    for (const auto& [phase, t] : phases.items())
       for (const char* what : {"bytes", "flops"})
         if (t.contains(what))
           sink.value(name, scene, threads, phase + " " + what, RowKind::Counter, t[what], row);
+  }
 }
 
 void tables_rows(const json& r, RowSink& sink) {

@@ -1,7 +1,8 @@
 """The report's section "Since the last published snapshot", drawn from since_snapshot.json:
 `corofem compare reports/ NEW_REPORT` as ci/report runs it (lib/docs/comparing.md). A reader sees
-what changed and whether it is signal: the timings beyond the threshold with their intervals, the
-counters and accuracy fields that moved."""
+what changed and whether it is signal: the timings beyond the threshold with their intervals (and,
+where the phase was counted on both sides, whether its counts moved: the code's, or not: the
+machine's), the counters, work counts and accuracy fields that moved."""
 from render_common import num, table
 
 ORDER = 20
@@ -36,7 +37,7 @@ def render_since_snapshot(verdict, md):
         md.append("\n")
     moved = [r for r in verdict.get("rows", [])
              if r["verdict"] in ("slower", "faster", "increased", "decreased", "worse", "better",
-                                 "changed", "missing in new")]
+                                 "changed", "missing in new", "more", "fewer")]
     if not moved:
         md.append("Nothing moved beyond noise: every timing the same within its interval or "
                   "the threshold, every counter equal, every accuracy field within tolerance.\n\n")
@@ -45,10 +46,13 @@ def render_since_snapshot(verdict, md):
     for r in moved:
         test = r.get("test")
         interval = f"{num(test['interval'][0])}-{num(test['interval'][1])}" if test else ""
+        ratio = num(test["ratio"]) if test else num(r["ratio"]) if "ratio" in r else ""
+        cause = r.get("attribution")
         rows.append([r["case"], r["threads"], r["quantity"], r["kind"], num(r.get("base")),
-                     num(r.get("new")), num(test["ratio"]) if test else "", interval, r["verdict"]])
+                     num(r.get("new")), ratio, interval, r["verdict"],
+                     f"the {cause['to']}'s: {cause['because']}" if cause else ""])
     md.append(table(["case", "threads", "quantity", "kind", "snapshot", "now", "ratio",
-                     "interval", "verdict"], rows))
+                     "interval", "verdict", "cause"], rows))
     md.append("\n")
 
 
