@@ -2,7 +2,7 @@
 """The counted gate's calibration: its false alarms, and the planted faults of real work it finds.
 
 Usage: bench/gate/count_calibration.py [REF] [--trials 20] [--out out/count-calibration]
-                                       [--assembly-work 4] [--scenes SCENE.json ...]
+                                       [--assembly-work 6] [--scenes SCENE.json ...]
 
 Builds REF twice (two builds of one commit, in two folders: gate_builds) and once with each
 planted fault (bench/gate/plant.py: assembly-work ITERATIONS, extra-pass, scattered-order), then
@@ -65,7 +65,7 @@ def main(argv):
     parser.add_argument("ref", nargs="?", default="HEAD")
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "count-calibration"))
-    parser.add_argument("--assembly-work", type=int, default=4)
+    parser.add_argument("--assembly-work", type=int, default=6)
     parser.add_argument("--scenes", nargs="*", default=[])
     args = parser.parse_args(argv)
     sha = git("rev-parse", "--verify", f"{args.ref}^{{commit}}")
