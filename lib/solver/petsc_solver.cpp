@@ -255,9 +255,49 @@ class PetscSolver : public LinearSolver {
   /// The AIJ matrix of the BRC pattern; the near null space; the Krylov method and the AMG.
   void create(const BrcMatrix& a) {
     a_ = std::make_unique<petsc::AijFromBrc>(a, comm_, part_);
-    const petsc::OwnedBlocks& own = a_->rows();
     if (!nonsymmetric_) check(MatSetOption(a_->mat(), MAT_SPD, PETSC_TRUE), "MatSetOption");
-    // Rigid-body modes of the rest positions (three translations, three rotations).
+    set_rigid_body_modes();
+    create_krylov();
+    check(KSPGetPC(ksp_, &pc_), "KSPGetPC");
+    const PetscOptionDefaults option(options_prefix());
+    check(KSPSetOptionsPrefix(ksp_, option.prefix.c_str()), "KSPSetOptionsPrefix");
+    switch (kind_) {
+      case PetscSolverKind::Mg:
+        set_up_mg(a, option);
+        break;
+      case PetscSolverKind::Gamg:
+        set_up_gamg(option);
+        break;
+      case PetscSolverKind::BoomerAmg:
+        set_up_boomeramg(option);
+        break;
+    }
+    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  }
+
+  /// The options database's prefix of this solver's PETSc objects.
+  std::string options_prefix() const {
+    return kind_ == PetscSolverKind::Gamg ? "corofem_gamg_"
+           : kind_ == PetscSolverKind::Mg ? "corofem_mg_"
+                                          : "corofem_boomeramg_";
+  }
+
+  /// Our defaults in PETSc's options database, under a prefix: the user's PETSC_OPTIONS win.
+  struct PetscOptionDefaults {
+    std::string prefix;
+    void operator()(const std::string& key, const char* value) const {
+      PetscBool set = PETSC_FALSE;
+      check(PetscOptionsHasName(nullptr, prefix.c_str(), key.c_str(), &set), "PetscOptionsHasName");
+      if (!set)
+        check(PetscOptionsSetValue(nullptr, ("-" + prefix + key.substr(1)).c_str(), value),
+              "PetscOptionsSetValue");
+    }
+  };
+
+  /// The near null space: the rigid-body modes of the rest positions (three translations, three
+  /// rotations).
+  void set_rigid_body_modes() {
+    const petsc::OwnedBlocks& own = a_->rows();
     Vec coordinates;
     check(VecCreateMPI(comm_, 3 * own.size(), PETSC_DETERMINE, &coordinates), "VecCreateMPI");
     check(VecSetBlockSize(coordinates, 3), "VecSetBlockSize");
@@ -272,7 +312,10 @@ class PetscSolver : public LinearSolver {
     check(MatSetNearNullSpace(a_->mat(), rigid), "MatSetNearNullSpace");
     MatNullSpaceDestroy(&rigid);
     VecDestroy(&coordinates);
+  }
 
+  /// CG, or for a corotated tangent GMRES, to |b - A x| <= tolerance |b| from the given guess.
+  void create_krylov() {
     check(KSPCreate(comm_, &ksp_), "KSPCreate");
     if (nonsymmetric_) {
       // GMRES preconditioned from the right, so that its norm is |b - A x| too; restarted after
@@ -286,83 +329,78 @@ class PetscSolver : public LinearSolver {
     check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");  // |b - A x|, as ours
     check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
     check(KSPSetTolerances(ksp_, tolerance_, 0.0, 1e10, max_iterations_), "KSPSetTolerances");
-    check(KSPGetPC(ksp_, &pc_), "KSPGetPC");
-    const bool gamg = kind_ == PetscSolverKind::Gamg, mg = kind_ == PetscSolverKind::Mg;
-    const std::string prefix = gamg ? "corofem_gamg_" : mg ? "corofem_mg_" : "corofem_boomeramg_";
-    check(KSPSetOptionsPrefix(ksp_, prefix.c_str()), "KSPSetOptionsPrefix");
-    const auto option = [&](const std::string& key, const char* value) {
-      PetscBool set = PETSC_FALSE;  // the user's PETSC_OPTIONS win
-      check(PetscOptionsHasName(nullptr, prefix.c_str(), key.c_str(), &set), "PetscOptionsHasName");
-      if (!set)
-        check(PetscOptionsSetValue(nullptr, ("-" + prefix + key.substr(1)).c_str(), value),
-              "PetscOptionsSetValue");
-    };
-    if (mg) {
-      // PETSc numbers the levels from the coarsest (0); ours from the finest. Level l's
-      // interpolation brings PETSc level l - 1 to l: our transfer L - 1 - l, P = R^T.
-      const PetscInt levels = static_cast<PetscInt>(transfers_.size()) + 1;
-      check(PCSetType(pc_, PCMG), "PCSetType");
-      check(PCMGSetLevels(pc_, levels, nullptr), "PCMGSetLevels");
-      check(PCMGSetType(pc_, PC_MG_MULTIPLICATIVE), "PCMGSetType");
-      check(PCMGSetCycleType(pc_, PC_MG_CYCLE_V), "PCMGSetCycleType");
-      // The coarse operators are ours (petsc_coarse_operators.hpp): the first from each rank's
-      // Galerkin share of its rows, the coarser by MatPtAP; PCMG's Galerkin (MatPtAP from the
-      // finest level) kept too much memory on several ranks.
-      check(PCMGSetGalerkin(pc_, PC_MG_GALERKIN_NONE), "PCMGSetGalerkin");
-      std::vector<Mat> prolongations;  // finest first
-      for (PetscInt l = levels - 1; l >= 1; --l) {
-        // The finest interpolation's rows are the matrix's (a distributed mesh's part's).
-        Mat p = petsc::prolongation(transfers_[levels - 1 - l], comm_,
-                                    l == levels - 1 ? &a_->rows() : nullptr);
-        check(PCMGSetInterpolation(pc_, l, p), "PCMGSetInterpolation");
-        prolongations.push_back(p);
-      }
-      // This rank's rows of the fine matrix: a part's owned rows come first; replicated, the
-      // matrix and the finest transfer are whole and the rank's rows its share of them.
-      const int begin = part_ ? 0 : static_cast<int>(own.begin);
-      if (!transfers_.empty())  // one level (asked for, or a mesh too small to coarsen): LU
-        coarse_ = std::make_unique<petsc::CoarseOperators>(
-            a, transfers_[0], begin, begin + static_cast<int>(own.size()), prolongations, comm_);
-      for (Mat& p : prolongations) MatDestroy(&p);  // PCMG and the operators keep references
-      transfers_ = {};  // PETSc and the operators hold this rank's rows of them now
-      // Level smoothers: Chebyshev (PETSc's default, eigenvalue bounds estimated at setup) on
-      // point Jacobi, degree 2 per `smoothing`. With PETSc's SOR instead, as Richardson steps at
-      // omega 1 or under Chebyshev, CG stopped on the gates' heterogeneous cube (indefinite
-      // preconditioner; NaN).
-      const std::string degree = std::to_string(2 * smoothing_);
-      option("-mg_levels_ksp_type", "chebyshev");
-      option("-mg_levels_ksp_max_it", degree.c_str());
-      option("-mg_levels_pc_type", "jacobi");
-      option("-mg_coarse_ksp_type", "preonly");
-      if (ranks_ == 1) {
-        option("-mg_coarse_pc_type", "lu");
-      } else if (have_mumps()) {
-        // MUMPS's LU is distributed: on a 415k-tet bar at 2 ranks, 14 MB a rank less than
-        // PETSc's redundant LU and as many iterations.
-        option("-mg_coarse_pc_type", "lu");
-        option("-mg_coarse_pc_factor_mat_solver_type", "mumps");
-      } else {  // PETSc's own LU is serial: each rank factors the whole coarsest matrix
-        option("-mg_coarse_pc_type", "redundant");
-        option("-mg_coarse_redundant_pc_type", "lu");
-      }
-    } else if (gamg) {
-      check(PCSetType(pc_, PCGAMG), "PCSetType");
-      option("-pc_gamg_type", "agg");
-      option("-pc_gamg_agg_nsmooths", "1");
-      option("-pc_gamg_threshold", "0.01");
-      if (setup_reuse_) option("-pc_gamg_reuse_interpolation", "true");
-    } else {
-      check(PCSetType(pc_, PCHYPRE), "PCSetType");
-      check(PCHYPRESetType(pc_, "boomeramg"), "PCHYPRESetType");
-      // Systems AMG by the unknown approach (PETSc passes the block size 3 as the number of
-      // functions) with the strong threshold hypre's manual gives for 3D. The manual's other
-      // elasticity options, nodal coarsening and the rigid-body modes in the interpolation, were
-      // measured on quadruped-small (3.7k tets, to 1e-4): nodal 6 alone 37 ms a step, with the
-      // modes (vec_interp_variant 2) 190 ms, against 33 ms for this; variant 3 crashes hypre 2.26
-      // (hypre_BoomerAMG_LNExpandInterp). PETSC_OPTIONS switches them on.
-      option("-pc_hypre_boomeramg_strong_threshold", "0.5");
+  }
+
+  /// PCMG on our hierarchy: our transfers as interpolations, our coarse operators.
+  void set_up_mg(const BrcMatrix& a, const PetscOptionDefaults& option) {
+    const petsc::OwnedBlocks& own = a_->rows();
+    // PETSc numbers the levels from the coarsest (0); ours from the finest. Level l's
+    // interpolation brings PETSc level l - 1 to l: our transfer L - 1 - l, P = R^T.
+    const PetscInt levels = static_cast<PetscInt>(transfers_.size()) + 1;
+    check(PCSetType(pc_, PCMG), "PCSetType");
+    check(PCMGSetLevels(pc_, levels, nullptr), "PCMGSetLevels");
+    check(PCMGSetType(pc_, PC_MG_MULTIPLICATIVE), "PCMGSetType");
+    check(PCMGSetCycleType(pc_, PC_MG_CYCLE_V), "PCMGSetCycleType");
+    // The coarse operators are ours (petsc_coarse_operators.hpp): the first from each rank's
+    // Galerkin share of its rows, the coarser by MatPtAP; PCMG's Galerkin (MatPtAP from the
+    // finest level) kept too much memory on several ranks.
+    check(PCMGSetGalerkin(pc_, PC_MG_GALERKIN_NONE), "PCMGSetGalerkin");
+    std::vector<Mat> prolongations;  // finest first
+    for (PetscInt l = levels - 1; l >= 1; --l) {
+      // The finest interpolation's rows are the matrix's (a distributed mesh's part's).
+      Mat p = petsc::prolongation(transfers_[levels - 1 - l], comm_,
+                                  l == levels - 1 ? &a_->rows() : nullptr);
+      check(PCMGSetInterpolation(pc_, l, p), "PCMGSetInterpolation");
+      prolongations.push_back(p);
     }
-    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    // This rank's rows of the fine matrix: a part's owned rows come first; replicated, the
+    // matrix and the finest transfer are whole and the rank's rows its share of them.
+    const int begin = part_ ? 0 : static_cast<int>(own.begin);
+    if (!transfers_.empty())  // one level (asked for, or a mesh too small to coarsen): LU
+      coarse_ = std::make_unique<petsc::CoarseOperators>(
+          a, transfers_[0], begin, begin + static_cast<int>(own.size()), prolongations, comm_);
+    for (Mat& p : prolongations) MatDestroy(&p);  // PCMG and the operators keep references
+    transfers_ = {};  // PETSc and the operators hold this rank's rows of them now
+    // Level smoothers: Chebyshev (PETSc's default, eigenvalue bounds estimated at setup) on
+    // point Jacobi, degree 2 per `smoothing`. With PETSc's SOR instead, as Richardson steps at
+    // omega 1 or under Chebyshev, CG stopped on the gates' heterogeneous cube (indefinite
+    // preconditioner; NaN).
+    const std::string degree = std::to_string(2 * smoothing_);
+    option("-mg_levels_ksp_type", "chebyshev");
+    option("-mg_levels_ksp_max_it", degree.c_str());
+    option("-mg_levels_pc_type", "jacobi");
+    option("-mg_coarse_ksp_type", "preonly");
+    if (ranks_ == 1) {
+      option("-mg_coarse_pc_type", "lu");
+    } else if (have_mumps()) {
+      // MUMPS's LU is distributed: less memory a rank than PETSc's redundant LU, and as many
+      // iterations.
+      option("-mg_coarse_pc_type", "lu");
+      option("-mg_coarse_pc_factor_mat_solver_type", "mumps");
+    } else {  // PETSc's own LU is serial: each rank factors the whole coarsest matrix
+      option("-mg_coarse_pc_type", "redundant");
+      option("-mg_coarse_redundant_pc_type", "lu");
+    }
+  }
+
+  /// PETSc's smoothed aggregation.
+  void set_up_gamg(const PetscOptionDefaults& option) {
+    check(PCSetType(pc_, PCGAMG), "PCSetType");
+    option("-pc_gamg_type", "agg");
+    option("-pc_gamg_agg_nsmooths", "1");
+    option("-pc_gamg_threshold", "0.01");
+    if (setup_reuse_) option("-pc_gamg_reuse_interpolation", "true");
+  }
+
+  /// hypre's BoomerAMG as systems AMG.
+  void set_up_boomeramg(const PetscOptionDefaults& option) {
+    check(PCSetType(pc_, PCHYPRE), "PCSetType");
+    check(PCHYPRESetType(pc_, "boomeramg"), "PCHYPRESetType");
+    // Systems AMG by the unknown approach (PETSc passes the block size 3 as the number of
+    // functions) with the strong threshold hypre's manual gives for 3D. The manual's other
+    // elasticity options (nodal coarsening, the rigid-body modes in the interpolation) cost more
+    // than they saved on the quadruped (lib/docs/mpi.md); PETSC_OPTIONS switches them on.
+    option("-pc_hypre_boomeramg_strong_threshold", "0.5");
   }
 
   PetscSolverKind kind_;
