@@ -1,5 +1,5 @@
 #pragma once
-// What a run on a distributed mesh (issue 37) records without gathering the mesh to one rank:
+// What a run on a distributed mesh records without gathering the mesh to one rank:
 // per rank its sizes, peak RSS and phase times, with the max and min over the ranks; the fields
 // (rest positions, displacements, rotations) gathered on rank 0; a parallel VTU written piece
 // by piece, one per rank.

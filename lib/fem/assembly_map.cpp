@@ -32,8 +32,7 @@ BrcMatrix make_stiffness_pattern(const TetMesh& mesh, AssemblyMap& map) {
   map.diagonal.resize(mesh.num_vertices());
   for (int v = 0; v < mesh.num_vertices(); ++v) map.diagonal[v] = k.find(v, v);
   // As many parts as threads the assembly will use (threads_for its elements): a part more than
-  // that visits its boundary elements twice on the same thread, for nothing (cantilever-small,
-  // 1,536 tets in two parts at two threads: its assembly 1.19x its one-thread time, issue 70).
+  // that visits its boundary elements twice on the same thread, for nothing (lib/docs/threads.md).
   map.rows = partition_rows(mesh.tets, mesh.num_vertices(), threads_for(mesh.num_tets()));
   return k;
 }

@@ -14,9 +14,8 @@ namespace {
 
 /// Most GMRES iterations before the factorizations take the system (as PETSc's GMRES before
 /// MUMPS), and the Krylov basis: at most 2 x 50 vectors (the memory estimate counts them). On the
-/// symmetric part GMRES takes 6-11 iterations; on the definite stand-in 25-45, where restarting at
-/// 25 cost the quadruped scene (bench/scenes/quadruped_static_newton.json on mgpcg, 2026-12-05)
-/// 4751 iterations in all against 2852 at 50 (and 100), 7.2 s against 5.1-5.2 s.
+/// symmetric part GMRES takes 6-11 iterations; on the definite stand-in 25-45, which a restart at
+/// 25 would cut off (lib/docs/newton.md).
 constexpr int kMaxGmresIterations = 200;
 constexpr int kGmresRestart = 50;
 /// GMRES's answer is taken within this factor of its tolerance: the true residual stops at its

@@ -18,10 +18,8 @@
 namespace corofem {
 
 /// The relative residual to which a scene's multigrid, as the preconditioner, solves the
-/// symmetric part (scene/scene_simulation.cpp sets it). Static Newton on a cantilever bar
-/// (bench/scenes/bar_static_newton_mpi.json at 52k and 240k tets, 10 Newton iterations, one
-/// thread, 2026-12-05): 0.1 took 85 and 89 GMRES iterations in all, 1e-2 63 and 65, 1e-4 59, 1e-8
-/// 58 with the solves twice as long: tighter buys GMRES little.
+/// symmetric part (scene/scene_simulation.cpp sets it): tighter buys GMRES few iterations for
+/// solves that take longer, looser costs it more (lib/docs/newton.md).
 constexpr double kTangentPreconditionerTolerance = 1e-2;
 
 /// Static Newton's definite stand-in: the corotated stiffness R K R^T of `problem` at `rotations`

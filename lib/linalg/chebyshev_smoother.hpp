@@ -1,5 +1,5 @@
 #pragma once
-// Chebyshev polynomial smoothing on the l1 block-Jacobi diagonal (issue 36's candidate; Adams,
+// Chebyshev polynomial smoothing on the l1 block-Jacobi diagonal (Adams,
 // Brezina, Hu and Tuminaro 2003, "Parallel multigrid smoothing: polynomial versus Gauss-Seidel"):
 // `degree` steps of the Chebyshev iteration for M^-1 A on the eigenvalue interval [lower, 1],
 // M = blockdiag(A_ii + diag(l1 norms of row r's entries outside block i)). M - A is then

@@ -68,11 +68,8 @@ void BlockGaussSeidel::set_matrix(const BrcMatrix& a) {
   // of the row's entries outside its domain (at its start and end: the columns are sorted),
   // inverted by its cofactors. The rows' blocks lie a row apart: the diagonal block and the
   // row's off-domain blocks, every line of them, are fetched kAhead rows ahead, or each read
-  // waits on memory. Against the two passes with Eigen's blocks and inverse this replaced:
-  // 1.21-1.28 against 2.03-2.22 ms a set-up on the 67k quadruped's two smoothed levels at one
-  // thread (4 alternated rounds, 2026-12-06). Fetching every line of the off-domain blocks, not
-  // only the first and the last: 0.29-0.40 against 0.33-0.54 ms on the horse's smoothed levels,
-  // 0.53-0.70 against 0.81-0.95 on the dragon's (BM_SmootherSetUp, cold, 3 alternated rounds).
+  // waits on memory (lib/docs/multigrid-update-notes.md, "The smoothers' set-up against its
+  // floor").
   constexpr int kAhead = 16;
   const double* values = a.values.data();
   const auto fetch_blocks = [&](int from, int to) {  // blocks [from, to): every line

@@ -1,5 +1,5 @@
 #pragma once
-// One rank's part of a mesh distributed over MPI ranks (issue 37): the rank owns a contiguous range
+// One rank's part of a mesh distributed over MPI ranks: the rank owns a contiguous range
 // of the (locality-ordered) vertices, [begin, end), the block rows it gives PETSc; it holds the
 // tets that touch an owned vertex (every element contributing to its rows, so its rows assemble
 // complete with no matrix entries sent between ranks) and the vertices those tets reach beyond

@@ -1,5 +1,5 @@
 #pragma once
-// Coarser surfaces of a body for the multigrid's coarse meshes (issue 36): gmsh fills a closed
+// Coarser surfaces of a body for the multigrid's coarse meshes: gmsh fills a closed
 // surface with tets but keeps its triangles, so a bare STL re-meshed at twice the size is as fine
 // at the boundary as before. Edge collapses with Garland and Heckbert's quadric error metric (1997)
 // give the surface the coarser spacing first.
@@ -25,7 +25,7 @@ SurfaceMesh simplify_surface(const SurfaceMesh& surface, int target_vertices,
 /// Per vertex of `coarse`, the move outward along its normal (area-weighted) that puts the
 /// vertices of `fine` nearest to it on or below its tangent plane: moved so, the coarse surface
 /// covers the body, and a coarse mesh of it locates the fine points instead of extrapolating to
-/// them (issue 36; a surface's fine vertices are the body's outermost points).
+/// them (a surface's fine vertices are the body's outermost points).
 std::vector<Vec3> covering_moves(const SurfaceMesh& coarse, const SurfaceMesh& fine);
 
 }  // namespace corofem

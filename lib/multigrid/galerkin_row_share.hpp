@@ -5,7 +5,7 @@
 // R_{:,own} A_{own,:} R^T. A rank of a distributed petsc-mg run computes its share this way and
 // PETSc adds the shares across ranks (solver/petsc_coarse_operators.hpp), in place of PETSc's
 // parallel MatPtAP, whose intermediate products (A P on each rank, kept for reuse) made a rank's
-// memory at two ranks larger than the whole problem's on one (issue 37).
+// memory at two ranks larger than the whole problem's on one.
 #include "multigrid/galerkin.hpp"
 #include "multigrid/transfer.hpp"
 #include "sparse/brc_matrix.hpp"

@@ -35,8 +35,8 @@ struct HierarchyParams {
   int coarsest_max_vertices = 0;
   /// meshes: a coarse mesh must have at most 1/this of the level above's vertices, or it is
   /// replaced, with the levels below it, by lattice levels, and the level's origin says why
-  /// (issue 36: gmsh re-meshing a surface keeps its triangles, which gave levels 1.06-1.36x
-  /// smaller than the one above and denser in nonzeros). A safety net, not a target: derived
+  /// (gmsh re-meshing a surface keeps its triangles, which can give a level barely smaller than
+  /// the one above and denser in nonzeros). A safety net, not a target: derived
   /// surface levels coarsen 4.7-7x (coarse_surface_mesh.hpp), a thin box's clamped at 2 cells
   /// across about 2x.
   double min_coarsening = 1.5;

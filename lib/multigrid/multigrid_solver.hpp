@@ -47,7 +47,8 @@ struct MultigridParams {
   /// factored by less than this, relative, in the Frobenius norm (0: refactored at every update).
   /// The factor of a nearby SPD operator is still an SPD coarse solve, so the V-cycle stays an SPD
   /// preconditioner and MG-PCG meets its tolerance; only its rate can suffer. Measured in
-  /// lib/docs/multigrid-update-notes.md, "The coarsest factor kept while the operator barely moves".
+  /// lib/docs/multigrid-update-notes.md, "The coarsest factor kept while the operator barely
+  /// moves".
   double coarsest_refactor_change = 0.03;
 };
 

@@ -280,8 +280,7 @@ json bare_surface(json scene) {
 }
 
 /// The vertex ratio per level at which the quadruped's rho and MG-PCG iterations stop depending
-/// on its size (issue 36; README "Multigrid": 11k-270k tets, 25 steps, rho 0.40-0.44, 5
-/// iterations at every size, against 0.41-0.50 and 4-6 with the default size doubling).
+/// on its size (lib/docs/multigrid.md: rho and iterations flat from 11k to 270k tets).
 constexpr double kSizeIndependentCoarsening = 3.5;
 
 /// Multigrid quality: the paper's re-meshed hierarchy (its levels as given, or `bare`: derived
@@ -312,7 +311,8 @@ json multigrid_row(const ModelTables& m, HierarchyKind hierarchy, bool bare = fa
 
 /// The textbook property the paper claims for its hierarchy: rho and MG-PCG iterations that do
 /// not grow with the mesh. `model`'s re-meshed rows at each of its sizes, and their spreads
-/// against issue 36's targets (rho within 0.05, iterations within 1); null below two sizes. The
+/// against the targets of size independence (rho within 0.05, iterations within 1); null below
+/// two sizes. The
 /// rows of one `coarsening` (0: the default size doubling).
 json size_independence(const json& multigrid_rows, const std::string& model, double coarsening) {
   json sizes = json::array();

@@ -40,11 +40,11 @@ struct ReportConfig {
   /// size: in the standard report only up to the paper's smallest size, where it costs seconds.
   bool comparison_tables(SceneSize size) const;
   /// Whether the Jacobi-PCG table runs at this size: as the comparison tables, and on every model
-  /// file with --models, whose horse and dragon are where issue 36's targets against Jacobi-PCG
-  /// are set (seconds a model; the rival solvers' minutes stay out of the standard report).
+  /// file with --models, on whose horse and dragon multigrid must beat Jacobi-PCG (seconds a
+  /// model; the rival solvers' minutes stay out of the standard report).
   bool jacobi_table(SceneSize size) const;
   /// Sizes past the tables' at which only the multigrid quality rows run: the quadruped at 270k
-  /// in the full report, so its sizes show whether rho and iterations stay flat (issue 36).
+  /// in the full report, so its sizes show whether rho and iterations stay flat.
   std::vector<SceneSize> multigrid_only_sizes(const std::string& model) const;
   int table_warmup() const;
   int table_measured() const;  ///< steps in each median (at least 20 outside smoke)

@@ -266,10 +266,9 @@ json stability_scene(const std::string& id, SceneSize size, int ramp_steps, int 
                    {"formulation", "corotational"},
                    {"rotation", "energy-newton"},
                    {"solver", "cholmod"},
-                   // The study runs its groups side by side: supernodal factorizations waited on
-                   // each other's BLAS turn (CPU 138% of 200) and spent a sixth of their time in
-                   // CHOLMOD's OpenMP system calls; simplicial ones, the same statuses and causes
-                   // in every run, took the study from 339 to 259 s (2026-12-07).
+                   // The study runs its groups side by side: supernodal factorizations wait on
+                   // each other's BLAS turn and on CHOLMOD's OpenMP regions; simplicial ones call
+                   // neither, and give the same statuses and causes (lib/docs/report.md).
                    {"factorization", "simplicial"},
                    {"dt", 0.01},
                    {"steps", ramp_steps + hold_steps},

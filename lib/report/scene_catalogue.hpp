@@ -11,7 +11,7 @@ namespace corofem {
 
 /// Mesh resolution: `small` for tests, quick runs and the stability study; S, M, L are the paper's
 /// three sizes (about 11k, 34k and 67k tets; the paper's bunny, horse and dragon rows); XL, about
-/// 270k, only for the multigrid's size independence (issue 36).
+/// 270k, only for the multigrid's size independence.
 enum class SceneSize { Small, S, M, L, XL };
 std::string size_name(SceneSize size);       ///< "small", "11k", "34k", "67k", "270k"
 std::string paper_model_of(SceneSize size);  ///< the paper row of that size: bunny, horse, dragon
@@ -50,8 +50,8 @@ nlohmann::json probe_box(const std::string& model);
 std::vector<std::string> stability_scene_ids(bool with_models);
 /// Whether the study runs scene `id` only at full length (or where --only names it): true for
 /// "quadruped-stretched", stable under every method and integrator, which decides no verdict
-/// ("quadruped-stretched-far" is the same scene pulled 2.5x as hard); it took 35-40 s of the main
-/// job (2026-12-07).
+/// ("quadruped-stretched-far" is the same scene pulled 2.5x as hard): it would cost the main job
+/// its time and tell nothing.
 bool stability_scene_full_only(const std::string& id);
 nlohmann::json stability_scene(const std::string& id, SceneSize size, int ramp_steps,
                                int hold_steps, const std::filesystem::path& models_dir = {});

@@ -35,8 +35,8 @@ struct FlutterThresholds {
   /// its bounding box's diagonal.
   double blowup_displacement(const std::vector<Vec3>& rest) const;
   /// stuck when more than this share of the elements is still inverted at the end of the hold
-  /// (issue 40: polar crumpled, 436 of 1296 inverted on block-squash, counted stable before; a
-  /// stretched horse's 2 inverted slivers of 33k are not a body that failed to recover).
+  /// (a crumpled body keeps a third of its elements inverted; two inverted slivers of a stretched
+  /// model's 33k tets are not a body that failed to recover).
   double stuck_inverted_share = 0.01;
 };
 

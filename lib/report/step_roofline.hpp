@@ -1,5 +1,5 @@
 #pragma once
-// The roofline of a time step (issue 12): per phase of the paper's step (linearly implicit
+// The roofline of a time step: per phase of the paper's step (linearly implicit
 // Euler, energy-newton rotations, MG-PCG with the gather update, the default) the bytes it must
 // move and the flops it must do, counted from the sizes of the data structures it touches, and the
 // floor that the machine's measured roofs put under its time: max(bytes / STREAM bandwidth, flops /

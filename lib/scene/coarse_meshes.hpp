@@ -23,8 +23,8 @@ MeshSpec coarse_mesh_spec(const MeshSpec& fine, int h, const std::string& scene_
 /// (the hierarchy uses lattice levels from there on); a derived surface level that gmsh cannot fill
 /// ends them too, with a warning on stderr. With `fine_vertices` and `coarsening` > 0, a derived
 /// quadruped or surface level is re-meshed at the size that gives it about 1/coarsening of the
-/// level above's vertices (issue 36: doubling the size coarsened the quadruped 3.6x at 11k tets
-/// and 6.2x at 270k, and its convergence followed the ratio).
+/// level above's vertices: a fixed size factor coarsens a body by a ratio that grows with its
+/// size, and its convergence follows the ratio (lib/docs/multigrid.md).
 /// With `coarsest_limit` > 0 they stop after the first of at most that many vertices
 /// (coarsest_vertex_limit), and after the last a mesh file gives.
 std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::string& name,

@@ -11,12 +11,11 @@ namespace corofem {
 /// distributed mesh (analysis_settings.hpp: distributes_mesh).
 /// Measured as the peak RSS of dynamic runs (energy-newton rotations, 3 steps, to 1e-4): about
 /// 80 MB of libraries, then per tet
-///   mgpcg, multigrid 1.31-1.35 kB, jacobi-pcg 1.17 kB (a unit box at 24.6k, 197k and 664k tets,
-///   2026-12-02); petsc-mg 1.55-1.66 kB, petsc-gamg 1.60-1.71 kB, hypre-boomeramg 2.72-2.79 kB
-///   (bars of 207k and 415k tets, 2026-12-03, since the matrix's values are written into PETSc's
-///   arrays without COO maps), each rounded up by about 10% (GAMG by 17%: at 2 ranks it needs
-///   1.48 kB per tet of its share over the libraries); CHOLMOD starts at 190 MB (OpenBLAS's
-///   buffers) and its factor
+///   mgpcg, multigrid 1.31-1.35 kB, jacobi-pcg 1.17 kB (a unit box at 24.6k, 197k and 664k tets);
+///   petsc-mg 1.55-1.66 kB, petsc-gamg 1.60-1.71 kB, hypre-boomeramg 2.72-2.79 kB (bars of 207k
+///   and 415k tets, the matrix's values written into PETSc's arrays without COO maps), each rounded
+///   up by about 10% (GAMG by 17%: at 2 ranks it needs 1.48 kB per tet of its share over the
+///   libraries); CHOLMOD starts at 190 MB (OpenBLAS's buffers) and its factor
 /// grows faster than the mesh (fill of a 3D mesh ~ n^4/3): 1.44 GB at 197k tets, 6.38 GB at 664k,
 /// so 115 bytes x tets^4/3 above its start (5-7% above both).
 /// Distributed: the libraries, then the larger of the whole body rank 0 builds before it sends

@@ -1,6 +1,6 @@
 #pragma once
-// What a rank of a distributed run receives from rank 0, the one rank that builds the whole body
-// (issue 37): its part of the mesh (mesh/rank_part.hpp) with its tets' materials, its supports and
+// What a rank of a distributed run receives from rank 0, the one rank that builds the whole
+// body: its part of the mesh (mesh/rank_part.hpp) with its tets' materials, its supports and
 // its rows of the loads; each of its vertices' number in the scene's order; and, for petsc-mg, the
 // hierarchy's transfers (the finest one's rows of its own vertices, the coarser ones whole: the
 // coarse levels are small and replicated).

@@ -25,7 +25,7 @@ class SceneSimulation {
   /// petsc-mg's transfers), partitions it and sends every other rank its part
   /// (scene/rank_share.hpp); no other rank ever holds the whole mesh. Each builds its element
   /// data, pattern and solver on its part: problem() is the part's, the element work is the
-  /// part's, the solver distributed to match (issue 37).
+  /// part's, the solver distributed to match.
   SceneSimulation(const Scene& scene, int rank, int ranks);
   /// Whether `ranks` ranks would run `scene` on a distributed mesh (else replicated).
   static bool distributes_mesh(const Scene& scene, int ranks);

@@ -1,5 +1,5 @@
 #pragma once
-// PETSc's Galerkin product, the one a PETSc user would call (issue 14): E_{h+1} = P_h^T E_h P_h
+// PETSc's Galerkin product, the one a PETSc user would call: E_{h+1} = P_h^T E_h P_h
 // by MatPtAP on AIJ matrices of block size 3, level after level, P_h = R_h^T. The first update
 // runs MatPtAP's symbolic and numeric phases (MAT_INITIAL_MATRIX); every later one only the
 // numeric phase on the stored patterns (MAT_REUSE_MATRIX), the mode that competes with our stream.

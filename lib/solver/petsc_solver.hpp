@@ -1,5 +1,5 @@
 #pragma once
-// The algebraic multigrid solvers users would pick instead of ours, through PETSc (issue 14):
+// The algebraic multigrid solvers users would pick instead of ours, through PETSc:
 //   petsc-gamg       CG preconditioned by PETSc's smoothed aggregation (GAMG) with the six
 //                    rigid-body modes of the rest positions as near null space;
 //   hypre-boomeramg  CG preconditioned by hypre's BoomerAMG (PETSc's PCHYPRE) as systems AMG

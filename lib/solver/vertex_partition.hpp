@@ -1,5 +1,5 @@
 #pragma once
-// The partition of a mesh's vertices over MPI ranks for a distributed run (issue 37): PETSc's
+// The partition of a mesh's vertices over MPI ranks for a distributed run: PETSc's
 // MatPartitioning with PT-Scotch on the vertex graph (the mesh's edges), computed by the calling
 // process alone (rank 0, the one that holds the whole mesh: no MPI call). Rank parts then become
 // contiguous ranges of the vertex order (mesh/rank_part.hpp: group_vertices_by_part).
