@@ -596,7 +596,7 @@ void BM_NestedTwoGrid(benchmark::State& state) {
   for (int degree : {2, 3, 4}) {
     MultigridParams p = params;
     p.smoother = "chebyshev";
-    p.smoother_settings.chebyshev_degree = degree;
+    p.smoother_parameters.set("chebyshev_degree", static_cast<long long>(degree));
     smoothers.emplace_back("chebyshev" + std::to_string(degree), p);
   }
   const BuiltHierarchy built = build_hierarchy(fine, fixed_vertices, hierarchy, {coarse});

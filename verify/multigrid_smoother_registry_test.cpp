@@ -22,8 +22,11 @@ TEST(SmootherRegistry, BuiltInsByName) {
                                              "chebyshev"};
   ASSERT_GE(smoother_names().size(), expected.size());
   for (std::size_t k = 0; k < expected.size(); ++k) EXPECT_EQ(smoother_names()[k], expected[k]);
-  EXPECT_EQ(make_smoother("domains", {})->describe()["ordering"], "domains");
-  EXPECT_EQ(make_smoother("chebyshev", {.chebyshev_degree = 4})->describe()["degree"], 4);
+  EXPECT_EQ(make_smoother("domains")->describe().text("ordering"), "domains");
+  Parameters degree_4;
+  degree_4.set("chebyshev_degree", 4LL);
+  EXPECT_EQ(make_smoother("chebyshev", degree_4)->describe().integer("degree"), 4);
+  EXPECT_EQ(make_smoother("chebyshev")->describe().integer("degree"), 2);  // its default
   try {
     make_smoother("jacobi", {});
     ADD_FAILURE() << "an unknown smoother was made";

@@ -294,7 +294,7 @@ TEST(MultigridSolver, ChebyshevSmoothedSolutionsEqualCholmod) {
       for (const int degree : {1, 2, 3}) {
         AnalysisSpec a = analysis(name, 1e-10, hierarchy);
         a.smoother = "chebyshev";
-        a.chebyshev_degree = degree;
+        a.smoother_parameters.set("chebyshev_degree", static_cast<long long>(degree));
         auto mg = make_linear_solver(a, p, c.coarse());
         const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
         EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm())

@@ -165,7 +165,7 @@ TEST(StepRoofline, ChebyshevSmoothingCountsItsOwnProducts) {
   SceneSimulation sim(parse_scene(scene, ".", "box"));
   sim.run();
   const auto& solver = dynamic_cast<const MultigridSolver&>(sim.solver());
-  EXPECT_EQ(solver.smoother(0).describe()["kind"], "chebyshev");
+  EXPECT_EQ(solver.smoother(0).describe().text("kind"), "chebyshev");
   const FeProblem& problem = sim.problem();
   const double v = problem.mesh.num_vertices(), n = 3 * v;
   const double blocks = static_cast<double>(problem.stiffness.col_index.size());

@@ -1,7 +1,9 @@
 // A smoother of one's own: damped l1 block Jacobi, x += w M^-1 (b - A x) with M the block
 // diagonal plus each row's l1 norm outside its block (every eigenvalue of M^-1 A then lies in
-// (0, 1], so w = 0.8 converges); the same before and after the coarse correction, so the V-cycle
-// stays a symmetric preconditioner.
+// (0, 1], so any w in (0, 1] converges); the same before and after the coarse correction, so the
+// V-cycle stays a symmetric preconditioner. Its damping w is a setting of its own, declared in its
+// registration: a scene gives it as analysis.jacobi_damping (default 0.8), and corofem reads,
+// checks and records it as it does its own smoothers'.
 #include "core/types.hpp"
 #include "linalg/chebyshev_smoother.hpp"
 #include "own_method.hpp"
@@ -10,6 +12,7 @@ namespace own {
 
 class DampedL1Jacobi : public corofem::Smoother {
  public:
+  explicit DampedL1Jacobi(double damping) : damping_(damping) {}
   void set_matrix(const corofem::BrcMatrix& a) override {
     inverse_ = corofem::l1_block_diagonal_inverse(a);  // Chebyshev's diagonal, corofem's own
   }
@@ -26,7 +29,7 @@ class DampedL1Jacobi : public corofem::Smoother {
     for (int s = 0; s < sweeps; ++s) {
       a.residual(b, x, r);
       for (int i = 0; i < a.block_rows; ++i)
-        x.segment<3>(3 * i) += kDamping * (inverse_[i] * r.segment<3>(3 * i));
+        x.segment<3>(3 * i) += damping_ * (inverse_[i] * r.segment<3>(3 * i));
     }
   }
   corofem::Traffic setup_traffic(const corofem::BrcMatrix& a) const override {
@@ -43,19 +46,29 @@ class DampedL1Jacobi : public corofem::Smoother {
                                          corofem::kBlockBytes * a.block_rows + 24 * n,
                                      18.0 * static_cast<double>(a.col_index.size()) + 21 * n};
   }
-  nlohmann::json describe() const override {
-    return {{"kind", kDampedL1Jacobi}, {"damping", kDamping}};
+  corofem::Parameters describe() const override {
+    corofem::Parameters p;
+    p.set("kind", std::string(kDampedL1Jacobi));
+    p.set("damping", damping_);
+    return p;
   }
 
  private:
-  static constexpr double kDamping = 0.8;
+  double damping_;
   std::vector<corofem::Mat3> inverse_;
 };
 
 void register_damped_l1_jacobi() {
   corofem::register_smoother(
-      {.name = kDampedL1Jacobi, .make = [](const corofem::SmootherSettings&) {
-         return std::unique_ptr<corofem::Smoother>(new DampedL1Jacobi);
+      {.name = kDampedL1Jacobi,
+       .parameters = {{.key = "jacobi_damping",
+                       .kind = corofem::ParameterSpec::Kind::Number,
+                       .fallback = 0.8,
+                       .min = 0.05,
+                       .max = 1,
+                       .meaning = "damped-l1-jacobi: the damping w of x += w M^-1 (b - A x)"}},
+       .make = [](const corofem::Parameters& p) {
+         return std::unique_ptr<corofem::Smoother>(new DampedL1Jacobi(p.number("jacobi_damping")));
        }});
 }
 

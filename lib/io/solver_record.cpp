@@ -45,7 +45,7 @@ nlohmann::json parts_json(std::initializer_list<std::pair<const char*, double>> 
 
 /// The smoother as it describes itself, with the smoothings per cycle.
 nlohmann::json smoother_json(const MultigridParams& p) {
-  nlohmann::json j = make_smoother(p.smoother, p.smoother_settings)->describe();
+  nlohmann::json j = to_json(make_smoother(p.smoother, p.smoother_parameters)->describe());
   j["pre_smoothing"] = p.pre_smoothing;
   j["post_smoothing"] = p.post_smoothing;
   return j;
@@ -55,6 +55,13 @@ nlohmann::json smoother_json(const MultigridParams& p) {
 
 nlohmann::json to_json(const std::optional<double>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json to_json(const Parameters& parameters) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [key, value] : parameters.values())
+    std::visit([&, &key = key](const auto& v) { j[key] = v; }, value);
+  return j;
 }
 
 nlohmann::json to_json(const MultigridSetupParts& p) {

@@ -12,6 +12,8 @@ namespace corofem {
 
 /// A measurement that may not exist (a median over no solves): its value, or null.
 nlohmann::json to_json(const std::optional<double>& value);
+/// A component's settings or its description (core/parameters.hpp): an object by key.
+nlohmann::json to_json(const Parameters& parameters);
 
 nlohmann::json to_json(const RotationParams& params);
 nlohmann::json to_json(const HierarchyParams& params);

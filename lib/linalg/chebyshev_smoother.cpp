@@ -122,17 +122,26 @@ Traffic ChebyshevSmoother::post_traffic(const BrcMatrix& a, int sweeps) const {
   return sweeps * smoothing_traffic(a, false);
 }
 
-nlohmann::json ChebyshevSmoother::describe() const {
-  return {{"kind", "chebyshev"},
-          {"diagonal", "l1 block Jacobi"},
-          {"degree", degree_},
-          {"interval", {lower_, 1.0}}};
+Parameters ChebyshevSmoother::describe() const {
+  Parameters p;
+  p.set("kind", std::string("chebyshev"));
+  p.set("diagonal", std::string("l1 block Jacobi"));
+  p.set("degree", static_cast<long long>(degree_));
+  p.set("interval", std::vector<double>{lower_, 1.0});
+  return p;
 }
 
 SmootherTraits chebyshev_smoother_traits() {
-  return {.name = "chebyshev", .make = [](const SmootherSettings& settings) {
+  return {.name = "chebyshev",
+          .parameters = {{.key = "chebyshev_degree",
+                          .kind = ParameterSpec::Kind::Integer,
+                          .fallback = 2LL,
+                          .min = 1,
+                          .max = 16,
+                          .meaning = "Chebyshev steps per smoothing"}},
+          .make = [](const Parameters& p) {
             return std::unique_ptr<Smoother>(
-                new ChebyshevSmoother(settings.chebyshev_degree, settings.chebyshev_lower));
+                new ChebyshevSmoother(static_cast<int>(p.integer("chebyshev_degree"))));
           }};
 }
 

@@ -39,7 +39,7 @@ class ChebyshevSmoother : public Smoother {
   Traffic setup_traffic(const BrcMatrix& a) const override;
   Traffic pre_traffic(const BrcMatrix& a, int sweeps) const override;
   Traffic post_traffic(const BrcMatrix& a, int sweeps) const override;
-  nlohmann::json describe() const override;
+  Parameters describe() const override;
   /// z = M^{-1} r.
   void apply_inverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
   int degree() const { return degree_; }

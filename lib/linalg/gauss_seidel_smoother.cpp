@@ -75,18 +75,21 @@ Traffic GaussSeidelSmoother::post_traffic(const BrcMatrix& a, int sweeps) const 
   return sweeps * sweep_traffic(a);
 }
 
-nlohmann::json GaussSeidelSmoother::describe() const {
-  nlohmann::json j = {{"kind", "block-gauss-seidel"},
-                      {"ordering", kSmootherOrderings.name(ordering_)}};
-  if (ordering_ == SmootherOrdering::Hybrid) j["domain_blocks"] = kHybridDomainBlocks;
-  if (ordering_ == SmootherOrdering::Domains) j["domain_vertices"] = kDomainVertices;
-  return j;
+Parameters GaussSeidelSmoother::describe() const {
+  Parameters p;
+  p.set("kind", std::string("block-gauss-seidel"));
+  p.set("ordering", std::string(kSmootherOrderings.name(ordering_)));
+  if (ordering_ == SmootherOrdering::Hybrid)
+    p.set("domain_blocks", static_cast<long long>(kHybridDomainBlocks));
+  if (ordering_ == SmootherOrdering::Domains)
+    p.set("domain_vertices", static_cast<long long>(kDomainVertices));
+  return p;
 }
 
 std::vector<SmootherTraits> gauss_seidel_smoothers() {
   std::vector<SmootherTraits> out;
   for (const auto& [ordering, name] : kSmootherOrderings.entries)
-    out.push_back({.name = name, .make = [ordering = ordering](const SmootherSettings&) {
+    out.push_back({.name = name, .make = [ordering = ordering](const Parameters&) {
                      return std::unique_ptr<Smoother>(new GaussSeidelSmoother(ordering));
                    }});
   return out;

@@ -23,7 +23,7 @@ class GaussSeidelSmoother : public Smoother {
   Traffic setup_traffic(const BrcMatrix& a) const override;
   Traffic pre_traffic(const BrcMatrix& a, int sweeps) const override;
   Traffic post_traffic(const BrcMatrix& a, int sweeps) const override;
-  nlohmann::json describe() const override;
+  Parameters describe() const override;
 
  private:
   SmootherOrdering ordering_;

@@ -41,11 +41,22 @@ const SmootherTraits* find_smoother(std::string_view name) {
   return nullptr;
 }
 
-std::unique_ptr<Smoother> make_smoother(std::string_view name, const SmootherSettings& settings) {
+std::unique_ptr<Smoother> make_smoother(std::string_view name, const Parameters& values) {
   const SmootherTraits& traits = registry().at(registry().index_of(name));
-  std::unique_ptr<Smoother> smoother = traits.make(settings);
+  Parameters own(traits.parameters);  // its defaults, then what `values` gives of its own
+  for (const ParameterSpec& spec : traits.parameters)
+    if (values.has(spec.key)) own.set(spec.key, values.values().find(spec.key)->second);
+  std::unique_ptr<Smoother> smoother = traits.make(own);
   if (!smoother) throw std::logic_error("smoother '" + traits.name + "': its make built nothing");
   return smoother;
+}
+
+std::vector<ParameterSpec> smoother_parameters() {
+  std::vector<ParameterSpec> out;
+  for (const std::string& name : registry().names())
+    for (const ParameterSpec& spec : registry().at(registry().index_of(name)).parameters)
+      out.push_back(spec);
+  return out;
 }
 
 }  // namespace corofem

@@ -7,12 +7,12 @@
 // name it in analysis.smoother.
 #include <functional>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/parameters.hpp"
 #include "sparse/matrix_traffic.hpp"
 
 namespace corofem {
@@ -38,19 +38,17 @@ class Smoother {
   virtual Traffic setup_traffic(const BrcMatrix& a) const = 0;
   virtual Traffic pre_traffic(const BrcMatrix& a, int sweeps) const = 0;
   virtual Traffic post_traffic(const BrcMatrix& a, int sweeps) const = 0;
-  /// What it is, for the run's record: {"kind", its parameters...}.
-  virtual nlohmann::json describe() const = 0;
+  /// What it is, for the run's record: "kind" and its parameters.
+  virtual Parameters describe() const = 0;
 };
 
-/// A scene's smoother parameters that a smoother may read.
-struct SmootherSettings {
-  int chebyshev_degree = 2;      ///< Chebyshev: steps per smoothing
-  double chebyshev_lower = 0.1;  ///< Chebyshev: the interval's lower end (its upper is 1)
-};
-
+/// A smoother as scenes name it: its settings, declared (each a scene key of `analysis`, with
+/// its default and range: the scene reader reads them by this alone), and how to make it from
+/// their values.
 struct SmootherTraits {
   std::string name{};  ///< the scene's analysis.smoother
-  std::function<std::unique_ptr<Smoother>(const SmootherSettings&)> make{};
+  std::vector<ParameterSpec> parameters{};
+  std::function<std::unique_ptr<Smoother>(const Parameters&)> make{};
 };
 
 /// Adds a smoother; its name must be new.
@@ -59,7 +57,10 @@ void register_smoother(SmootherTraits traits);
 std::vector<std::string> smoother_names();
 /// The smoother named `name`, or null.
 const SmootherTraits* find_smoother(std::string_view name);
-/// A new smoother named `name`; std::out_of_range naming the registered ones for another.
-std::unique_ptr<Smoother> make_smoother(std::string_view name, const SmootherSettings& settings);
+/// A new smoother named `name` with `values` (its declared settings that `values` lacks at their
+/// defaults, others ignored); std::out_of_range naming the registered ones for another name.
+std::unique_ptr<Smoother> make_smoother(std::string_view name, const Parameters& values = {});
+/// Every registered smoother's declared settings (the scene keys that belong to smoothers).
+std::vector<ParameterSpec> smoother_parameters();
 
 }  // namespace corofem

@@ -54,7 +54,7 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       ended_early_(std::move(built.ended_early)) {
   if (observer_) observer_->on_part(SolverPart::Transfers, built.transfers_ms);
   for (int h = 0; h + 1 < hierarchy_.num_levels(); ++h)
-    smoothers_.push_back(make_smoother(params_.smoother, params_.smoother_settings));
+    smoothers_.push_back(make_smoother(params_.smoother, params_.smoother_parameters));
   // The method's streams now, in the set-up, not in the first step's update.
   timed(SolverPart::GalerkinStreams, [&] { hierarchy_.prepare(params_.galerkin); });
 }

@@ -38,7 +38,8 @@ struct MultigridParams {
   /// The smoother of every level but the coarsest, by its registered name (linalg/smoother.hpp):
   /// hybrid Gauss-Seidel, the one that threads with the sequential locality.
   std::string smoother = "hybrid";
-  SmootherSettings smoother_settings{};
+  /// The smoother's own settings (SmootherTraits::parameters; those it lacks at their defaults).
+  Parameters smoother_parameters{};
   /// MG-PCG at two or more threads and three or more levels: the coarsest factorization beside the
   /// next solve's initial residual and first descent (see MultigridSolver::defers_update), not in
   /// the update.

@@ -10,6 +10,7 @@
 #include "core/memory_usage.hpp"
 #include "linalg/linear_solver.hpp"
 #include "rotation/rotation_extractor.hpp"
+#include "scene/component_settings.hpp"
 #include "scene/json_fields.hpp"
 #include "scene/memory_estimate.hpp"
 #include "solver/mpi_launch.hpp"
@@ -207,14 +208,19 @@ void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
   a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
   a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
   a.smoother = one_of(f, "smoother", a.smoother, smoother_names());
-  a.chebyshev_degree = integer_in(f, "chebyshev_degree", a.chebyshev_degree, 1, 16);
+  // The smoother's own settings, by its declarations; another smoother's, given too (a scene that
+  // sweeps smoothers), are checked by theirs and left unused.
+  for (const std::string& name : smoother_names()) {
+    const Parameters given = read_parameters(f, find_smoother(name)->parameters);
+    if (name == a.smoother) a.smoother_parameters = given;
+  }
   a.cycle = one_of(f, "cycle", a.cycle, kCycleShapes);
   a.coarsest_refactor = number_in(f, "coarsest_refactor", a.coarsest_refactor, 0, 1);
   if (a.solver == SolverKind::PetscMg)
     // PETSc's PCMG on our transfers: its own V-cycle of Chebyshev-Jacobi smoothing (as many steps
     // as `smoothing`) and its coarse operators by MatPtAP. A setting it cannot honour is refused,
     // not ignored.
-    for (const char* key : kKeysPetscMgCannotHonour)
+    for (const std::string& key : keys_petsc_mg_cannot_honour())
       if (f.has(key))
         f.fail(key,
                "left out with solver 'petsc-mg' (PETSc's PCMG runs its own V-cycle of "
@@ -289,7 +295,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   if (!builds_hierarchy(a.solver)) {
     // A scene that sweeps solvers keeps its multigrid settings: ignored here, said once.
     std::string ignored;
-    for (const char* key : kMultigridAnalysisKeys)
+    for (const std::string& key : multigrid_analysis_keys())
       if (f.has(key)) ignored += (ignored.empty() ? "" : ", ") + f.path_of(key);
     if (!ignored.empty())
       std::cerr << "corofem: warning: scene '" << f.file() << "': " << ignored
@@ -317,13 +323,28 @@ double LoadTiming::factor(int step) const {
   return ramp_steps > 0 ? std::min(1.0, static_cast<double>(step) / ramp_steps) : 1.0;
 }
 
+std::vector<std::string> multigrid_analysis_keys() {
+  std::vector<std::string> keys = {
+      "levels",     "vcycles",  "smoothing",         "galerkin",
+      "hierarchy",  "smoother", "coarsest_vertices", "coarsest_max_vertices",
+      "coarsening", "cycle",    "coarsest_refactor"};
+  for (const ParameterSpec& spec : smoother_parameters()) keys.push_back(spec.key);
+  return keys;
+}
+
+std::vector<std::string> keys_petsc_mg_cannot_honour() {
+  std::vector<std::string> keys = {"vcycles", "galerkin", "smoother", "cycle", "coarsest_refactor"};
+  for (const ParameterSpec& spec : smoother_parameters()) keys.push_back(spec.key);
+  return keys;
+}
+
 void drop_unused_multigrid_keys(nlohmann::json& analysis) {
   const auto solver =
       kSolverKinds.find(analysis.value("solver", kSolverKinds.name(SolverKind::Cholmod)));
   if (solver && !builds_hierarchy(*solver))
-    for (const char* key : kMultigridAnalysisKeys) analysis.erase(key);
+    for (const std::string& key : multigrid_analysis_keys()) analysis.erase(key);
   if (solver == SolverKind::PetscMg)
-    for (const char* key : kKeysPetscMgCannotHonour) analysis.erase(key);
+    for (const std::string& key : keys_petsc_mg_cannot_honour()) analysis.erase(key);
 }
 
 Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const std::string& name) {

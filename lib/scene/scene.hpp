@@ -60,25 +60,14 @@ struct MoveSpec {
   LoadTiming timing;
 };
 
-/// The `analysis` keys that belong to the multigrid solvers (ignored, with a warning, by others).
-inline constexpr const char* kMultigridAnalysisKeys[] = {"levels",
-                                                         "vcycles",
-                                                         "smoothing",
-                                                         "galerkin",
-                                                         "hierarchy",
-                                                         "smoother",
-                                                         "coarsest_vertices",
-                                                         "coarsest_max_vertices",
-                                                         "coarsening",
-                                                         "chebyshev_degree",
-                                                         "cycle",
-                                                         "coarsest_refactor"};
+/// The `analysis` keys that belong to the multigrid solvers (ignored, with a warning, by others):
+/// the hierarchy's and the cycle's, and every registered smoother's own (SmootherTraits).
+std::vector<std::string> multigrid_analysis_keys();
 
 /// The multigrid keys solver 'petsc-mg' cannot honour (PETSc's PCMG runs its own V-cycle of
 /// Chebyshev-Jacobi smoothing and its own Galerkin product): refused in a scene, dropped by
-/// drop_unused_multigrid_keys.
-inline constexpr const char* kKeysPetscMgCannotHonour[] = {
-    "vcycles", "galerkin", "smoother", "chebyshev_degree", "cycle", "coarsest_refactor"};
+/// drop_unused_multigrid_keys. The smoothers' own keys among them.
+std::vector<std::string> keys_petsc_mg_cannot_honour();
 
 struct AnalysisSpec {
   AnalysisType type = AnalysisType::Static;
@@ -116,7 +105,8 @@ struct AnalysisSpec {
   /// Gauss-Seidel, boundaries by colours), sequential (one thread), multicolour (every thread, a
   /// worse rho); chebyshev (on the l1 block-Jacobi diagonal); see README "Multigrid"
   std::string smoother = MultigridParams{}.smoother;
-  int chebyshev_degree = MultigridParams{}.smoother_settings.chebyshev_degree;
+  /// The smoother's own settings, as its registration declares them (SmootherTraits).
+  Parameters smoother_parameters{};
   CycleShape cycle = MultigridParams{}.cycle;  ///< V | W
   /// The coarsest factor is kept while the coarsest operator moved less than this, relative
   /// (MultigridParams::coarsest_refactor_change; 0: refactored every update)

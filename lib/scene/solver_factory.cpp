@@ -21,7 +21,7 @@ MultigridParams multigrid_params(const AnalysisSpec& a) {
   p.tolerance = a.tolerance;
   p.galerkin = a.galerkin;
   p.smoother = a.smoother;
-  p.smoother_settings.chebyshev_degree = a.chebyshev_degree;
+  p.smoother_parameters = a.smoother_parameters;
   p.cycle = a.cycle;
   p.coarsest_refactor_change = a.coarsest_refactor;
   return p;
