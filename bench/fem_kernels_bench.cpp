@@ -152,11 +152,12 @@ void BM_StaticTangentSolve(benchmark::State& state) {
   apply_dirichlet(p.dirichlet, a, b);
   AnalysisSpec analysis;
   analysis.solver = SolverKind::Mgpcg;
-  analysis.hierarchy = HierarchyKind::Meshes;
-  analysis.levels = 3;
+  analysis.multigrid.hierarchy.kind = HierarchyKind::Meshes;
+  analysis.multigrid.hierarchy.levels = 3;
   analysis.tolerance = kTangentPreconditionerTolerance;
   auto mg = make_multigrid_solver(
-      analysis, p, coarse_meshes(spec, analysis.levels, "bar", p.mesh.num_vertices()), true);
+      analysis, p,
+      coarse_meshes(spec, analysis.multigrid.hierarchy.levels, "bar", p.mesh.num_vertices()), true);
   SparseLuSolve factored(a);
   PreconditionedGmresSolve gmres(*mg, a, 1e-10, corotated_stiffness_standin(p, rotations));
   factored.solve(a, b);

@@ -315,8 +315,8 @@ TEST(KrylovNewtonSolve, PetscGmresAndItsLuFallbackEqualTheDenseSolution) {
 std::unique_ptr<MultigridSolver> cantilever_mgpcg(const FeProblem& p, double tolerance) {
   AnalysisSpec a;
   a.solver = SolverKind::Mgpcg;
-  a.hierarchy = HierarchyKind::Lattice;
-  a.levels = 3;
+  a.multigrid.hierarchy.kind = HierarchyKind::Lattice;
+  a.multigrid.hierarchy.levels = 3;
   a.tolerance = tolerance;
   return make_multigrid_solver(a, p, {}, true);
 }

@@ -155,8 +155,8 @@ TEST(SizedHierarchy, AScenesLevelsAndLimitReachTheHierarchy) {
   EXPECT_EQ(p.levels, 4);
   EXPECT_EQ(p.coarsest_vertices, 900);
   const AnalysisSpec direct = analysis({{"solver", "cholmod"}});
-  EXPECT_EQ(direct.levels, 1);
-  EXPECT_EQ(direct.coarsest_vertices, 0);
+  EXPECT_EQ(direct.multigrid.hierarchy.levels, 1);
+  EXPECT_EQ(direct.multigrid.hierarchy.coarsest_vertices, 0);
   try {
     analysis({{"solver", "mgpcg"}, {"coarsest_vertices", 0}});
     ADD_FAILURE() << "coarsest_vertices 0 accepted";

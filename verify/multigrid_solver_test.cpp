@@ -91,10 +91,10 @@ AnalysisSpec analysis(const std::string& solver, double tolerance, const std::st
                       bool setup_reuse = false, int coarsest_max_vertices = 0) {
   AnalysisSpec a;
   a.setup_reuse = setup_reuse;
-  a.coarsest_max_vertices = coarsest_max_vertices;
+  a.multigrid.hierarchy.coarsest_max_vertices = coarsest_max_vertices;
   a.solver = kSolverKinds.at(solver);
-  a.hierarchy = *kHierarchyKinds.find(hierarchy);
-  a.levels = 3;
+  a.multigrid.hierarchy.kind = *kHierarchyKinds.find(hierarchy);
+  a.multigrid.hierarchy.levels = 3;
   a.tolerance = tolerance;
   return a;
 }
@@ -151,7 +151,7 @@ void expect_solutions_equal_cholmod(const MeshCase& c) {
         (cycle == CycleShape::W ? " (W-cycle)" : "");
     auto analysis_of = [&](double tolerance, bool reuse) {
       AnalysisSpec a = analysis(name, tolerance, hierarchy, reuse, coarsest_max);
-      a.cycle = cycle;
+      a.multigrid.cycle = cycle;
       return a;
     };
     try {
@@ -272,7 +272,7 @@ TEST(MultigridSolver, LevelsSizedByVertexRatioHaveItAndSolutionsEqualCholmod) {
     EXPECT_LE(std::abs(std::log(fine / coarse[0].num_vertices() / ratio)), std::log(1.15))
         << "ratio " << ratio << ": " << coarse[0].num_vertices() << " of " << fine;
     AnalysisSpec a = analysis("mgpcg", 1e-10, "meshes");
-    a.coarsening = ratio;
+    a.multigrid.hierarchy.coarsening = ratio;
     auto mg = make_linear_solver(a, p, coarse);
     const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
     EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm())
@@ -293,8 +293,8 @@ TEST(MultigridSolver, ChebyshevSmoothedSolutionsEqualCholmod) {
     for (const char* hierarchy : {"meshes", "lattice"})
       for (const int degree : {1, 2, 3}) {
         AnalysisSpec a = analysis(name, 1e-10, hierarchy);
-        a.smoother = "chebyshev";
-        a.smoother_parameters.set("chebyshev_degree", static_cast<long long>(degree));
+        a.multigrid.smoother = "chebyshev";
+        a.multigrid.smoother_parameters.set("chebyshev_degree", static_cast<long long>(degree));
         auto mg = make_linear_solver(a, p, c.coarse());
         const SimulationResult got = solve_static(p, *none, *mg, {false, 1, 1e-8, 1});
         EXPECT_LT((got.displacement - ref.displacement).norm(), 1e-8 * ref.displacement.norm())
@@ -421,18 +421,19 @@ TEST(MultigridSolver, VcycleConvergenceFactor) {
     int levels = 0;
     for (int k = 0; k < 4; ++k) {
       AnalysisSpec a = analysis("multigrid", 1e-10, k == 1 ? "lattice" : "meshes");
-      a.vcycles = 12;
-      if (k == 2) a.smoother = "multicolour";  // the other threaded ordering, against hybrid
-      if (k == 3) a.cycle = CycleShape::W;
+      a.multigrid.vcycles = 12;
+      if (k == 2)
+        a.multigrid.smoother = "multicolour";  // the other threaded ordering, against hybrid
+      if (k == 3) a.multigrid.cycle = CycleShape::W;
       auto solver = make_linear_solver(a, p, coarse);
       solver->set_matrix(system);
       Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
       rho[k] = solver->solve(b, x).convergence_factor;
       if (k == 3) levels = dynamic_cast<const MultigridSolver&>(*solver).hierarchy().num_levels();
       std::cout << "[ multigrid ] " << c.name << ": " << p.mesh.num_tets() << " tets, "
-                << kHierarchyKinds.name(a.hierarchy) << " hierarchy, " << a.smoother
-                << " Gauss-Seidel, rho = " << rho[k] << " over 12 " << kCycleShapes.name(a.cycle)
-                << "(1,1) cycles\n";
+                << kHierarchyKinds.name(a.multigrid.hierarchy.kind) << " hierarchy, "
+                << a.multigrid.smoother << " Gauss-Seidel, rho = " << rho[k] << " over 12 "
+                << kCycleShapes.name(a.multigrid.cycle) << "(1,1) cycles\n";
     }
     // Nodal block GS V(1,1) with P1 transfers on 3D elasticity has a two-grid spectral radius
     // of 0.51 (nu = 0) to 0.57 (nu = 0.3) even on nested meshes (TwoGridEqualsDenseOperator);
@@ -516,7 +517,7 @@ TEST(MultigridSolver, OverlappedFactorizationIsTheInUpdateBits) {
   auto run = [&](int threads, CycleShape cycle) {
     const ScopedThreadCount count(threads);
     AnalysisSpec a = analysis("mgpcg", 1e-10, "lattice");
-    a.cycle = cycle;  // W: the deferred descent's ascent repeats the coarse cycles
+    a.multigrid.cycle = cycle;  // W: the deferred descent's ascent repeats the coarse cycles
     auto mg = make_multigrid_solver(a, p, {}, true);
     EXPECT_EQ(mg->hierarchy().num_levels(), 3) << "a W-cycle differs from V from 3 levels on";
     Run r;
@@ -583,7 +584,7 @@ TEST(MultigridSolver, TheCoarsestFactorIsKeptWhileItsOperatorBarelyMoves) {
   auto run = [&](int threads, double refactor_change) {
     const ScopedThreadCount count(threads);
     AnalysisSpec a = analysis("mgpcg", 1e-10, "lattice");
-    a.coarsest_refactor = refactor_change;
+    a.multigrid.coarsest_refactor_change = refactor_change;
     auto mg = make_multigrid_solver(a, p, {}, true);
     std::vector<int> factorizations;
     std::vector<Eigen::VectorXd> solutions;
@@ -689,7 +690,7 @@ void two_grid_equals_dense_operator(const std::vector<TetMesh>& coarse) {
   Eigen::VectorXd b;
   const BrcMatrix system = small_strain_system(p, b);
   AnalysisSpec a = analysis("multigrid", 1e-10, "meshes");
-  a.levels = 2;
+  a.multigrid.hierarchy.levels = 2;
   auto mg = make_multigrid_solver(a, p, coarse, false);
   mg->set_matrix(system);
   const Eigen::MatrixXd A = Eigen::MatrixXd(to_eigen(system));

@@ -33,12 +33,12 @@ TEST(AnalysisVariant, WritesWhatTheSceneParserReadsBack) {
   const Scene s = parse_scene(with_analysis(mgpcg_scene(), variant), "/base", "variant.json");
   EXPECT_EQ(s.analysis.solver, SolverKind::Multigrid);
   EXPECT_EQ(s.analysis.rotation, RotationMethod::PolarSmoothed);
-  EXPECT_EQ(s.analysis.galerkin, GalerkinMethod::Naive);
-  EXPECT_EQ(s.analysis.hierarchy, HierarchyKind::Lattice);
+  EXPECT_EQ(s.analysis.multigrid.galerkin, GalerkinMethod::Naive);
+  EXPECT_EQ(s.analysis.multigrid.hierarchy.kind, HierarchyKind::Lattice);
   EXPECT_EQ(s.analysis.tolerance, 1e-6);
-  EXPECT_EQ(s.analysis.vcycles, 3);
-  EXPECT_EQ(s.analysis.levels, 2);     // the scene's, untouched
-  EXPECT_EQ(s.analysis.smoothing, 2);  // likewise
+  EXPECT_EQ(s.analysis.multigrid.vcycles, 3);
+  EXPECT_EQ(s.analysis.multigrid.hierarchy.levels, 2);  // the scene's, untouched
+  EXPECT_EQ(s.analysis.multigrid.pre_smoothing, 2);     // likewise
   // The label names the set fields in key order, as the speed-accuracy points show them.
   EXPECT_EQ(label_of(variant),
             "galerkin=naive hierarchy=lattice rotation=polar-smoothed solver=multigrid "

@@ -57,11 +57,11 @@ TEST(Scene, SmootherNamesAnOrderingOrChebyshev) {
   auto j = minimal();
   j["analysis"] = {{"solver", "mgpcg"}, {"smoother", "domains"}};
   Scene s = parse_scene(j, "/base", "s.json");
-  EXPECT_EQ(s.analysis.smoother, "domains");
+  EXPECT_EQ(s.analysis.multigrid.smoother, "domains");
   j["analysis"] = {{"solver", "mgpcg"}, {"smoother", "chebyshev"}, {"chebyshev_degree", 3}};
   s = parse_scene(j, "/base", "s.json");
-  EXPECT_EQ(s.analysis.smoother, "chebyshev");
-  EXPECT_EQ(s.analysis.smoother_parameters.integer("chebyshev_degree"), 3);
+  EXPECT_EQ(s.analysis.multigrid.smoother, "chebyshev");
+  EXPECT_EQ(s.analysis.multigrid.smoother_parameters.integer("chebyshev_degree"), 3);
   EXPECT_EQ(multigrid_params(s.analysis).smoother_parameters.integer("chebyshev_degree"), 3);
   j["analysis"]["smoother"] = "jacobi";
   EXPECT_THROW(parse_scene(j, "/base", "s.json"), InputError);
@@ -73,10 +73,10 @@ TEST(Scene, SmootherNamesAnOrderingOrChebyshev) {
 TEST(Scene, CycleIsVOrW) {
   auto j = minimal();
   j["analysis"] = {{"solver", "mgpcg"}};
-  EXPECT_EQ(parse_scene(j, "/base", "s.json").analysis.cycle, CycleShape::V);
+  EXPECT_EQ(parse_scene(j, "/base", "s.json").analysis.multigrid.cycle, CycleShape::V);
   j["analysis"]["cycle"] = "W";
   const Scene s = parse_scene(j, "/base", "s.json");
-  EXPECT_EQ(s.analysis.cycle, CycleShape::W);
+  EXPECT_EQ(s.analysis.multigrid.cycle, CycleShape::W);
   EXPECT_EQ(multigrid_params(s.analysis).cycle, CycleShape::W);
   j["analysis"]["cycle"] = "F";
   try {
@@ -90,7 +90,7 @@ TEST(Scene, CycleIsVOrW) {
 TEST(Scene, CoarseningIsZeroOrARatioOfAtLeastTwo) {
   auto j = minimal();
   j["analysis"] = {{"solver", "mgpcg"}};
-  EXPECT_EQ(parse_scene(j, "/base", "s.json").analysis.coarsening, 0);
+  EXPECT_EQ(parse_scene(j, "/base", "s.json").analysis.multigrid.hierarchy.coarsening, 0);
   j["analysis"]["coarsening"] = 3.5;
   const Scene s = parse_scene(j, "/base", "s.json");
   EXPECT_EQ(multigrid_params(s.analysis).hierarchy.coarsening, 3.5);
@@ -148,7 +148,7 @@ TEST(Scene, MultigridKeysOfAnotherSolverAreIgnoredWithAWarning) {
   testing::internal::CaptureStderr();
   const Scene s = parse_scene(j, "/", "s.json");
   const std::string err = testing::internal::GetCapturedStderr();
-  EXPECT_EQ(s.analysis.levels, 1);
+  EXPECT_EQ(s.analysis.multigrid.hierarchy.levels, 1);
   EXPECT_NE(
       err.find(
           "analysis.levels, analysis.smoothing, analysis.hierarchy belong to multigrid solvers"),
@@ -189,7 +189,7 @@ TEST(Scene, PetscMgRefusesTheSettingsItCannotHonour) {
   auto j = minimal();
   j["analysis"] = {
       {"solver", "petsc-mg"}, {"levels", 2}, {"smoothing", 2}, {"hierarchy", "lattice"}};
-  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.smoothing, 2);
+  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.multigrid.pre_smoothing, 2);
 }
 
 TEST(Scene, CoarseMeshesAndHierarchy) {
@@ -200,12 +200,14 @@ TEST(Scene, CoarseMeshesAndHierarchy) {
   ASSERT_EQ(s.mesh.levels.size(), 2u);
   EXPECT_EQ(s.mesh.levels[0].kind, MeshSpec::Kind::Box);
   EXPECT_EQ(s.mesh.levels[1].path, std::filesystem::path("/base/c.msh"));
-  EXPECT_EQ(s.analysis.hierarchy, HierarchyKind::Meshes);  // the default where coarse meshes exist
+  EXPECT_EQ(s.analysis.multigrid.hierarchy.kind,
+            HierarchyKind::Meshes);  // the default where coarse meshes exist
   // A mesh file without coarse meshes cannot be re-meshed: lattice by default, meshes refused.
   j = minimal();
   j["mesh"] = {{"file", "a.msh"}};
   j["analysis"] = {{"solver", "multigrid"}};
-  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.hierarchy, HierarchyKind::Lattice);
+  EXPECT_EQ(parse_scene(j, "/", "s.json").analysis.multigrid.hierarchy.kind,
+            HierarchyKind::Lattice);
   j["analysis"]["hierarchy"] = "meshes";
   EXPECT_THROW(parse_scene(j, "/", "s.json"), InputError);
 }

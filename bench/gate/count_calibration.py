@@ -38,13 +38,30 @@ PLANTS = {
 }
 
 
-def count(binary, out, scenes, seed):
+def count_command(binary, out, scenes, seed, jobs):
     command = [sys.executable, os.path.join(ROOT, "bench", "count_phases.py"), "--out", out,
-               "--bin", os.path.dirname(binary), *scenes]
+               "--bin", os.path.dirname(binary), "--jobs", str(jobs), *scenes]
     if seed is not None:
         command += ["--layout-shift", str(seed)]
-    if subprocess.run(command, stderr=subprocess.DEVNULL).returncode != 0:
+    return command
+
+
+def count(binary, out, scenes, seed, jobs=2):
+    if subprocess.run(count_command(binary, out, scenes, seed, jobs),
+                      stderr=subprocess.DEVNULL).returncode != 0:
         raise SystemExit(f"count_calibration: counting with {binary} failed ({out})")
+
+
+def count_pairwise(runs, scenes, seed):
+    """Counts each (binary, folder) of `runs`, two at a time, each on one core: the suite's
+    longest scene then never leaves the other core idle."""
+    for i in range(0, len(runs), 2):
+        started = [(out, subprocess.Popen(count_command(binary, out, scenes, seed, 1),
+                                          stderr=subprocess.DEVNULL))
+                   for binary, out in runs[i:i + 2]]
+        for out, process in started:
+            if process.wait() != 0:
+                raise SystemExit(f"count_calibration: counting failed ({out})")
 
 
 def compare(corofem, base, new, out):
@@ -85,9 +102,11 @@ def main(argv):
     summary = {"ref": sha, "trials": args.trials, "assembly_work": args.assembly_work,
                "conditions": {}, "aa_largest_moves": {}}
     for trial in range(1, args.trials + 1):
-        for name in ["aa", *PLANTS]:
+        names = ["aa", *PLANTS]
+        count_pairwise([(builds[name], os.path.join(args.out, f"{name}-{trial}")) for name in names],
+                       args.scenes, trial)
+        for name in names:
             folder = os.path.join(args.out, f"{name}-{trial}")
-            count(builds[name], folder, args.scenes, trial)
             alarmed, moved, rows = compare(corofem, base, folder, folder + "-compare")
             phases = sorted({r["quantity"].rsplit(" ", 2 if r["quantity"].endswith("misses")
                                                   else 1)[0] for r in moved})

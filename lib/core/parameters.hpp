@@ -21,7 +21,7 @@ struct ParameterSpec {
   enum class Kind { Flag, Integer, Number, Text };
   std::string key;  ///< the scene's analysis.<key>
   Kind kind = Kind::Number;
-  ParameterValue fallback{0.0};  ///< the default, of the kind
+  ParameterValue fallback{0.0};                           ///< the default, of the kind
   double min = -std::numeric_limits<double>::infinity();  ///< Integer, Number: admitted range
   double max = std::numeric_limits<double>::infinity();
   std::vector<std::string> choices{};  ///< Text: the admitted values (empty: any)

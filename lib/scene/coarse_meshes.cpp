@@ -159,8 +159,9 @@ std::vector<TetMesh> coarse_meshes(const MeshSpec& fine, int levels, const std::
 
 std::vector<TetMesh> coarse_meshes(const Scene& scene, int fine_vertices) {
   const AnalysisSpec& a = scene.analysis;
-  if (!builds_hierarchy(a.solver) || a.hierarchy != HierarchyKind::Meshes) return {};
-  return coarse_meshes(scene.mesh, a.levels, scene.name, fine_vertices, a.coarsening,
+  if (!builds_hierarchy(a.solver) || a.multigrid.hierarchy.kind != HierarchyKind::Meshes) return {};
+  return coarse_meshes(scene.mesh, a.multigrid.hierarchy.levels, scene.name, fine_vertices,
+                       a.multigrid.hierarchy.coarsening,
                        coarsest_vertex_limit(multigrid_params(a).hierarchy, fine_vertices));
 }
 

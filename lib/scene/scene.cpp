@@ -196,26 +196,31 @@ int integer_in(JsonFields& f, const std::string& key, int fallback, int lo, int 
 /// the fine mesh). The other solvers have 1 level.
 void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
   const bool sized = builds_hierarchy(a.solver) && !f.has("levels");
-  a.levels = integer_in(f, "levels", sized ? kSizedHierarchyMaxLevels : 1, 1, 16);
-  a.coarsest_vertices = f.has("coarsest_vertices")
-                            ? integer_in(f, "coarsest_vertices", 0, 1, 1'000'000)
-                        : sized ? kCoarsestSizedByFine
-                                : 0;
-  a.coarsest_max_vertices =
-      integer_in(f, "coarsest_max_vertices", a.coarsest_max_vertices, 0, 1'000'000);
-  a.coarsening = number_in(f, "coarsening", a.coarsening, 0, 64);
-  if (a.coarsening > 0 && a.coarsening < 2) f.fail("coarsening", "0 or in [2, 64]");
-  a.vcycles = integer_in(f, "vcycles", a.vcycles, 0, 1000);
-  a.smoothing = integer_in(f, "smoothing", a.smoothing, 1, 100);
-  a.smoother = one_of(f, "smoother", a.smoother, smoother_names());
+  a.multigrid.hierarchy.levels =
+      integer_in(f, "levels", sized ? kSizedHierarchyMaxLevels : 1, 1, 16);
+  a.multigrid.hierarchy.coarsest_vertices =
+      f.has("coarsest_vertices") ? integer_in(f, "coarsest_vertices", 0, 1, 1'000'000)
+      : sized                    ? kCoarsestSizedByFine
+                                 : 0;
+  a.multigrid.hierarchy.coarsest_max_vertices = integer_in(
+      f, "coarsest_max_vertices", a.multigrid.hierarchy.coarsest_max_vertices, 0, 1'000'000);
+  a.multigrid.hierarchy.coarsening =
+      number_in(f, "coarsening", a.multigrid.hierarchy.coarsening, 0, 64);
+  if (a.multigrid.hierarchy.coarsening > 0 && a.multigrid.hierarchy.coarsening < 2)
+    f.fail("coarsening", "0 or in [2, 64]");
+  a.multigrid.vcycles = integer_in(f, "vcycles", a.multigrid.vcycles, 0, 1000);
+  a.multigrid.pre_smoothing = a.multigrid.post_smoothing =
+      integer_in(f, "smoothing", a.multigrid.pre_smoothing, 1, 100);
+  a.multigrid.smoother = one_of(f, "smoother", a.multigrid.smoother, smoother_names());
   // The smoother's own settings, by its declarations; another smoother's, given too (a scene that
   // sweeps smoothers), are checked by theirs and left unused.
   for (const std::string& name : smoother_names()) {
     const Parameters given = read_parameters(f, find_smoother(name)->parameters);
-    if (name == a.smoother) a.smoother_parameters = given;
+    if (name == a.multigrid.smoother) a.multigrid.smoother_parameters = given;
   }
-  a.cycle = one_of(f, "cycle", a.cycle, kCycleShapes);
-  a.coarsest_refactor = number_in(f, "coarsest_refactor", a.coarsest_refactor, 0, 1);
+  a.multigrid.cycle = one_of(f, "cycle", a.multigrid.cycle, kCycleShapes);
+  a.multigrid.coarsest_refactor_change =
+      number_in(f, "coarsest_refactor", a.multigrid.coarsest_refactor_change, 0, 1);
   if (a.solver == SolverKind::PetscMg)
     // PETSc's PCMG on our transfers: its own V-cycle of Chebyshev-Jacobi smoothing (as many steps
     // as `smoothing`) and its coarse operators by MatPtAP. A setting it cannot honour is refused,
@@ -268,8 +273,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
            "a named solver with integrator 'newton' and a corotational formulation ('auto' times "
            "mgpcg against jacobi-pcg on the symmetric systems of a linearly implicit run; Newton's "
            "corotated tangent is not symmetric)");
-  a.galerkin = one_of(f, "galerkin", a.galerkin, kGalerkinMethods);
-  a.hierarchy = one_of(f, "hierarchy", a.hierarchy, kHierarchyKinds);
+  a.multigrid.galerkin = one_of(f, "galerkin", a.multigrid.galerkin, kGalerkinMethods);
+  a.multigrid.hierarchy.kind = one_of(f, "hierarchy", a.multigrid.hierarchy.kind, kHierarchyKinds);
   read_multigrid_settings(f, a);
   a.start = one_of(f, "start", a.start, kSolveStarts);
   a.start_history = integer_in(f, "start_history", a.start_history, 2, 16);
@@ -301,8 +306,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
       std::cerr << "corofem: warning: scene '" << f.file() << "': " << ignored
                 << " belong to multigrid solvers; ignored with solver '"
                 << kSolverKinds.name(a.solver) << "'\n";
-    a.levels = 1;
-    a.coarsest_vertices = 0;
+    a.multigrid.hierarchy.levels = 1;
+    a.multigrid.hierarchy.coarsest_vertices = 0;
   }
   f.reject_unknown_keys();
 }
@@ -387,7 +392,7 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
   });
   // Coarse meshes are the default hierarchy wherever there are some: given, or re-meshable.
   const bool remeshable = !s.mesh.levels.empty() || s.mesh.kind != MeshSpec::Kind::File;
-  s.analysis.hierarchy = remeshable ? HierarchyKind::Meshes : HierarchyKind::Lattice;
+  s.analysis.multigrid.hierarchy.kind = remeshable ? HierarchyKind::Meshes : HierarchyKind::Lattice;
   if (const nlohmann::json* analysis = top.get("analysis"))
     read_analysis(JsonFields(*analysis, "analysis", name), s.analysis);
   if (s.mesh.estimated_tets > 0) {  // before anything is allocated; per rank under mpirun
@@ -400,8 +405,8 @@ Scene parse_scene(const nlohmann::json& json, const fs::path& base_dir, const st
         "scene '" + name + "': mesh." + (s.mesh.kind == MeshSpec::Kind::Box ? "cells" : "size"),
         run_bytes_basis(a.solver, ranks, tangent));
   }
-  if (builds_hierarchy(s.analysis.solver) && s.analysis.hierarchy == HierarchyKind::Meshes &&
-      !remeshable)
+  if (builds_hierarchy(s.analysis.solver) &&
+      s.analysis.multigrid.hierarchy.kind == HierarchyKind::Meshes && !remeshable)
     throw InputError("scene '" + name +
                      "': analysis.hierarchy 'meshes' needs mesh.levels for a "
                      "mesh read from a file (it cannot be re-meshed); or use 'lattice'");

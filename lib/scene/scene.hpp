@@ -69,6 +69,14 @@ std::vector<std::string> multigrid_analysis_keys();
 /// drop_unused_multigrid_keys. The smoothers' own keys among them.
 std::vector<std::string> keys_petsc_mg_cannot_honour();
 
+/// The multigrid's defaults with one level: what an analysis holds until its scene says more
+/// (the parser sizes the hierarchy of a solver that builds one).
+inline MultigridParams one_level_multigrid() {
+  MultigridParams p;
+  p.hierarchy.levels = 1;
+  return p;
+}
+
 struct AnalysisSpec {
   AnalysisType type = AnalysisType::Static;
   Formulation formulation = Formulation::Corotational;
@@ -78,39 +86,13 @@ struct AnalysisSpec {
   RotationMethod rotation = RotationMethod::Polar;
   RotationParams rotation_params;
   SolverKind solver = SolverKind::Cholmod;
-  /// The multigrid's settings, parsed from their names (kGalerkinMethods, kHierarchyKinds, the
-  /// smoother registry), each with the one default of its component's params.
-  /// naive | stream | stream-full | reuse | gather (multigrid coarse operators)
-  GalerkinMethod galerkin = MultigridParams{}.galerkin;
-  /// meshes (coarser tet meshes of the body; the default where the mesh can be re-meshed or
-  /// `mesh.levels` gives them) | lattice (covering Kuhn lattices)
-  HierarchyKind hierarchy = MultigridParams{}.hierarchy.kind;
-  /// Levels including the fine one: as the scene gives them, or at most kSizedHierarchyMaxLevels
-  /// down to `coarsest_vertices` where it gives none.
-  int levels = 1;
-  /// The levels stop at the first coarse one with at most this many vertices (HierarchyParams);
-  /// kCoarsestSizedByFine where the scene gives neither this nor `levels`, 0 where it gives only
-  /// `levels`.
-  int coarsest_vertices = 0;
-  /// Lattice levels below the `levels` ones until the coarsest has at most this many vertices
-  /// (0: none); see README "Multigrid"
-  int coarsest_max_vertices = 0;
-  /// Derived coarse meshes: about this many times fewer vertices than the level above (0: the
-  /// mesh size doubled per level); see README "Multigrid"
-  double coarsening = MultigridParams{}.hierarchy.coarsening;
-  int vcycles = 0;  ///< 0: iterate to tolerance
-  int smoothing = 1;
-  /// A registered smoother (linalg/smoother.hpp): the Gauss-Seidel orderings hybrid (the
-  /// default: l1 Gauss-Seidel in domains, Jacobi across them, every thread), domains (exact
-  /// Gauss-Seidel, boundaries by colours), sequential (one thread), multicolour (every thread, a
-  /// worse rho); chebyshev (on the l1 block-Jacobi diagonal); see README "Multigrid"
-  std::string smoother = MultigridParams{}.smoother;
-  /// The smoother's own settings, as its registration declares them (SmootherTraits).
-  Parameters smoother_parameters{};
-  CycleShape cycle = MultigridParams{}.cycle;  ///< V | W
-  /// The coarsest factor is kept while the coarsest operator moved less than this, relative
-  /// (MultigridParams::coarsest_refactor_change; 0: refactored every update)
-  double coarsest_refactor = MultigridParams{}.coarsest_refactor_change;
+  /// The multigrid's settings, held as its own parameters (one place for each): the hierarchy's
+  /// (kind: meshes, the default where the mesh can be re-meshed or `mesh.levels` gives them, or
+  /// lattice; levels as the scene gives them, or at most kSizedHierarchyMaxLevels down to
+  /// coarsest_vertices where it gives none), the smoother and its own settings, the cycle, the
+  /// Galerkin method, the coarsest factor's refactor change; `smoothing` sets both smoothing
+  /// counts. Its tolerance is the analysis's (multigrid_params).
+  MultigridParams multigrid = one_level_multigrid();
   /// Dynamic, linearly implicit, corotated, iterative solvers on one process: the solve's start
   /// (start_history: the velocities projected on, 2..16).
   SolveStart start = SolveStart::Extrapolation;

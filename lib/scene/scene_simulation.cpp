@@ -88,8 +88,8 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
   if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_, ranks_);
   const PetscSolveSettings s = petsc_solve_settings(a);  // static Newton: the tangent by GMRES
   solver_ = make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, s.tolerance,
-                              s.max_iterations, std::move(share.transfers), a.smoothing,
-                              a.setup_reuse, &*part_, s.nonsymmetric);
+                              s.max_iterations, std::move(share.transfers),
+                              a.multigrid.pre_smoothing, a.setup_reuse, &*part_, s.nonsymmetric);
   setup_ms_ = ms_since(start);
 }
 

@@ -10,20 +10,8 @@
 namespace corofem {
 
 MultigridParams multigrid_params(const AnalysisSpec& a) {
-  MultigridParams p;
-  p.hierarchy.kind = a.hierarchy;
-  p.hierarchy.levels = a.levels;
-  p.hierarchy.coarsest_vertices = a.coarsest_vertices;
-  p.hierarchy.coarsest_max_vertices = a.coarsest_max_vertices;
-  p.hierarchy.coarsening = a.coarsening;
-  p.pre_smoothing = p.post_smoothing = a.smoothing;
-  p.vcycles = a.vcycles;
-  p.tolerance = a.tolerance;
-  p.galerkin = a.galerkin;
-  p.smoother = a.smoother;
-  p.smoother_parameters = a.smoother_parameters;
-  p.cycle = a.cycle;
-  p.coarsest_refactor_change = a.coarsest_refactor;
+  MultigridParams p = a.multigrid;
+  p.tolerance = a.tolerance;  // the analysis's: one tolerance, whichever solver reads it
   return p;
 }
 
@@ -77,7 +65,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const Fe
                              build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet),
                                              params.hierarchy, coarse_meshes)
                                  .transfers,
-                             a.smoothing, false, nullptr, s.nonsymmetric);
+                             a.multigrid.pre_smoothing, false, nullptr, s.nonsymmetric);
   }
   return make_multigrid_solver(a, problem, coarse_meshes, a.solver == SolverKind::Mgpcg, observer);
 }

@@ -6,7 +6,7 @@
 
 namespace corofem {
 
-/// Multigrid parameters from the scene's analysis keys.
+/// The analysis's multigrid parameters, with its tolerance.
 MultigridParams multigrid_params(const AnalysisSpec& analysis);
 
 /// How a PETSc solver of the analysis solves: for a Newton tangent (newton_tangent_by_solver) by
