@@ -14,7 +14,7 @@ baseline at compare's default thresholds:
 - A against A: a trial that alarms (compare exits 1, or a count fell beyond its threshold) is a
   false alarm;
 - a planted fault is found when the trial alarms with its phase among the moved rows (assemble,
-  update, assemble).
+  update, rotate).
 Writes OUT/summary.json: per condition the trials' alarms and the phases they named, and for A
 against A every count row's largest relative move over the trials (what the thresholds must
 clear); a summary to stdout, progress to stderr.
@@ -34,7 +34,7 @@ PREFIX[0] = "count_calibration"
 PLANTS = {
     "assembly-work": (["assembly-work"], "assemble"),
     "extra-pass": (["extra-pass"], "update"),
-    "scattered-order": (["scattered-order"], "assemble"),
+    "scattered-order": (["scattered-order"], "rotate"),
 }
 
 

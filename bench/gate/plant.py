@@ -20,8 +20,10 @@ instructions each, unrolled: 6 of them add about 1.1% to the assembly's 1,152 in
 element).
 extra-pass: every multigrid update reads the fine level's matrix once more after its Galerkin
 products (a sum over its values): the update's instructions and misses grow.
-scattered-order: the assembly visits each part's elements in a strided order (n * 7919 modulo
-their count) instead of the locality order: the same work, its accesses scattered.
+scattered-order: energy-newton's rotations visit their batches of elements in a strided order
+(b * 7919 modulo their count) instead of the locality order: the same work and the same bits, the
+vertices' positions no longer shared by the batches that follow each other. (The assembly's order
+cannot be planted so: each block's first store is fixed by the locality order.)
 The patch is made against REF's file (default HEAD) and applied only in bench-gate's worktree:
 the production code has no switch for it.
 """
@@ -107,17 +109,15 @@ def extra_pass(ref):
 
 
 def scattered_order(ref):
-    text = file_at(ref, ASSEMBLY)
-    old = ("  const std::vector<int>& list = rows.elements[part];\n"
-           "  for (std::size_t n = 0; n < list.size(); ++n) {\n")
-    new = ("  std::vector<int> list = rows.elements[part];  // planted: a strided order\n"
-           "  {\n"
-           "    const std::vector<int>& ordered = rows.elements[part];\n"
-           "    const std::size_t count = ordered.size(), stride = count % 7919 ? 7919 : 1;\n"
-           "    for (std::size_t n = 0; n < count; ++n) list[n] = ordered[n * stride % count];\n"
-           "  }\n"
-           "  for (std::size_t n = 0; n < list.size(); ++n) {\n")
-    return ASSEMBLY, text, replaced(text, old, new, ASSEMBLY)
+    text = file_at(ref, ENERGY)
+    old = ("  for (int batch = 0; batch < batches; ++batch) {\n"
+           "    const int first = batch * kNewtonLanes;\n")
+    new = ("  for (int batch = 0; batch < batches; ++batch) {\n"
+           "    // planted: the batches in a strided order (each independent: the same bits)\n"
+           "    const int stride = batches % 7919 ? 7919 : 1;\n"
+           "    const int first =\n"
+           "        static_cast<int>(static_cast<long long>(batch) * stride % batches) * kNewtonLanes;\n")
+    return ENERGY, text, replaced(text, old, new, ENERGY)
 
 
 def main():
