@@ -90,9 +90,9 @@ FeProblem problem_for(const MeshCase& c) {
 AnalysisSpec analysis(const std::string& solver, double tolerance, const std::string& hierarchy,
                       bool setup_reuse = false, int coarsest_max_vertices = 0) {
   AnalysisSpec a;
-  a.setup_reuse = setup_reuse;
+  a.solver_parameters.set("setup_reuse", setup_reuse);
   a.multigrid.hierarchy.coarsest_max_vertices = coarsest_max_vertices;
-  a.solver = kSolverKinds.at(solver);
+  a.solver = solver_named(solver);
   a.multigrid.hierarchy.kind = *kHierarchyKinds.find(hierarchy);
   a.multigrid.hierarchy.levels = 3;
   a.tolerance = tolerance;

@@ -206,7 +206,7 @@ TEST(SceneNumberLimits, MemoryEstimateBoundsARunAndDependsOnTheSolver) {
     const double peak =
         1024.0 *
         nlohmann::json::parse(test::read_text(dir / "r.json"))["peak_rss_kb"].get<double>();
-    const double estimate = run_bytes(kSolverKinds.at(solver), 48000);
+    const double estimate = run_bytes(solver_named(solver), 48000);
     EXPECT_LT(peak, estimate) << solver;
     EXPECT_GT(peak, 0.4 * estimate) << solver << ": the estimate is far from the run";
   }

@@ -283,7 +283,7 @@ void require_distributed_solver(const Scene& scene, int ranks) {
   const AnalysisSpec& a = scene.analysis;
   if (!distributed)
     throw InputError(
-        scene.name + ": analysis.solver '" + kSolverKinds.name(solver) + "' under mpirun -np " +
+        scene.name + ": analysis.solver '" + solver.name() + "' under mpirun -np " +
         std::to_string(ranks) +
         ": only petsc-gamg, hypre-boomeramg and petsc-mg distribute their solves over ranks");
   if (a.type == AnalysisType::Dynamic && a.integrator == Integrator::Newton &&

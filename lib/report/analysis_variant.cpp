@@ -6,7 +6,7 @@ namespace corofem {
 
 nlohmann::json to_json(const AnalysisVariant& v) {
   nlohmann::json j = nlohmann::json::object();
-  if (v.solver) j["solver"] = kSolverKinds.name(*v.solver);
+  if (v.solver) j["solver"] = v.solver->name();
   if (v.rotation) j["rotation"] = v.rotation->name();
   if (v.formulation) j["formulation"] = kFormulations.name(*v.formulation);
   if (v.galerkin) j["galerkin"] = kGalerkinMethods.name(*v.galerkin);

@@ -372,7 +372,7 @@ json jacobi_row(const ModelTables& m, double young_scale) {
 /// update phase (a new matrix every step), as ours is; or with its setup reused across steps
 /// (GAMG's interpolation, BoomerAMG's whole hierarchy).
 json rival_row(const ModelTables& m, SolverKind rival, bool reuse) {
-  const std::string name = kSolverKinds.name(rival);
+  const std::string name = rival.name();
   m.say(name + (reuse ? " (setup reuse)" : ""));
   return record_case({{"model", m.id}, {"solver", name}, {"setup_reuse", reuse}}, [&] {
     const TimedRun run =

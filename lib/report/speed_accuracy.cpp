@@ -25,24 +25,26 @@ double relative_error(const Eigen::VectorXd& u, const Eigen::VectorXd& reference
 /// Settings of the solver sweep (all with energy-newton rotations; multigrid on the scene's
 /// re-meshed hierarchy unless the setting says "hierarchy": "lattice").
 std::vector<AnalysisVariant> solver_settings(const ReportConfig& config, int levels) {
-  using enum SolverKind;
   constexpr HierarchyKind lattice = HierarchyKind::Lattice;
   std::vector<AnalysisVariant> settings;
   for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8})
-    settings.push_back({.solver = Mgpcg, .tolerance = tolerance});
-  for (int vcycles : {1, 2, 4}) settings.push_back({.solver = Multigrid, .vcycles = vcycles});
+    settings.push_back({.solver = SolverKind::Mgpcg, .tolerance = tolerance});
+  for (int vcycles : {1, 2, 4})
+    settings.push_back({.solver = SolverKind::Multigrid, .vcycles = vcycles});
   for (int smoothing : {2, 3})
-    settings.push_back({.solver = Multigrid, .vcycles = 1, .smoothing = smoothing});
+    settings.push_back({.solver = SolverKind::Multigrid, .vcycles = 1, .smoothing = smoothing});
   for (int l = 2; l <= levels + 1; ++l)
-    if (l != levels) settings.push_back({.solver = Mgpcg, .tolerance = 1e-4, .levels = l});
+    if (l != levels)
+      settings.push_back({.solver = SolverKind::Mgpcg, .tolerance = 1e-4, .levels = l});
   // The same solvers on the covering lattice hierarchy (the others run on re-meshed levels).
   for (double tolerance : {1e-2, 1e-4, 1e-6})
-    settings.push_back({.solver = Mgpcg, .hierarchy = lattice, .tolerance = tolerance});
+    settings.push_back({.solver = SolverKind::Mgpcg, .hierarchy = lattice, .tolerance = tolerance});
   for (int vcycles : {1, 2})
-    settings.push_back({.solver = Multigrid, .hierarchy = lattice, .vcycles = vcycles});
-  settings.push_back({.solver = JacobiPcg, .tolerance = 1e-4});
+    settings.push_back({.solver = SolverKind::Multigrid, .hierarchy = lattice, .vcycles = vcycles});
+  settings.push_back({.solver = SolverKind::JacobiPcg, .tolerance = 1e-4});
   if (have_petsc())  // the algebraic multigrid users would pick instead
-    for (const SolverKind rival : {PetscGamg, HypreBoomeramg, PetscMg})
+    for (const SolverKind rival :
+         {SolverKind::PetscGamg, SolverKind::HypreBoomeramg, SolverKind::PetscMg})
       for (double tolerance : {1e-4, 1e-6})
         settings.push_back({.solver = rival, .tolerance = tolerance});
   if (config.mode == ReportConfig::Mode::Smoke) settings.resize(3);

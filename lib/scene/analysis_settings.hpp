@@ -1,9 +1,10 @@
 #pragma once
 // The scene's `analysis` choices that are not a numerical component's own (those keep their
-// tables or registries beside the component: the rotation methods, kGalerkinMethods,
-// kHierarchyKinds, the smoothers): one enum and one name table each, used to parse and to write.
+// tables or registries beside the component: the rotation methods, the solvers, kGalerkinMethods,
+// kHierarchyKinds, the smoothers): one enum and one name table each, used to parse and to write;
+// and what follows from a solver's traits.
 #include "core/name_table.hpp"
-#include "solver/petsc_solver.hpp"
+#include "scene/solver_kind.hpp"
 
 namespace corofem {
 
@@ -27,29 +28,6 @@ inline constexpr NameTable<Integrator, 2> kIntegrators{{{
     {Integrator::Newton, "newton"},
 }}};
 
-/// auto: the run's first solves measure mgpcg and jacobi-pcg on the scene and keep the cheaper
-/// (linalg/solver_choice.hpp).
-enum class SolverKind {
-  Cholmod,
-  Multigrid,
-  Mgpcg,
-  JacobiPcg,
-  PetscGamg,
-  HypreBoomeramg,
-  PetscMg,
-  Auto
-};
-inline constexpr NameTable<SolverKind, 8> kSolverKinds{{{
-    {SolverKind::Cholmod, "cholmod"},
-    {SolverKind::Multigrid, "multigrid"},
-    {SolverKind::Mgpcg, "mgpcg"},
-    {SolverKind::JacobiPcg, "jacobi-pcg"},
-    {SolverKind::PetscGamg, "petsc-gamg"},
-    {SolverKind::HypreBoomeramg, "hypre-boomeramg"},
-    {SolverKind::PetscMg, "petsc-mg"},
-    {SolverKind::Auto, "auto"},
-}}};
-
 /// Where a dynamic linearly implicit step's iterative solve starts: the last two velocities
 /// extrapolated linearly, or the projection on the last `start_history` of them
 /// (linalg/projected_start.hpp).
@@ -61,25 +39,18 @@ inline constexpr NameTable<SolveStart, 2> kSolveStarts{{{
 
 /// Solvers that run on corofem's hierarchy (petsc-mg: PETSc's PCMG on it).
 inline bool is_multigrid_solver(SolverKind solver) {
-  return solver == SolverKind::Multigrid || solver == SolverKind::Mgpcg ||
-         solver == SolverKind::PetscMg;
+  return solver.traits().multigrid;
 }
 
 /// Solvers that build corofem's hierarchy, and so read the scene's multigrid settings: the
 /// multigrid solvers and auto (one of its candidates is MG-PCG).
 inline bool builds_hierarchy(SolverKind solver) {
-  return is_multigrid_solver(solver) || solver == SolverKind::Auto;
-}
-
-/// The algebraic multigrid of the libraries, whose setup can be reused across steps
-/// (analysis.setup_reuse).
-inline bool is_library_amg(SolverKind solver) {
-  return solver == SolverKind::PetscGamg || solver == SolverKind::HypreBoomeramg;
+  return solver.traits().builds_hierarchy;
 }
 
 /// Solvers through PETSc (and hypre): the ones that distribute their solves under mpirun.
 inline bool is_petsc_solver(SolverKind solver) {
-  return is_library_amg(solver) || solver == SolverKind::PetscMg;
+  return solver.traits().petsc.has_value();
 }
 
 /// Whether `ranks` MPI ranks run a scene of this analysis on a distributed mesh (each rank holding
@@ -102,7 +73,7 @@ inline bool newton_tangent_by_solver(AnalysisType type, Integrator integrator,
                                      Formulation formulation, SolverKind solver) {
   return type == AnalysisType::Static && integrator == Integrator::Newton &&
          formulation == Formulation::Corotational &&
-         (is_petsc_solver(solver) || is_multigrid_solver(solver));
+         (is_petsc_solver(solver) || solver.traits().preconditions_gmres);
 }
 
 /// How a run solves a Newton tangent: none (no corotated Newton), factored (the serial sparse
@@ -115,13 +86,6 @@ inline NewtonTangent newton_tangent(AnalysisType type, Integrator integrator,
   return integrator == Integrator::Newton && formulation == Formulation::Corotational
              ? NewtonTangent::Factored
              : NewtonTangent::None;
-}
-
-/// The PETSc solver of a solver kind for which is_petsc_solver holds.
-inline PetscSolverKind petsc_solver_kind(SolverKind solver) {
-  return solver == SolverKind::PetscGamg        ? PetscSolverKind::Gamg
-         : solver == SolverKind::HypreBoomeramg ? PetscSolverKind::BoomerAmg
-                                                : PetscSolverKind::Mg;
 }
 
 }  // namespace corofem

@@ -17,51 +17,20 @@ constexpr double kLibraryBytes = 80e6;
 constexpr double kCholmodBytes = 190e6, kCholmodFill = 115;
 /// Distributed: the whole body rank 0 builds first, and the largest rank's tets over its share.
 constexpr double kWholeBodyBytesPerTet = 150, kHaloFactor = 1.3;
-/// Newton's tangent by GMRES: PETSc's basis (50 vectors of 3 DOFs on about 0.2 vertices per tet);
-/// corofem's flexible GMRES on the multigrid (integrate/preconditioned_gmres_solve.hpp): its basis
-/// of at most 2 x 50 vectors (480 bytes), the tangent's symmetric part and the definite stand-in
-/// (two more matrices of the stiffness's pattern, 15 blocks of 72 bytes a vertex: 430 bytes).
-constexpr double kPetscGmresBytesPerTet = 300, kMultigridGmresBytesPerTet = 900;
-
-/// What Newton's GMRES adds per tet with `solver` (PETSc's or corofem's).
-double gmres_bytes_per_tet(SolverKind solver) {
-  return solver == SolverKind::Multigrid || solver == SolverKind::Mgpcg ? kMultigridGmresBytesPerTet
-                                                                        : kPetscGmresBytesPerTet;
-}
-
-/// Bytes per tet of the solvers whose memory grows with the mesh.
-double linear_bytes_per_tet(SolverKind solver) {
-  switch (solver) {
-    case SolverKind::Multigrid:
-    case SolverKind::Mgpcg:
-      return 1.5e3;
-    case SolverKind::JacobiPcg:
-      return 1.3e3;
-    case SolverKind::Auto:  // both candidates, through its trial
-      return linear_bytes_per_tet(SolverKind::Mgpcg) + linear_bytes_per_tet(SolverKind::JacobiPcg);
-    case SolverKind::PetscMg:
-      return 1.85e3;
-    case SolverKind::PetscGamg:
-      return 2.0e3;
-    case SolverKind::HypreBoomeramg:
-      return 3.1e3;
-    case SolverKind::Cholmod:
-      break;
-  }
-  return 0;
-}
-
-/// Bytes per tet of a run on `solver` whose memory grows with the mesh, with Newton's GMRES where
-/// the tangent is solved by it.
+/// Bytes per tet of a run on `solver` whose memory grows with the mesh (its traits'), with
+/// Newton's GMRES where the tangent is solved by it: PETSc's basis (50 vectors of 3 DOFs on about
+/// 0.2 vertices per tet), or corofem's flexible GMRES on the multigrid
+/// (integrate/preconditioned_gmres_solve.hpp: its basis of at most 2 x 50 vectors and two more
+/// matrices of the stiffness's pattern).
 double bytes_per_tet(SolverKind solver, NewtonTangent tangent) {
-  return linear_bytes_per_tet(solver) +
-         (tangent == NewtonTangent::ByGmres ? gmres_bytes_per_tet(solver) : 0);
+  const SolverTraits& t = solver.traits();
+  return t.bytes_per_tet + (tangent == NewtonTangent::ByGmres ? t.gmres_bytes_per_tet : 0);
 }
 
 }  // namespace
 
 double run_bytes(SolverKind solver, double tets, int ranks, NewtonTangent tangent) {
-  if (solver == SolverKind::Cholmod || tangent == NewtonTangent::Factored)
+  if (solver.traits().factorizes || tangent == NewtonTangent::Factored)
     return kCholmodBytes + kCholmodFill * std::pow(tets, 4.0 / 3);
   const double per_tet = bytes_per_tet(solver, tangent);
   if (ranks > 1)
@@ -73,8 +42,8 @@ double run_bytes(SolverKind solver, double tets, int ranks, NewtonTangent tangen
 std::string run_bytes_basis(SolverKind solver, int ranks, NewtonTangent tangent) {
   if (tangent == NewtonTangent::Factored)
     return "Newton's sparse factorizations: 115 bytes x tets^4/3 (a factor's fill)";
-  const std::string name = kSolverKinds.name(solver);
-  if (solver == SolverKind::Cholmod) return name + ": 115 bytes x tets^4/3 (its factor's fill)";
+  const std::string name = solver.name();
+  if (solver.traits().factorizes) return name + ": 115 bytes x tets^4/3 (its factor's fill)";
   const bool gmres = tangent == NewtonTangent::ByGmres;
   const std::string per_tet = general_number(bytes_per_tet(solver, tangent) / 1e3) + " kB per tet" +
                               (gmres ? " (with Newton's GMRES)" : "");

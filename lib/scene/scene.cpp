@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -233,6 +234,31 @@ void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
                "cannot honour this setting)");
 }
 
+/// The solver's own settings, by its declarations (SolverTraits::parameters). Another solver's,
+/// given too (a scene that sweeps solvers), are checked by their declarations and left unused;
+/// one given away from its default is said to be ignored.
+void read_solver_parameters(JsonFields& f, AnalysisSpec& a) {
+  std::set<std::string> own, ignored;
+  for (const ParameterSpec& spec : a.solver.traits().parameters) own.insert(spec.key);
+  for (const SolverKind kind : solver_kinds()) {
+    const std::vector<ParameterSpec>& specs = kind.traits().parameters;
+    const Parameters given = read_parameters(f, specs);
+    if (kind == a.solver) {
+      a.solver_parameters = given;
+      continue;
+    }
+    for (const ParameterSpec& spec : specs)
+      if (f.has(spec.key) && !own.count(spec.key) &&
+          given.values().find(spec.key)->second != spec.fallback)
+        ignored.insert(f.path_of(spec.key) + " (" + kind.name() + "'s)");
+  }
+  if (ignored.empty()) return;
+  std::string list;
+  for (const std::string& key : ignored) list += (list.empty() ? "" : ", ") + key;
+  std::cerr << "corofem: warning: scene '" << f.file() << "': " << list
+            << " belong to other solvers; ignored with solver '" << a.solver.name() << "'\n";
+}
+
 /// rotation_params, after the tolerance (a static run tightens the iterative methods' own).
 void read_rotation_params(JsonFields& f, AnalysisSpec& a) {
   RotationParams& p = a.rotation_params;
@@ -265,7 +291,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
              kIntegrators);
   a.rotation =
       *find_rotation_method(one_of(f, "rotation", a.rotation.name(), rotation_method_names()));
-  a.solver = one_of(f, "solver", a.solver, kSolverKinds);
+  a.solver = *find_solver(one_of(f, "solver", a.solver.name(), solver_names()));
   if (a.solver == SolverKind::Auto && a.integrator == Integrator::Newton &&
       a.formulation == Formulation::Corotational)
     // Its candidates solve a symmetric system each step; corotated Newton's tangent is not.
@@ -285,11 +311,7 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
   a.max_iterations = integer_in(f, "max_iterations", a.max_iterations, 1, 100000);
   a.max_step_cuts = integer_in(f, "max_step_cuts", a.max_step_cuts, 0, 10);
   a.factorization = one_of(f, "factorization", a.factorization, kFactorizations);
-  a.setup_reuse = f.boolean("setup_reuse", a.setup_reuse);
-  if (a.setup_reuse && !is_library_amg(a.solver))
-    std::cerr << "corofem: warning: scene '" << f.file() << "': " << f.path_of("setup_reuse")
-              << " belongs to petsc-gamg and hypre-boomeramg; ignored with solver '"
-              << kSolverKinds.name(a.solver) << "'\n";
+  read_solver_parameters(f, a);
   if (const nlohmann::json* damping = f.get("rayleigh")) {
     JsonFields d(*damping, f.path_of("rayleigh"), f.file());
     a.rayleigh_alpha = number_in(d, "alpha", 0.0, 0.0, kMaxDamping);
@@ -304,8 +326,8 @@ void read_analysis(JsonFields f, AnalysisSpec& a) {
       if (f.has(key)) ignored += (ignored.empty() ? "" : ", ") + f.path_of(key);
     if (!ignored.empty())
       std::cerr << "corofem: warning: scene '" << f.file() << "': " << ignored
-                << " belong to multigrid solvers; ignored with solver '"
-                << kSolverKinds.name(a.solver) << "'\n";
+                << " belong to multigrid solvers; ignored with solver '" << a.solver.name()
+                << "'\n";
     a.multigrid.hierarchy.levels = 1;
     a.multigrid.hierarchy.coarsest_vertices = 0;
   }
@@ -344,8 +366,7 @@ std::vector<std::string> keys_petsc_mg_cannot_honour() {
 }
 
 void drop_unused_multigrid_keys(nlohmann::json& analysis) {
-  const auto solver =
-      kSolverKinds.find(analysis.value("solver", kSolverKinds.name(SolverKind::Cholmod)));
+  const auto solver = find_solver(analysis.value("solver", SolverKind::Cholmod.name()));
   if (solver && !builds_hierarchy(*solver))
     for (const std::string& key : multigrid_analysis_keys()) analysis.erase(key);
   if (solver == SolverKind::PetscMg)

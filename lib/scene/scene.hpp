@@ -101,10 +101,9 @@ struct AnalysisSpec {
   int steps = 1;
   int load_steps = 1;
   double tolerance = 1e-8;
-  /// petsc-gamg: keep the first matrix's interpolation (PETSc's -pc_gamg_reuse_interpolation),
-  /// recompute the coarse operators; hypre-boomeramg: keep the whole first hierarchy (CG still
-  /// runs on each step's matrix). Default: set up again at every matrix, as MG-PCG updates.
-  bool setup_reuse = false;
+  /// The solver's own settings, as its registration declares them (SolverTraits::parameters):
+  /// petsc-gamg's and hypre-boomeramg's setup_reuse.
+  Parameters solver_parameters{};
   int max_iterations = 100;
   /// Dynamic Newton: halvings of a step that does not converge (DynamicOptions::max_step_cuts).
   int max_step_cuts = DynamicOptions{}.max_step_cuts;

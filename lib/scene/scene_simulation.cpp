@@ -87,9 +87,9 @@ SceneSimulation::SceneSimulation(const Scene& scene, int rank, int ranks) : scen
   ranks_ = RankView{part_->owned_vertices, part_->owned_tet, sum_over_ranks, max_over_ranks};
   if (a.type == AnalysisType::Dynamic) dynamic_ = dynamic_options(scene_, problem_, ranks_);
   const PetscSolveSettings s = petsc_solve_settings(a);  // static Newton: the tangent by GMRES
-  solver_ = make_petsc_solver(petsc_solver_kind(a.solver), problem_.mesh.rest, s.tolerance,
+  solver_ = make_petsc_solver(*a.solver.traits().petsc, problem_.mesh.rest, s.tolerance,
                               s.max_iterations, std::move(share.transfers),
-                              a.multigrid.pre_smoothing, a.setup_reuse, &*part_, s.nonsymmetric);
+                              a.multigrid.pre_smoothing, reuses_setup(a), &*part_, s.nonsymmetric);
   setup_ms_ = ms_since(start);
 }
 

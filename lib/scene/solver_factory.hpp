@@ -20,10 +20,13 @@ struct PetscSolveSettings {
   bool nonsymmetric;
 };
 PetscSolveSettings petsc_solve_settings(const AnalysisSpec& analysis);
+/// The library AMGs' own setting setup_reuse (false for a solver that declares none).
+bool reuses_setup(const AnalysisSpec& analysis);
 
-/// The analysis's solver for the problem's pattern, rest positions and supports. Multigrid on the
-/// meshes hierarchy takes its levels from `coarse_meshes` (scene/coarse_meshes.hpp); `observer`
-/// (linalg/solver_observer.hpp) hears what the multigrid solver marks.
+/// The analysis's solver, made by its registration (scene/solver_kind.hpp), for the problem's
+/// pattern, rest positions and supports. Multigrid on the meshes hierarchy takes its levels from
+/// `coarse_meshes` (scene/coarse_meshes.hpp); `observer` (linalg/solver_observer.hpp) hears what
+/// the multigrid solver marks.
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& analysis,
                                                  const FeProblem& problem,
                                                  const std::vector<TetMesh>& coarse_meshes = {},
@@ -35,6 +38,9 @@ std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& analy
                                                        const std::vector<TetMesh>& coarse_meshes,
                                                        bool as_preconditioner,
                                                        SolverObserver* observer = nullptr);
+
+/// The built-in solvers' traits, in the order of the SolverKind constants (scene/solver_kind.hpp).
+std::vector<SolverTraits> builtin_solvers();
 
 /// Per vertex: 1 if all three DOFs are fixed.
 std::vector<char> fixed_vertices(const DirichletConditions& bc);
