@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
 """Counts each phase's work in scenes: instructions, D1 and last-level misses under callgrind.
 
-Usage: bench/count_phases.py [SCENE.json ...] --out DIR [--bin DIR] [--jobs N] [--keep-fields]
-                             [--layout-shift SEED]
+Usage: bench/count_phases.py [SCENE.json ...] (--out DIR | --bundle FILE) [--bin DIR] [--jobs N]
+                             [--keep-fields] [--layout-shift SEED]
 
 Runs every scene (default: the gate suite, bench/gate/*.json) once with `corofem run --threads 1
 --count-phases callgrind` under valgrind's callgrind, on fixed simulated caches (the paper's Core 2
 Duo: I1 and D1 32 KiB 8-way, LL 4 MiB 16-way, 64-byte lines), and writes DIR/<scene>.json: the run
 record with its `phase_counts` (each phase and solver part, inclusive of its parts) and without
-its fields (rest, displacement, rotations: the record stays small enough to commit as a baseline,
-ci/count-gate). Its timings are valgrind's, 50-150x the machine's: `corofem compare` reads none of
+its fields (rest, displacement, rotations); or, with --bundle, one file of them all (producer
+"bench/count_phases.py", its "records"): small enough to commit as a baseline (ci/count-gate's
+bench/gate/counts.json), and what the report keeps (phase_counts.json). Either is what `corofem
+compare` reads. The records' timings are valgrind's, 50-150x the machine's: compare reads none of
 a callgrind-counted record's times.
 
 Counts are exact, and the same from run to run and from host to host, when what the process sees
@@ -102,6 +104,15 @@ def slim(record, scene):
     return record
 
 
+def counting_note(records):
+    """What made the bundle's counts, once (each record also says it)."""
+    counts = records[0]["phase_counts"]
+    return {"tool": counts.get("tool"), "simulated_caches": counts.get("simulated_caches"),
+            "processor_seen": counts.get("processor_seen"), "threads": counts.get("threads"),
+            "environment": "PATH and OMP_NUM_THREADS=1 alone, in a fresh /tmp/corofem-count-XXXXXXXX",
+            "commit": records[0]["context"].get("commit")}
+
+
 def write_atomically(path, record):
     tmp = path + ".tmp"
     with open(tmp, "w") as f:
@@ -113,7 +124,9 @@ def write_atomically(path, record):
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scenes", nargs="*")
-    parser.add_argument("--out", required=True)
+    where = parser.add_mutually_exclusive_group(required=True)
+    where.add_argument("--out", help="a folder: one record per scene")
+    where.add_argument("--bundle", help="one file of every scene's record")
     parser.add_argument("--bin", default=os.path.join(ROOT, "build", "release", "bin"))
     parser.add_argument("--jobs", type=int, default=len(os.sched_getaffinity(0)))
     parser.add_argument("--keep-fields", action="store_true",
@@ -134,7 +147,9 @@ def main(argv):
         if not os.path.isfile(scene):
             say(f"{scene}: no such scene file")
             return 2
-    os.makedirs(args.out, exist_ok=True)
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+    bundle = []
     # The longest first, so that the short ones fill the cores at the end: the quadrupeds, the
     # larger size first (quadruped_34k before quadruped_11k), then the others.
     order = sorted(scenes, key=os.path.basename, reverse=True)
@@ -152,12 +167,20 @@ def main(argv):
             return
         if not args.keep_fields:
             record = slim(record, scene)
-        name = os.path.splitext(os.path.basename(scene))[0] + ".json"
-        write_atomically(os.path.join(args.out, name), record)
+        if args.bundle:
+            bundle.append(record)
+        else:
+            name = os.path.splitext(os.path.basename(scene))[0] + ".json"
+            write_atomically(os.path.join(args.out, name), record)
         say(f"{os.path.basename(scene)}: {record['phase_counts']['marks']} marks, {seconds:.0f} s")
 
     with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         list(pool.map(one, order))
+    if args.bundle and not failed:
+        bundle.sort(key=lambda r: r["scene_file"])
+        write_atomically(args.bundle, {"producer": "bench/count_phases.py",
+                                       "counting": counting_note(bundle),
+                                       "records": bundle})
     say(f"done in {time.monotonic() - start:.0f} s")
     return 3 if failed else 0
 

@@ -384,12 +384,19 @@ void attribute_timings(std::vector<RowComparison>& rows) {
       }
     }
   }
+  // A timed case without counts of its own (a report's Table 1 row beside the counted gate suite)
+  // takes its phase's counts over every counted case: a change to a phase's code moves that phase
+  // in every scene that runs it.
   for (RowComparison& r : rows) {
     if (r.kind != RowKind::Timed) continue;
-    const auto it = by_case_phase.find(r.case_name + " | " + r.quantity);
+    auto it = by_case_phase.find(r.case_name + " | " + r.quantity);
+    const bool own = it != by_case_phase.end();
+    if (!own) it = by_case_phase.find("all cases | " + r.quantity);
     if (it == by_case_phase.end() || !it->second.counted) continue;
     r.attribution = it->second.largest != 0 ? "code" : "machine";
-    r.attribution_note = it->second.largest != 0 ? it->second.what : "its counts did not move";
+    r.attribution_note = it->second.largest != 0 ? it->second.what
+                         : own                   ? "its counts did not move"
+                                                 : "its phase's counts did not move in any case";
   }
 }
 

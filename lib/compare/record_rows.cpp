@@ -327,6 +327,7 @@ bool knows(const json& r) {
   if (!r.is_object()) return false;
   const std::string producer = r.value("producer", std::string());
   return producer == "corofem run" || producer == "corofem report (tables)" ||
+         producer == "bench/count_phases.py" ||
          r.contains("benchmarks") || (r.contains("scenes") && r.contains("error_definitions")) ||
          r.value("tool", std::string()) == "cachegrind";
 }
@@ -345,6 +346,11 @@ void add_record_rows(const json& r, const std::string& file, RecordSet& set) {
   try {
     if (producer == "corofem run")
       run_rows(r, file, sink);
+    else if (producer == "bench/count_phases.py")  // counted runs, one record each
+      for (const json& record : r.at("records")) {
+        set.contexts[file] = record.value("context", json(nullptr));
+        run_rows(record, file, sink);
+      }
     else if (producer == "corofem report (tables)")
       tables_rows(r, sink);
     else if (r.contains("benchmarks"))
@@ -356,8 +362,8 @@ void add_record_rows(const json& r, const std::string& file, RecordSet& set) {
     else
       throw InputError(file +
                        ": not a record corofem compare knows (a corofem run record, a report's "
-                       "tables.json, speed_accuracy.json or cache_profile.json, or Google "
-                       "Benchmark JSON)");
+                       "tables.json, speed_accuracy.json or cache_profile.json, "
+                       "bench/count_phases.py's counts, or Google Benchmark JSON)");
   } catch (const json::exception& e) {
     throw InputError(file + ": a malformed field (" + e.what() + ")");
   }

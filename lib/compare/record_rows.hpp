@@ -1,6 +1,7 @@
 #pragma once
 // The rows `corofem compare` pairs, read from what corofem writes: run records (`corofem run`),
-// report folders (tables.json, speed_accuracy.json, cache_profile.json) and Google Benchmark JSON
+// report folders (tables.json, speed_accuracy.json, cache_profile.json), the counted runs of
+// bench/count_phases.py (a bundle of run records) and Google Benchmark JSON
 // (corofem_bench --benchmark_out). A folder of several records of the same cases (ci/bench-gate's
 // repetitions) gives each row one run per record.
 #include <filesystem>
