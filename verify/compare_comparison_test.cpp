@@ -11,6 +11,7 @@
 #include <random>
 
 #include "compare/comparison.hpp"
+#include "compare/comparison_output.hpp"
 #include "core/errors.hpp"
 #include "test_support.hpp"
 
@@ -392,6 +393,73 @@ TEST(Compare, GoogleBenchmarkRepetitionsAreTheSamples) {
   const Comparison c = compare_records(base, slower, CompareOptions{});
   EXPECT_EQ(row(c, "real_time").verdict, "slower");
   EXPECT_NEAR(row(c, "real_time").test.ratio, 1.125, 0.03);
+}
+
+TEST(Compare, OneRepetitionASideIsNeverNoRegression) {
+  // Held out from a public source's habit: Google Benchmark JSON with one repetition a side (how
+  // most people run it), one benchmark 100x slower, one 2x, one the same. None can be tested; the
+  // headline says so, names the largest ratios and the repetitions that would decide, and the
+  // 100x row is suspect, a failure, not a pass.
+  const auto record = [](double a, double b, double c) {
+    json r = {{"context", {{"num_cpus", 2}}}, {"benchmarks", json::array()}};
+    for (const auto& [name, us] :
+         std::vector<std::pair<std::string, double>>{{"BM_A", a}, {"BM_B", b}, {"BM_C", c}})
+      r["benchmarks"].push_back({{"name", name},
+                                 {"run_name", name},
+                                 {"run_type", "iteration"},
+                                 {"real_time", us},
+                                 {"time_unit", "us"}});
+    return r;
+  };
+  RecordSet base, slower;
+  add_record_rows(record(10, 10, 10), "base.json", base);
+  add_record_rows(record(1000, 19, 10), "new.json", slower);
+  const Comparison c = compare_records(base, slower, CompareOptions{});
+  const auto verdict_of = [&](const std::string& bench) {
+    for (const RowComparison& r : c.rows)
+      if (r.case_name == "bench " + bench) return r.verdict;
+    return std::string("none");
+  };
+  EXPECT_EQ(verdict_of("BM_A"), "suspect");
+  EXPECT_EQ(verdict_of("BM_B"), "inconclusive");  // 1.9x: under the suspect factor
+  EXPECT_EQ(verdict_of("BM_C"), "inconclusive");
+  EXPECT_TRUE(c.regressed());  // the suspect slowdown
+  EXPECT_EQ(c.untested(), 3);
+  // Complete separation of n against n at alpha = 0.01 over 3 rows: 2 / C(2n, n) < 0.0033, n = 6.
+  EXPECT_EQ(c.runs_to_decide(), 6);
+  const std::string md = comparison_markdown(c, "base.json", "new.json");
+  EXPECT_EQ(md.find("no regression"), std::string::npos) << md;
+  EXPECT_NE(md.find("100.000 (bench BM_A, real_time, **suspect**), 1.900 (bench BM_B"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("--benchmark_repetitions=6"), std::string::npos) << md;
+  // Without the 100x row: nothing regressed, and the headline is inconclusive, not a pass.
+  RecordSet milder;
+  add_record_rows(record(10, 19, 10), "new.json", milder);
+  const Comparison m = compare_records(base, milder, CompareOptions{});
+  EXPECT_FALSE(m.regressed());
+  EXPECT_EQ(m.headline(), "inconclusive");
+}
+
+TEST(Compare, GoogleBenchmarkAggregatesAloneGiveTheMedian) {
+  // --benchmark_report_aggregates_only: no repetitions, only mean, median and stddev. The median is
+  // the benchmark's one sample, and the stddev is never read as a time.
+  const auto record = [](double median) {
+    json r = {{"benchmarks", json::array()}};
+    for (const auto& [aggregate, value] : std::vector<std::pair<std::string, double>>{
+             {"mean", median * 1.1}, {"median", median}, {"stddev", 0.5}})
+      r["benchmarks"].push_back({{"name", "BM_X_" + aggregate},
+                                 {"run_name", "BM_X"},
+                                 {"run_type", "aggregate"},
+                                 {"aggregate_name", aggregate},
+                                 {"real_time", value},
+                                 {"time_unit", "ms"}});
+    return r;
+  };
+  RecordSet set;
+  add_record_rows(record(4.0), "agg.json", set);
+  ASSERT_EQ(set.rows.size(), 1u);
+  EXPECT_EQ(set.rows[0].runs, std::vector<std::vector<double>>{{4.0}});
 }
 
 TEST(Compare, ACounterChangeIsFoundExactly) {

@@ -16,8 +16,8 @@ namespace {
 using json = nlohmann::json;
 
 TEST(SolverRegistry, BuiltInsByNameInTheirPlaces) {
-  const std::vector<std::string> expected = {"cholmod",    "multigrid",       "mgpcg",
-                                             "jacobi-pcg", "petsc-gamg",      "hypre-boomeramg",
+  const std::vector<std::string> expected = {"cholmod",    "multigrid",  "mgpcg",
+                                             "jacobi-pcg", "petsc-gamg", "hypre-boomeramg",
                                              "petsc-mg",   "auto"};
   ASSERT_GE(solver_names().size(), expected.size());
   for (std::size_t k = 0; k < expected.size(); ++k) {
@@ -41,12 +41,12 @@ TEST(SolverRegistry, BuiltInsByNameInTheirPlaces) {
 }
 
 json bar_scene(const std::string& solver) {
-  return {{"mesh", {{"box", {1, 0.2, 0.2}}, {"cells", {8, 2, 2}}}},
-          {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
-          {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 0.2, 0.2}}}}}},
-          {"gravity", {0, 0, -9.81}},
-          {"analysis",
-           {{"type", "dynamic"}, {"solver", solver}, {"steps", 3}, {"tolerance", 1e-10}}}};
+  return {
+      {"mesh", {{"box", {1, 0.2, 0.2}}, {"cells", {8, 2, 2}}}},
+      {"material", {{"young", 1e5}, {"poisson", 0.3}, {"density", 1000}}},
+      {"fixed", {{{"box", {{0, 0, 0}, {1e-9, 0.2, 0.2}}}}}},
+      {"gravity", {0, 0, -9.81}},
+      {"analysis", {{"type", "dynamic"}, {"solver", solver}, {"steps", 3}, {"tolerance", 1e-10}}}};
 }
 
 TEST(SolverRegistry, ASolverOfOnesOwnWithASettingOfItsOwn) {

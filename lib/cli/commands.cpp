@@ -238,6 +238,9 @@ refused. Warns where machine, compiler or flags differ.
                  moved (the code's) or not (the machine's)
   --threshold T  default 0.05       --alpha A            default 0.01
   --accuracy-factor F  default 2    --field-tolerance E  default 1e-8
+  --suspect-factor S  default 2: a row too short of runs to test whose ratio is beyond S either
+                 way is suspect (slower: a regression), not passed; the headline is inconclusive
+                 where rows went untested, with the runs a side that would test them
   --min-ms M     default 0.05       --count-threshold C  default 0.005
   --miss-threshold D  default 0.02  --min-count N        default 20000
   --out DIR      also writes DIR/compare.md, compare.json (the verdict) and compare.svg (the
@@ -522,11 +525,11 @@ int tune_command(const std::vector<std::string>& args) {
 }
 
 int compare_command(const std::vector<std::string>& args) {
-  ParsedArgs parsed =
-      parse_args(args,
-                 {"--threshold", "--alpha", "--accuracy-factor", "--field-tolerance", "--min-ms",
-                  "--out", "--count-threshold", "--miss-threshold", "--min-count"},
-                 {});
+  ParsedArgs parsed = parse_args(
+      args,
+      {"--threshold", "--alpha", "--accuracy-factor", "--field-tolerance", "--min-ms", "--out",
+       "--count-threshold", "--miss-threshold", "--min-count", "--suspect-factor"},
+      {});
   if (parsed.help) {
     std::cout << kCompareHelp;
     return 0;
@@ -541,13 +544,15 @@ int compare_command(const std::vector<std::string>& args) {
   options.count_threshold = number_option(parsed, "--count-threshold", options.count_threshold);
   options.miss_threshold = number_option(parsed, "--miss-threshold", options.miss_threshold);
   options.min_count = number_option(parsed, "--min-count", options.min_count);
+  options.suspect_factor = number_option(parsed, "--suspect-factor", options.suspect_factor);
   if (!(options.threshold >= 0) || !(options.alpha > 0 && options.alpha < 1) ||
       !(options.accuracy_factor >= 1) || !(options.field_tolerance >= 0) ||
       !(options.min_ms >= 0) || !(options.count_threshold >= 0) || !(options.miss_threshold >= 0) ||
-      !(options.min_count >= 0))
+      !(options.min_count >= 0) || !(options.suspect_factor >= 1))
     throw InputError(
         "compare: --threshold, --field-tolerance, --min-ms, --count-threshold, --miss-threshold "
-        "and --min-count need >= 0, --alpha a number in (0, 1), --accuracy-factor >= 1");
+        "and --min-count need >= 0, --alpha a number in (0, 1), --accuracy-factor and "
+        "--suspect-factor >= 1");
   const std::string& base = parsed.positional[0];
   const std::string& contender = parsed.positional[1];
   if (parsed.options.count("--out")) prepare_output_folder(parsed.options["--out"], "compare.json");
@@ -563,7 +568,7 @@ int compare_command(const std::vector<std::string>& args) {
     write_file_atomically(out / "compare.svg", [&](std::ostream& o) { o << comparison_svg(c); });
   }
   for (const std::string& w : c.warnings) std::cerr << "compare: warning: " << w << "\n";
-  std::cerr << "compare: " << (c.regressed() ? "regression" : "no regression") << "\n";
+  std::cerr << "compare: " << (c.regressed() ? "regression" : c.headline()) << "\n";
   if (c.counts_fell())
     std::cerr << "compare: work counts fell beyond their threshold: BASE's counts are stale\n";
   return c.regressed() ? 1 : 0;

@@ -49,9 +49,13 @@ RowComparison timed(const RecordRow& b, const RecordRow& n, const CompareOptions
   c.p_adjusted = c.test.p_value;
   if (c.unit_of_sample == "steps")
     c.note = "fewer than 3 runs a side: steps pooled, run-to-run noise not sampled";
-  if (smallest_p(c.test.base_count, c.test.new_count) >= o.alpha)
-    c.verdict = "inconclusive";
-  else if (c.base_value < o.min_ms)
+  if (smallest_p(c.test.base_count, c.test.new_count) >= o.alpha) {
+    const bool beyond = c.test.ratio > o.suspect_factor || c.test.ratio < 1 / o.suspect_factor;
+    c.verdict = beyond ? "suspect" : "inconclusive";
+    c.regression = beyond && c.test.ratio > 1;
+    if (beyond)
+      c.note = "too few runs to test, and " + general_number(c.test.ratio) + "x: rerun with more";
+  } else if (c.base_value < o.min_ms)
     c.note += std::string(c.note.empty() ? "" : "; ") + "under --min-ms: shown, not gated";
   // Else gated: the verdict waits for the family's adjusted p (holm_verdicts).
   return c;
@@ -65,7 +69,8 @@ RowComparison timed(const RecordRow& b, const RecordRow& n, const CompareOptions
 void holm_verdicts(std::vector<RowComparison>& rows, const CompareOptions& o) {
   std::vector<RowComparison*> family;
   for (RowComparison& r : rows)
-    if (r.kind == RowKind::Timed && !r.unit_of_sample.empty() && r.verdict != "inconclusive")
+    if (r.kind == RowKind::Timed && !r.unit_of_sample.empty() && r.verdict != "inconclusive" &&
+        r.verdict != "suspect")
       family.push_back(&r);
   std::sort(family.begin(), family.end(), [](const RowComparison* a, const RowComparison* b) {
     return a->test.p_value < b->test.p_value;
@@ -272,6 +277,28 @@ nlohmann::json first_context(const RecordSet& set) {
 
 bool Comparison::regressed() const {
   return std::any_of(rows.begin(), rows.end(), [](const RowComparison& r) { return r.regression; });
+}
+
+int Comparison::untested() const {
+  return static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const RowComparison& r) {
+    return r.kind == RowKind::Timed && (r.verdict == "inconclusive" || r.verdict == "suspect");
+  }));
+}
+
+int Comparison::runs_to_decide() const {
+  if (untested() == 0) return 0;
+  const auto timed = std::count_if(rows.begin(), rows.end(), [](const RowComparison& r) {
+    return r.kind == RowKind::Timed && r.case_name != "all cases";
+  });
+  // Complete separation of n against n is the strongest evidence n runs can give: 2 / C(2n, n),
+  // which Holm's first step multiplies by the rows gated.
+  for (int n = 2; n <= 100; ++n)
+    if (smallest_p(n, n) * static_cast<double>(timed) < options.alpha) return n;
+  return 100;
+}
+
+std::string Comparison::headline() const {
+  return regressed() ? "REGRESSION" : untested() > 0 ? "inconclusive" : "no regression";
 }
 
 bool Comparison::counts_fell() const {

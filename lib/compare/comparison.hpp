@@ -26,6 +26,10 @@ struct CompareOptions {
   /// by 1e-6 rad move the gate suite's fields by 0.9-3.6e-7 (bench/gate/plant.py), found 10x over.
   double field_tolerance = 1e-8;
   double min_ms = 0.05;  ///< timed rows whose BASE median is shorter are shown, not gated
+  /// A timed row too short of runs to be tested whose ratio is beyond this factor either way is
+  /// suspect, not passed (a slower one fails the comparison): one repetition of a 100x slowdown
+  /// is not "no regression".
+  double suspect_factor = 2;
   /// A phase's instructions (callgrind or perf counts) are "more" or "fewer" when they move by
   /// more than this, relative; its D1 and LL misses by more than miss_threshold. Counted twice,
   /// one binary's counts are equal; what they move by when unrelated code shifts the heap's
@@ -39,7 +43,8 @@ struct RowComparison {
   std::string case_name, quantity;
   int threads = 0;
   RowKind kind = RowKind::Timed;
-  /// faster, slower, same, inconclusive (too few samples), short (under min_ms); for counters
+  /// faster, slower, same, inconclusive (too few samples), suspect (too few samples and a ratio
+  /// beyond suspect_factor), short (under min_ms); for counters
   /// equal, increased, decreased; for accuracy better, worse, within tolerance; for fields equal,
   /// within tolerance, changed; for work counts equal, within threshold, more, fewer, not compared
   /// (counted otherwise); missing in new, new row.
@@ -64,6 +69,13 @@ struct Comparison {
   std::vector<std::string> warnings;  ///< machine, compiler or flags that differ
   nlohmann::json base_context, new_context;
   bool regressed() const;
+  /// Timed rows that could not be tested (too few runs a side), and the runs a side that would
+  /// test every timed row at alpha after Holm's adjustment (0 where none is untested).
+  int untested() const;
+  int runs_to_decide() const;
+  /// REGRESSION, inconclusive (nothing regressed, but timed rows went untested), or no
+  /// regression.
+  std::string headline() const;
   /// Work counts that fell beyond their threshold: the baseline they were compared with is stale.
   bool counts_fell() const;
 };

@@ -53,7 +53,7 @@ std::map<std::string, int> verdict_counts(const Comparison& c) {
 }
 
 std::string summary_line(const Comparison& c) {
-  std::string line = c.regressed() ? "**REGRESSION**" : "**no regression**";
+  std::string line = "**" + c.headline() + "**";
   line += " (";
   bool first = true;
   for (const auto& [verdict, count] : verdict_counts(c)) {
@@ -61,6 +61,29 @@ std::string summary_line(const Comparison& c) {
     first = false;
   }
   return line + ")";
+}
+
+/// What the comparison could not test, its largest ratios, and the runs that would test it.
+std::string untested_text(const Comparison& c) {
+  if (c.untested() == 0) return {};
+  std::vector<const RowComparison*> rows;
+  for (const RowComparison& r : c.rows)
+    if (r.kind == RowKind::Timed && (r.verdict == "inconclusive" || r.verdict == "suspect"))
+      rows.push_back(&r);
+  std::sort(rows.begin(), rows.end(), [](const RowComparison* a, const RowComparison* b) {
+    return std::abs(std::log(a->test.ratio)) > std::abs(std::log(b->test.ratio));
+  });
+  std::ostringstream md;
+  md << c.untested() << " timed row" << (c.untested() == 1 ? "" : "s")
+     << " could not be tested (too few runs a side); the largest ratios NEW/BASE:";
+  for (std::size_t i = 0; i < rows.size() && i < 3; ++i)
+    md << (i ? "," : "") << " " << fixed(rows[i]->test.ratio, 3) << " (" << rows[i]->case_name
+       << ", " << rows[i]->quantity << (rows[i]->verdict == "suspect" ? ", **suspect**" : "")
+       << ")";
+  md << ". " << c.runs_to_decide()
+     << " runs a side would test them: --benchmark_repetitions=" << c.runs_to_decide()
+     << " for Google Benchmark, --runs " << c.runs_to_decide() << " for ci/bench-gate.\n\n";
+  return md.str();
 }
 
 std::string context_text(const nlohmann::json& context) {
@@ -138,6 +161,7 @@ std::string comparison_markdown(const Comparison& c, const std::string& base,
      << "the gated rows (Holm), is under " << general_number(o.alpha)
      << " and the Hodges-Lehmann ratio is beyond " << general_number(o.threshold * 100)
      << "%; intervals at " << general_number(100 - 100 * o.alpha) << "%.\n\n";
+  md << untested_text(c);
   for (const std::string& w : c.warnings) md << "- warning: " << w << "\n";
   if (!c.warnings.empty()) md << "\n";
 
@@ -227,6 +251,7 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
             {"accuracy_floor", o.accuracy_floor},
             {"field_tolerance", o.field_tolerance},
             {"min_ms", o.min_ms},
+            {"suspect_factor", o.suspect_factor},
             {"count_threshold", o.count_threshold},
             {"miss_threshold", o.miss_threshold},
             {"min_count", o.min_count},
@@ -234,6 +259,9 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
              "Mann-Whitney U (two-sided) on log times, p adjusted over the gated rows (Holm); "
              "Hodges-Lehmann ratio and its distribution-free interval"}}},
           {"regression", c.regressed()},
+          {"headline", c.headline()},
+          {"untested", c.untested()},
+          {"runs_to_decide", c.runs_to_decide()},
           {"counts_fell", c.counts_fell()},
           {"verdicts", counts},
           {"warnings", c.warnings},

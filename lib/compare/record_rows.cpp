@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <set>
 
 #include "core/errors.hpp"
 
@@ -296,13 +297,22 @@ void cache_profile_rows(const json& r, RowSink& sink) {
 }
 
 /// Google Benchmark's JSON: each repetition of a benchmark is one run of one sample (its
-/// real_time); aggregates (mean, median, stddev) are left out, the repetitions are the evidence.
+/// real_time). Its aggregates (mean, median, stddev) are summaries of those repetitions, not more
+/// of them: left out where the repetitions are there, and where only they are (a file written with
+/// --benchmark_report_aggregates_only), the median is the benchmark's one sample.
 void benchmark_rows(const json& r, const std::string& file, RowSink& sink) {
   static const std::map<std::string, double> kMs = {
       {"ns", 1e-6}, {"us", 1e-3}, {"ms", 1.0}, {"s", 1e3}};
   const int threads = r.value("context", json::object()).value("threads_used", 1);
+  std::set<std::string> repeated;
+  for (const json& b : r["benchmarks"])
+    if (b.value("run_type", std::string("iteration")) == "iteration")
+      repeated.insert(b.value("run_name", b.value("name", std::string("?"))));
   for (const json& b : r["benchmarks"]) {
-    if (b.value("run_type", std::string("iteration")) != "iteration") continue;
+    const bool median_alone = b.value("run_type", std::string()) == "aggregate" &&
+                              b.value("aggregate_name", std::string()) == "median" &&
+                              !repeated.count(b.value("run_name", std::string("?")));
+    if (b.value("run_type", std::string("iteration")) != "iteration" && !median_alone) continue;
     if (b.contains("error_occurred") && b["error_occurred"].get<bool>()) continue;
     const std::string name = b.value("run_name", b.value("name", std::string("?")));
     const std::string unit = b.value("time_unit", std::string("ns"));
@@ -327,8 +337,8 @@ bool knows(const json& r) {
   if (!r.is_object()) return false;
   const std::string producer = r.value("producer", std::string());
   return producer == "corofem run" || producer == "corofem report (tables)" ||
-         producer == "bench/count_phases.py" ||
-         r.contains("benchmarks") || (r.contains("scenes") && r.contains("error_definitions")) ||
+         producer == "bench/count_phases.py" || r.contains("benchmarks") ||
+         (r.contains("scenes") && r.contains("error_definitions")) ||
          r.value("tool", std::string()) == "cachegrind";
 }
 

@@ -15,10 +15,10 @@ std::deque<SolverTraits> builtin() {
   for (SolverTraits& t : builtin_solvers()) solvers.push_back(std::move(t));
   // In the order of the SolverKind constants.
   const std::pair<SolverKind, const char*> fixed[] = {
-      {SolverKind::Cholmod, "cholmod"},       {SolverKind::Multigrid, "multigrid"},
-      {SolverKind::Mgpcg, "mgpcg"},           {SolverKind::JacobiPcg, "jacobi-pcg"},
-      {SolverKind::PetscGamg, "petsc-gamg"},  {SolverKind::HypreBoomeramg, "hypre-boomeramg"},
-      {SolverKind::PetscMg, "petsc-mg"},      {SolverKind::Auto, "auto"}};
+      {SolverKind::Cholmod, "cholmod"},      {SolverKind::Multigrid, "multigrid"},
+      {SolverKind::Mgpcg, "mgpcg"},          {SolverKind::JacobiPcg, "jacobi-pcg"},
+      {SolverKind::PetscGamg, "petsc-gamg"}, {SolverKind::HypreBoomeramg, "hypre-boomeramg"},
+      {SolverKind::PetscMg, "petsc-mg"},     {SolverKind::Auto, "auto"}};
   for (const auto& [kind, name] : fixed)
     if (solvers.at(static_cast<std::size_t>(kind.id())).name != name)
       throw std::logic_error("solver registry: built-in " + std::to_string(kind.id()) +
@@ -42,7 +42,8 @@ const std::string& SolverKind::name() const {
 }
 
 SolverKind register_solver(SolverTraits traits) {
-  if (!traits.make) throw std::invalid_argument("register solver: '" + traits.name + "' has no make");
+  if (!traits.make)
+    throw std::invalid_argument("register solver: '" + traits.name + "' has no make");
   return SolverKind(static_cast<int>(registry().add(std::move(traits))));
 }
 

@@ -10,6 +10,13 @@ RECORDS = ("since_snapshot.json", "tables.json", "speed_accuracy.json")
 
 
 
+def headline(verdict):
+    """compare's headline: a regression, inconclusive (timed rows it could not test), or none."""
+    if verdict.get("regression"):
+        return "a regression"
+    return verdict.get("headline", "no regression")
+
+
 def render_since_snapshot(verdict, md):
     md.append("## Since the last published snapshot\n\n")
     if verdict is None:
@@ -27,7 +34,7 @@ def render_since_snapshot(verdict, md):
     options = verdict.get("options", {})
     md.append(f"`corofem compare` of this report against the snapshot of commit "
               f"`{str(base.get('commit', '?'))[:9]}` ({base.get('date', '?')}): "
-              f"**{'a regression' if verdict.get('regression') else 'no regression'}** ({counts}). "
+              f"**{headline(verdict)}** ({counts}). "
               f"A timing is slower or faster only with p < {options.get('alpha')} (Mann-Whitney U) "
               f"and a ratio beyond {100 * options.get('threshold', 0):g}%; the full table is "
               f"since_snapshot/compare.md.\n\n")
