@@ -100,11 +100,18 @@ try:
     commit = subprocess.check_output(["git", "rev-parse", "HEAD"], text=True).strip()
 except Exception:
     commit = "unknown"
+cpu = "unknown"  # the model name, as the run records say it (platform.processor() is empty on Linux)
+try:
+    with open("/proc/cpuinfo") as f:
+        cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")),
+                   cpu)
+except OSError:
+    pass
 record = {"producer": "bench/cache_profile.sh", "tool": tool,
           "tool_note": "perf hardware counters" if tool == "perf" else
                        "valgrind cachegrind: simulated D1 and last-level caches (exact, repeatable), " + cache_note,
           "model": model, "updates": updates, "fine_blocks": blocks, "threads": threads,
-          "context": {"commit": commit, "machine": platform.node(), "cpu": platform.processor(),
+          "context": {"commit": commit, "machine": platform.node(), "cpu": cpu,
                       "date": datetime.datetime.utcnow().strftime("%Y-%m-%dT%H:%M:%SZ")},
           "results": rows}
 fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(out)))

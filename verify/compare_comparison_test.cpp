@@ -333,6 +333,27 @@ TEST(Compare, CoresPlacedApartDifferentlyAreWarnedOf) {
   EXPECT_TRUE(compare_records(runs_of(older), runs_of(newer), CompareOptions{}).warnings.empty());
 }
 
+TEST(Compare, AContextWarningNamesBothValues) {
+  // A report folder whose cache profile left its cpu empty: the warning names the machines the
+  // other records name, not the empty string ("cpu differs: BASE , NEW ").
+  std::mt19937 rng(43);
+  json profile = {{"tool", "cachegrind"},
+                  {"model", "bunny"},
+                  {"context", {{"cpu", ""}}},
+                  {"results", json::array()}};
+  json base = run_record(rng, 2, 5), contender = run_record(rng, 2, 5);
+  contender["context"]["cpu"] = "Intel Xeon";
+  RecordSet b, n;
+  add_record_rows(profile, "cache_profile.json", b);
+  add_record_rows(base, "tables.json", b);
+  add_record_rows(contender, "tables.json", n);
+  const Comparison c = compare_records(b, n, CompareOptions{});
+  bool named = false;
+  for (const std::string& w : c.warnings)
+    named |= w.rfind("cpu differs: BASE AMD EPYC, NEW Intel Xeon", 0) == 0;
+  EXPECT_TRUE(named) << (c.warnings.empty() ? "no warning" : c.warnings.front());
+}
+
 TEST(Compare, ManyRowsWithoutAChangeRarelyAlarmTogether) {
   // 40 phases, 10 runs a side, all from one distribution: at alpha = 0.01 per row, about a third
   // of such comparisons would alarm somewhere; Holm's adjustment holds the family at 1%.

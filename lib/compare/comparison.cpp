@@ -208,19 +208,27 @@ std::vector<nlohmann::json> context_fields(const RecordSet& set, const char* key
 
 /// Warnings where the two sides were produced differently.
 std::vector<std::string> context_warnings(const RecordSet& base, const RecordSet& contender) {
-  auto values = [](const RecordSet& set, const char* key) {  // distinct, as text
+  // Distinct, as text, in order; a record that left the field empty (a profile that did not
+  // read the CPU) says nothing of it.
+  auto values = [](const RecordSet& set, const char* key) {
     std::vector<std::string> out;
     for (const nlohmann::json& field : context_fields(set, key)) {
       const std::string v = field.is_string() ? field.get<std::string>() : field.dump();
-      if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+      if (!v.empty() && v != "null" && std::find(out.begin(), out.end(), v) == out.end())
+        out.push_back(v);
     }
+    return out;
+  };
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string out;
+    for (const std::string& s : v) out += (out.empty() ? "" : " and ") + s;
     return out;
   };
   std::vector<std::string> warnings;
   for (const char* key : {"cpu", "host", "compiler", "flags", "build_type", "block_kernels"}) {
     const std::vector<std::string> b = values(base, key), n = values(contender, key);
     if (!b.empty() && !n.empty() && b != n)
-      warnings.push_back(std::string(key) + " differs: BASE " + b.front() + ", NEW " + n.front() +
+      warnings.push_back(std::string(key) + " differs: BASE " + joined(b) + ", NEW " + joined(n) +
                          " (timings compare the machines as much as the code)");
   }
   // Two-thread timings move with where the host put the two cores (core/core_latency.hpp): a
