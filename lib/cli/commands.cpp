@@ -14,6 +14,7 @@
 #include "core/atomic_file.hpp"
 #include "core/build_info.hpp"
 #include "core/errors.hpp"
+#include "core/folder_lock.hpp"
 #include "core/number_text.hpp"
 #include "core/threads.hpp"
 #include "report/report_driver.hpp"
@@ -411,6 +412,7 @@ int report_command(const std::vector<std::string>& args) {
   if (parsed.options.count("--only")) config.only = parsed.options["--only"];
   apply_threads_option(parsed);
   prepare_output_folder(config.out_dir, "tables.json");
+  const FolderLock one_writer(config.out_dir, "corofem report");
   std::cerr << "report: " << config.mode_name() << " run into " << config.out_dir.string() << "\n";
   run_report(config);
   if (!parsed.options.count("--no-render")) {
