@@ -693,6 +693,26 @@ TEST(Compare, ATimingIsTheCodesWhereItsCountsMovedAndTheMachinesWhereTheyDidNot)
   EXPECT_EQ(row(by_machine, "step").attribution, "machine");
 }
 
+TEST(Compare, PairedOnlyComparesWhatBothRanAndSaysWhatItLeftOut) {
+  // BASE: cases a and b; NEW: a, c, and b on another scene. Paired only: a compared, the rest one
+  // line each, and the case NEW never meant to run is no regression.
+  std::mt19937 rng(47);
+  const RecordSet base =
+      runs_of({of_case(run_record(rng, 2, 5), "a.json"), of_case(run_record(rng, 2, 5), "b.json")});
+  const RecordSet contender =
+      runs_of({of_case(run_record(rng, 2, 5), "a.json"), of_case(run_record(rng, 2, 5), "c.json"),
+               of_case(run_record(rng, 2, 5, 100, 3e5), "b.json")});
+  EXPECT_THROW(compare_records(base, contender, CompareOptions{}), InputError);  // b's scenes
+  CompareOptions o;
+  o.paired_only = true;
+  const Comparison c = compare_records(base, contender, o);
+  for (const RowComparison& r : c.rows) EXPECT_EQ(r.case_name, "run a.json") << r.quantity;
+  EXPECT_FALSE(c.regressed());
+  ASSERT_EQ(c.unpaired.size(), 2u);
+  EXPECT_EQ(c.unpaired[0], "1 case only NEW ran: run c.json");
+  EXPECT_EQ(c.unpaired[1], "1 case both ran, on other scenes or settings: run b.json");
+}
+
 TEST(Compare, CliExitCodesAndOutputs) {
   test::TempDir dir;
   std::mt19937 rng(19);

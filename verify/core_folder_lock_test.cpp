@@ -1,13 +1,12 @@
 // One writer per output folder (core/folder_lock.hpp): a second writer of a folder refuses at its
 // start, naming the folder and the first one's pid; the folder is free again when the first ends.
-#include "core/folder_lock.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <optional>
 
 #include "core/errors.hpp"
+#include "core/folder_lock.hpp"
 #include "test_support.hpp"
 
 namespace corofem {

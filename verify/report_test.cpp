@@ -6,6 +6,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -552,6 +553,44 @@ TEST(Report, SinceTheSnapshotDrawsARealComparison) {
                                printed("%.3g", solve["test"]["ratio"]) + " | ";
   EXPECT_NE(md.find(expected), std::string::npos) << expected << "\n" << md;
   EXPECT_NE(md.find("**a regression**"), std::string::npos);
+}
+
+TEST(Report, SinceTheSnapshotStaysAGlance) {
+  // A comparison with 100 rows that moved and cases it left out: the section keeps its headline,
+  // the lines of what it could not pair, and the 20 largest moves, under 40 lines.
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  json rows = json::array();
+  for (int k = 0; k < 100; ++k)
+    rows.push_back({{"case", "table1 quadruped-" + std::to_string(k)},
+                    {"threads", 2},
+                    {"quantity", "solve"},
+                    {"kind", "timed"},
+                    {"verdict", "slower"},
+                    {"base", 1.0},
+                    {"new", 1.1 + 0.01 * k},
+                    {"test", {{"ratio", 1.1 + 0.01 * k}, {"interval", {1.05, 1.2 + 0.01 * k}}}}});
+  const json verdict = {{"producer", "corofem compare"},
+                        {"base_context", {{"commit", "abc"}, {"date", "d"}}},
+                        {"options", {{"alpha", 0.01}, {"threshold", 0.05}}},
+                        {"regression", true},
+                        {"verdicts", {{"slower", 100}}},
+                        {"unpaired", {"3 cases only BASE ran: table1 bunny-11k, ..."}},
+                        {"rows", rows}};
+  TempDir dir;
+  ASSERT_EQ(render_golden_fixture(
+                dir, "", "/dev/null",
+                [&](json&) { test::write_text(dir / "since_snapshot.json", verdict.dump()); }),
+            0);
+  const std::string md = read_text(dir / "REPORT.md");
+  const std::size_t start = md.find("## Since the last published snapshot");
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t end = md.find("\n## ", start + 1);
+  const std::string section = md.substr(start, end - start);
+  EXPECT_LT(std::count(section.begin(), section.end(), '\n'), 40) << section;
+  EXPECT_NE(section.find("- not compared: 3 cases only BASE ran"), std::string::npos) << section;
+  EXPECT_NE(section.find("table1 quadruped-99"), std::string::npos);   // the largest move is shown
+  EXPECT_EQ(section.find("table1 quadruped-0 |"), std::string::npos);  // the smallest is not
+  EXPECT_NE(section.find("80 more in since_snapshot/compare.md"), std::string::npos) << section;
 }
 
 TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {

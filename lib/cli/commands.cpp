@@ -212,7 +212,8 @@ converging; the budget); 2 bad input.
 const char* kCompareHelp =
     R"(Usage: corofem compare BASE NEW [--threshold T] [--alpha A] [--accuracy-factor F]
                        [--field-tolerance E] [--min-ms M] [--count-threshold C]
-                       [--miss-threshold D] [--min-count N] [--out DIR]
+                       [--miss-threshold D] [--min-count N] [--suspect-factor S]
+                       [--paired-only] [--out DIR]
 
 BASE and NEW are each a `corofem run` record, a report folder (tables.json, speed_accuracy.json,
 cache_profile.json), Google Benchmark JSON from corofem_bench, or a folder of such records: records
@@ -239,6 +240,8 @@ refused. Warns where machine, compiler or flags differ.
                  moved (the code's) or not (the machine's)
   --threshold T  default 0.05       --alpha A            default 0.01
   --accuracy-factor F  default 2    --field-tolerance E  default 1e-8
+  --paired-only  compare only the cases both sides ran on the same scenes (a report against a
+                 snapshot of other scenes); the rest is summarized in a line each, no regression
   --suspect-factor S  default 2: a row too short of runs to test whose ratio is beyond S either
                  way is suspect (slower: a regression), not passed; the headline is inconclusive
                  where rows went untested, with the runs a side that would test them
@@ -531,7 +534,7 @@ int compare_command(const std::vector<std::string>& args) {
       args,
       {"--threshold", "--alpha", "--accuracy-factor", "--field-tolerance", "--min-ms", "--out",
        "--count-threshold", "--miss-threshold", "--min-count", "--suspect-factor"},
-      {});
+      {"--paired-only"});
   if (parsed.help) {
     std::cout << kCompareHelp;
     return 0;
@@ -547,6 +550,7 @@ int compare_command(const std::vector<std::string>& args) {
   options.miss_threshold = number_option(parsed, "--miss-threshold", options.miss_threshold);
   options.min_count = number_option(parsed, "--min-count", options.min_count);
   options.suspect_factor = number_option(parsed, "--suspect-factor", options.suspect_factor);
+  options.paired_only = parsed.options.count("--paired-only") > 0;
   if (!(options.threshold >= 0) || !(options.alpha > 0 && options.alpha < 1) ||
       !(options.accuracy_factor >= 1) || !(options.field_tolerance >= 0) ||
       !(options.min_ms >= 0) || !(options.count_threshold >= 0) || !(options.miss_threshold >= 0) ||

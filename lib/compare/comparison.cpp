@@ -319,15 +319,54 @@ bool Comparison::counts_fell() const {
 namespace {
 
 /// A case both sides ran must be the same scene on both: else its rows say nothing of the code.
-void refuse_different_scenes(const RecordSet& base, const RecordSet& contender) {
+/// Refused (InputError naming both rows), or with paired_only returned, to be left out.
+std::set<std::string> different_scenes(const RecordSet& base, const RecordSet& contender,
+                                       bool paired_only) {
   std::map<std::string, const RecordRow*> new_cases;
   for (const RecordRow& r : contender.rows) new_cases.emplace(r.case_name, &r);
+  std::set<std::string> out;
   for (const RecordRow& b : base.rows) {
     auto it = new_cases.find(b.case_name);
-    if (it != new_cases.end() && it->second->scene_digest != b.scene_digest)
+    if (it == new_cases.end() || it->second->scene_digest == b.scene_digest) continue;
+    if (!paired_only)
       throw InputError("refusing to pair '" + b.case_name + "': " + b.source + " and " +
                        it->second->source + " ran different scenes");
+    out.insert(b.case_name);
   }
+  return out;
+}
+
+/// One line of cases left out for a reason, naming the first few.
+std::string cases_line(const std::set<std::string>& cases, const std::string& why) {
+  std::string line =
+      std::to_string(cases.size()) + (cases.size() == 1 ? " case " : " cases ") + why + ": ";
+  int named = 0;
+  for (const std::string& c : cases) {
+    if (named == 4) {
+      line += ", ...";
+      break;
+    }
+    line += (named++ ? ", " : "") + c;
+  }
+  return line;
+}
+
+/// paired_only: the sets' cases that both ran on the same scenes; the others summarized.
+std::set<std::string> paired_cases(const RecordSet& base, const RecordSet& contender,
+                                   const std::set<std::string>& other_scenes,
+                                   std::vector<std::string>& unpaired) {
+  std::set<std::string> in_base, in_new, both, only_base, only_new;
+  for (const RecordRow& r : base.rows) in_base.insert(r.case_name);
+  for (const RecordRow& r : contender.rows) in_new.insert(r.case_name);
+  for (const std::string& c : in_base) (in_new.count(c) ? both : only_base).insert(c);
+  for (const std::string& c : in_new)
+    if (!in_base.count(c)) only_new.insert(c);
+  for (const std::string& c : other_scenes) both.erase(c);
+  if (!only_base.empty()) unpaired.push_back(cases_line(only_base, "only BASE ran"));
+  if (!only_new.empty()) unpaired.push_back(cases_line(only_new, "only NEW ran"));
+  if (!other_scenes.empty())
+    unpaired.push_back(cases_line(other_scenes, "both ran, on other scenes or settings"));
+  return both;
 }
 
 /// The cases of each gated phase, and their summed medians, for the stratified rows.
@@ -452,10 +491,16 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
   out.warnings = context_warnings(base, contender);
   out.base_context = first_context(base);
   out.new_context = first_context(contender);
-  refuse_different_scenes(base, contender);
+  const std::set<std::string> other_scenes = different_scenes(base, contender, options.paired_only);
+  std::set<std::string> kept;  // paired_only: the cases compared
+  if (options.paired_only) kept = paired_cases(base, contender, other_scenes, out.unpaired);
+  const auto left_out = [&](const RecordRow& r) {
+    return options.paired_only && !kept.count(r.case_name);
+  };
   std::map<std::string, const RecordRow*> new_rows;
   std::set<std::string> new_cases;
   for (const RecordRow& r : contender.rows) {
+    if (left_out(r)) continue;
     new_rows[r.key()] = &r;
     new_cases.insert(r.case_name);
   }
@@ -469,6 +514,7 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
     return c;
   };
   for (const RecordRow& b : base.rows) {
+    if (left_out(b)) continue;
     auto it = new_rows.find(b.key());
     if (it == new_rows.end() || it->second->kind != b.kind) {
       RowComparison c = unpaired(b, "missing in new");
@@ -493,7 +539,8 @@ Comparison compare_records(const RecordSet& base, const RecordSet& contender,
   if (paired == 0)
     throw InputError(
         "no row of BASE pairs with a row of NEW (different cases, thread counts or "
-        "kinds of record)");
+        "kinds of record)" +
+        std::string(out.unpaired.empty() ? "" : ": " + out.unpaired.front()));
   return out;
 }
 

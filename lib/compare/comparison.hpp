@@ -30,6 +30,9 @@ struct CompareOptions {
   /// suspect, not passed (a slower one fails the comparison): one repetition of a 100x slowdown
   /// is not "no regression".
   double suspect_factor = 2;
+  /// Compare only the cases both sides ran on the same scenes (a report against a snapshot of
+  /// other scenes): the others are summarized in `unpaired`, neither rows nor regressions.
+  bool paired_only = false;
   /// A phase's instructions (callgrind or perf counts) are "more" or "fewer" when they move by
   /// more than this, relative; its D1 and LL misses by more than miss_threshold. Counted twice,
   /// one binary's counts are equal; what they move by when unrelated code shifts the heap's
@@ -67,6 +70,9 @@ struct Comparison {
   CompareOptions options;
   std::vector<RowComparison> rows;
   std::vector<std::string> warnings;  ///< machine, compiler or flags that differ
+  /// paired_only: the cases left out, one line for each reason (only one side ran them, or ran
+  /// them on other scenes), naming a few.
+  std::vector<std::string> unpaired;
   nlohmann::json base_context, new_context;
   bool regressed() const;
   /// Timed rows that could not be tested (too few runs a side), and the runs a side that would

@@ -162,6 +162,8 @@ std::string comparison_markdown(const Comparison& c, const std::string& base,
      << " and the Hodges-Lehmann ratio is beyond " << general_number(o.threshold * 100)
      << "%; intervals at " << general_number(100 - 100 * o.alpha) << "%.\n\n";
   md << untested_text(c);
+  for (const std::string& u : c.unpaired) md << "- not compared: " << u << "\n";
+  if (!c.unpaired.empty()) md << "\n";
   for (const std::string& w : c.warnings) md << "- warning: " << w << "\n";
   if (!c.warnings.empty()) md << "\n";
 
@@ -252,6 +254,7 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
             {"field_tolerance", o.field_tolerance},
             {"min_ms", o.min_ms},
             {"suspect_factor", o.suspect_factor},
+            {"paired_only", o.paired_only},
             {"count_threshold", o.count_threshold},
             {"miss_threshold", o.miss_threshold},
             {"min_count", o.min_count},
@@ -265,6 +268,7 @@ nlohmann::json comparison_json(const Comparison& c, const std::string& base,
           {"counts_fell", c.counts_fell()},
           {"verdicts", counts},
           {"warnings", c.warnings},
+          {"unpaired", c.unpaired},
           {"rows", rows}};
 }
 

@@ -286,12 +286,17 @@ void speed_accuracy_rows(const json& r, RowSink& sink) {
 
 void cache_profile_rows(const json& r, RowSink& sink) {
   const std::string name = "cache-profile " + r.value("model", std::string("?"));
+  // Its settings are its scene: profiles of other caches, updates or sizes do not pair.
+  json settings = json::object();
+  for (const char* key : {"tool", "tool_note", "updates", "threads", "fine_blocks"})
+    settings[key] = r.value(key, json(nullptr));
+  const std::string scene = digest(settings);
   for (const json& result : r.value("results", json::array())) {
     const std::string method = result.value("method", std::string("?"));
     for (const char* counter :
          {"instructions_per_update", "d1_misses_per_update", "ll_misses_per_update"})
       if (result.contains(counter))
-        sink.value(name, "cachegrind", 1, method + " " + counter, RowKind::Counter, result[counter],
+        sink.value(name, scene, 1, method + " " + counter, RowKind::Counter, result[counter],
                    "results '" + method + "'");
   }
 }
