@@ -19,6 +19,7 @@ import importlib.util
 import json
 import os
 import pkgutil
+import subprocess
 import sys
 import tempfile
 
@@ -52,6 +53,27 @@ def units():
             raise SystemExit(f"render: {unit.__file__} is not a unit (it needs ORDER, RECORDS and "
                              "render(records, folder, md))")
     return sorted(found, key=lambda u: (u.ORDER, u.__name__))
+
+
+def age_line(records):
+    """Where the records' commit is behind this checkout's: a snapshot drawn again later says how
+    old it is ("" where the records are of this commit, or git cannot tell)."""
+    commit = next((r["context"].get("commit") for r in records.values()
+                   if isinstance(r, dict) and isinstance(r.get("context"), dict)
+                   and r["context"].get("commit")), None)
+    if not commit or render_common.blanked():
+        return ""
+    commit = commit.removesuffix("-dirty")
+    here = os.path.dirname(os.path.abspath(__file__))
+    try:
+        behind = subprocess.run(["git", "rev-list", "--count", f"{commit}..HEAD"], cwd=here,
+                                capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return ""
+    if behind in ("", "0"):
+        return ""
+    return (f"**These records are of commit `{commit[:9]}`, {behind} commits behind this "
+            "checkout's HEAD**: the code has moved since they were made.\n\n")
 
 
 def record_files(all_units):
@@ -89,6 +111,7 @@ def main(argv):
           "number below is in them, with the commit, flags and machine that produced it.\n\n"]
     if not HAVE_MPL:
         md.append("(matplotlib was not available: no charts drawn.)\n\n")
+    md.append(age_line(records))
     for unit in all_units:
         unit.render(records, folder, md)
     write_atomically(folder, "".join(md))
