@@ -507,6 +507,16 @@ TEST(Report, TableOneShowsItsRecordsNumbers) {
   EXPECT_NE(md.find(expected), std::string::npos) << "expected\n"
                                                   << expected << "\nin\n"
                                                   << md.substr(0, 1500);
+  // The targets: the step over its roofline floor, at one thread against 1.5x (judged), at two
+  // where no handoff was recorded (not judged).
+  const double one = row["one_thread"]["roofline"]["over_floor"];
+  const std::string target_one = "| " + row["model"].get<std::string>() + " | 1 | " +
+                                 printed("%.2g", one) + " | " + (one <= 1.5 ? "met" : "not met");
+  EXPECT_NE(md.find(target_one), std::string::npos) << target_one;
+  const std::string target_two = "| " + row["model"].get<std::string>() + " | 2 | " +
+                                 printed("%.2g", row["roofline"]["over_floor"]) +
+                                 " | not judged: the cores were not placed close";
+  EXPECT_NE(md.find(target_two), std::string::npos) << target_two;
 }
 
 TEST(Report, SinceTheSnapshotDrawsARealComparison) {
