@@ -70,9 +70,21 @@ def save(fig, folder, name):
     fd, tmp = tempfile.mkstemp(dir=charts, suffix=".png")
     os.close(fd)
     fig.savefig(tmp, dpi=90, metadata={"Software": None})
-    plt.close(fig)
     os.chmod(tmp, 0o644)
     os.replace(tmp, path)
+    # The same chart as vectors, for papers (no dates in them: a redraw of the same records gives
+    # the same files).
+    vector = os.path.join(charts, "vector")
+    os.makedirs(vector, exist_ok=True)
+    stem = os.path.splitext(name)[0]
+    for suffix, metadata in ((".pdf", {"CreationDate": None, "Producer": None, "Creator": None}),
+                             (".svg", {"Date": None, "Creator": None})):
+        fd, tmp = tempfile.mkstemp(dir=vector, suffix=suffix)
+        os.close(fd)
+        fig.savefig(tmp, metadata=metadata)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, os.path.join(vector, stem + suffix))
+    plt.close(fig)
     return "charts/" + name
 
 

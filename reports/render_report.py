@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
-"""Draws REPORT.md and charts/*.png of a corofem report folder from its JSON records alone.
+"""Draws REPORT.md and charts/*.png of a corofem report folder from its JSON records alone, and
+for papers every table as LaTeX (tables/*.tex, booktabs; tables/all.tex compiles them) and every
+chart as PDF and SVG (charts/vector/).
 
 Usage: render_report.py DIR [--blank-times]
        render_report.py --units        (the units and the records each reads, as JSON)
@@ -23,6 +25,7 @@ import subprocess
 import sys
 import tempfile
 
+import latex_tables
 import render_common
 import sections
 from render_common import HAVE_MPL, load
@@ -114,8 +117,11 @@ def main(argv):
     md.append(age_line(records))
     for unit in all_units:
         unit.render(records, folder, md)
-    write_atomically(folder, "".join(md))
-    print(f"render: wrote {os.path.join(folder, 'REPORT.md')}", file=sys.stderr)
+    text = "".join(md)
+    write_atomically(folder, text)
+    tables = latex_tables.write_tables(text, folder)
+    print(f"render: wrote {os.path.join(folder, 'REPORT.md')}, its {len(tables)} tables as LaTeX "
+          f"in tables/ and its charts as PNG, PDF and SVG in charts/", file=sys.stderr)
     return 0
 
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -601,6 +602,48 @@ TEST(Report, SinceTheSnapshotStaysAGlance) {
   EXPECT_NE(section.find("table1 quadruped-99"), std::string::npos);   // the largest move is shown
   EXPECT_EQ(section.find("table1 quadruped-0 |"), std::string::npos);  // the smallest is not
   EXPECT_NE(section.find("80 more in since_snapshot/compare.md"), std::string::npos) << section;
+}
+
+TEST(Report, TablesAsLaTeXCarryTheMarkdownsNumbersAndCompile) {
+  // Every Markdown table of REPORT.md is also tables/NN-slug.tex (booktabs), and tables/all.tex
+  // inputs them all: its cells, with LaTeX's escapes undone, are the Markdown's; pdflatex compiles
+  // the document (ci/setup installs it).
+  if (!renderer_usable()) GTEST_SKIP() << "no python3 on PATH: the renderer cannot run";
+  TempDir dir;
+  ASSERT_EQ(render_golden_fixture(dir, "", "/dev/null"), 0);
+  const std::string md = read_text(dir / "REPORT.md");
+  std::vector<std::string> markdown_rows;  // every table row, cells joined by " | "
+  std::istringstream lines(md);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("| ", 0) == 0) markdown_rows.push_back(line.substr(2, line.size() - 4));
+  std::vector<fs::path> tex;
+  for (const auto& e : fs::directory_iterator(dir / "tables"))
+    if (e.path().extension() == ".tex" && e.path().filename() != "all.tex") tex.push_back(e.path());
+  EXPECT_GE(tex.size(), 8u);
+  std::size_t tex_rows = 0;
+  for (const fs::path& file : tex) {
+    std::istringstream rows(read_text(file));
+    for (std::string line; std::getline(rows, line);) {
+      if (line.size() < 3 || line.substr(line.size() - 3) != " \\\\") continue;
+      std::string plain = line.substr(0, line.size() - 3);
+      plain = std::regex_replace(plain, std::regex(R"(\\textbf\{([^}]*)\})"), "**$1**");
+      plain = std::regex_replace(plain, std::regex(R"(\\texttt\{([^}]*)\})"), "`$1`");
+      plain = std::regex_replace(plain, std::regex(" & "), " | ");
+      plain = std::regex_replace(plain, std::regex(R"(\\([_%&#$]))"), "$1");
+      ++tex_rows;
+      if (plain.find('\\') != std::string::npos) continue;  // other escapes: not undone here
+      EXPECT_NE(std::find(markdown_rows.begin(), markdown_rows.end(), plain), markdown_rows.end())
+          << file.filename() << ": " << plain;
+    }
+  }
+  EXPECT_EQ(tex_rows, markdown_rows.size());  // every row, headers included, once
+  if (std::system("pdflatex --version > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "no pdflatex here (ci/setup installs texlive-latex-recommended)";
+  const std::string compile = "cd '" + (dir / "tables").string() +
+                              "' && pdflatex -interaction=nonstopmode -halt-on-error all.tex > "
+                              "latex.log 2>&1";
+  EXPECT_EQ(std::system(compile.c_str()), 0) << read_text(dir / "tables" / "latex.log");
+  EXPECT_TRUE(fs::exists(dir / "tables" / "all.pdf"));
 }
 
 TEST(Report, MarkdownMatchesTheGoldenFileWithTimesBlanked) {
