@@ -59,7 +59,8 @@ TEST(AnalysisVariant, AnotherSolverDropsTheMultigridKeys) {
                         "coarsening",
                         "chebyshev_degree",
                         "cycle",
-                        "coarsest_refactor"};
+                        "coarsest_refactor",
+                        "galerkin_refresh"};
   // And the spelled list is the production one, key for key: a key added there is spelled here.
   const std::vector<std::string> production = multigrid_analysis_keys();
   EXPECT_EQ(std::set<std::string>(std::begin(keys), std::end(keys)),
@@ -74,7 +75,8 @@ TEST(AnalysisVariant, AnotherSolverDropsTheMultigridKeys) {
                             {"coarsening", 3.5},
                             {"chebyshev_degree", 3},
                             {"cycle", "W"},
-                            {"coarsest_refactor", 0.1}});
+                            {"coarsest_refactor", 0.1},
+                            {"galerkin_refresh", 0.05}});
   for (const char* key : keys) ASSERT_TRUE(scene["analysis"].contains(key)) << key;
   const nlohmann::json cholmod = with_analysis(scene, {.solver = SolverKind::Cholmod});
   for (const char* key : keys) EXPECT_FALSE(cholmod["analysis"].contains(key)) << key;

@@ -164,7 +164,8 @@ TEST(Scene, PetscMgRefusesTheSettingsItCannotHonour) {
   // must fail this gate; and the two lists are the same (a key added there is spelled here).
   const std::vector<std::pair<std::string, nlohmann::json>> refused = {
       {"smoother", "chebyshev"}, {"cycle", "W"},          {"galerkin", "stream"},
-      {"vcycles", 20},           {"chebyshev_degree", 3}, {"coarsest_refactor", 0.1}};
+      {"vcycles", 20},           {"chebyshev_degree", 3}, {"coarsest_refactor", 0.1},
+      {"galerkin_refresh", 0.05}};
   std::set<std::string> spelled;
   for (const auto& entry : refused) spelled.insert(entry.first);
   const std::vector<std::string> production = keys_petsc_mg_cannot_honour();

@@ -97,7 +97,8 @@ nlohmann::json to_json(const MultigridParams& p) {
             {"coarsest_factorization", p.overlap_factorization
                                            ? "beside the first descent at 2+ threads and 3+ levels"
                                            : "in the update"},
-            {"coarsest_refactor_change", p.coarsest_refactor_change}}}};
+            {"coarsest_refactor_change", p.coarsest_refactor_change}}},
+          {"galerkin_refresh_change", p.galerkin_refresh_change}};
 }
 
 nlohmann::json to_json(const CoarseLevelOrigin& o) {
@@ -143,6 +144,7 @@ nlohmann::json to_json(const MultigridSummary& s) {
                         {"coarsest_shifts", s.coarsest_shifts},
                         {"updates", s.updates},
                         {"coarsest_factorizations", s.coarsest_factorizations},
+                        {"galerkin_refreshes", s.galerkin_refreshes},
                         {"deferred_updates", s.deferred_updates}};
   if (!s.ended_early.empty()) out["ended_early"] = s.ended_early;
   return out;

@@ -46,6 +46,11 @@ const GalerkinGather& MultigridHierarchy::gather(int h) const {
 }
 
 void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
+  set_fine(fine);
+  update_coarse(method);
+}
+
+void MultigridHierarchy::set_fine(const BrcMatrix& fine) {
   // The fine values copied in, on the threads (a pass at memory speed: 14 MB on the dragon).
   const std::ptrdiff_t values = static_cast<std::ptrdiff_t>(fine.values.size());
   matrices_[0].values.resize(fine.values.size());
@@ -55,15 +60,18 @@ void MultigridHierarchy::update(const BrcMatrix& fine, GalerkinMethod method) {
 #pragma omp parallel for schedule(static) num_threads(threads_for(values / 9, LoopItems::Blocks))
   for (std::ptrdiff_t c = 0; c < values; c += kChunk)
     std::copy(from + c, from + std::min(values, c + kChunk), to + c);
-  update_coarse(method);
 }
 
 void MultigridHierarchy::take_update(BrcMatrix& fine, GalerkinMethod method) {
+  take_fine(fine);
+  update_coarse(method);
+}
+
+void MultigridHierarchy::take_fine(BrcMatrix& fine) {
   if (fine.values.size() != matrices_[0].values.size() ||
       fine.block_rows != matrices_[0].block_rows)
     throw std::logic_error("MultigridHierarchy::take_update: the matrix has another pattern");
   std::swap(fine.values, matrices_[0].values);
-  update_coarse(method);
 }
 
 void MultigridHierarchy::update_coarse(GalerkinMethod method) {

@@ -21,6 +21,12 @@ class MultigridHierarchy {
   /// The same, the fine values swapped in instead of copied (fine gets the previous ones; its
   /// pattern must be the hierarchy's).
   void take_update(BrcMatrix& fine, GalerkinMethod method = GalerkinMethod::Gather);
+  /// take_update's swap of the fine values alone, and update's copy of them alone: the coarse
+  /// levels keep their operators (update_coarse recomputes them).
+  void take_fine(BrcMatrix& fine);
+  void set_fine(const BrcMatrix& fine);
+  /// Every E_{h+1} = R_h E_h R_h^T from the current level h, level after level.
+  void update_coarse(GalerkinMethod method);
 
   int num_levels() const { return static_cast<int>(matrices_.size()); }
   const BrcMatrix& matrix(int h) const { return matrices_[h]; }
@@ -40,8 +46,6 @@ class MultigridHierarchy {
   std::size_t stream_bytes(GalerkinMethod method) const;
 
  private:
-  void update_coarse(GalerkinMethod method);  ///< every E_{h+1} from the current level h
-
   std::vector<BrcMatrix> matrices_;
   std::vector<Transfer> transfers_;
   // Built on first use (hence mutable: the const accessors build them too), one per level.

@@ -53,6 +53,8 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       level_origins_(std::move(built.levels)),
       ended_early_(std::move(built.ended_early)) {
   if (observer_) observer_->on_part(SolverPart::Transfers, built.transfers_ms);
+  fine_diagonal_.resize(pattern.block_rows);
+  for (int i = 0; i < pattern.block_rows; ++i) fine_diagonal_[i] = pattern.find(i, i);
   for (int h = 0; h + 1 < hierarchy_.num_levels(); ++h)
     smoothers_.push_back(make_smoother(params_.smoother, params_.smoother_parameters));
   // The method's streams now, in the set-up, not in the first step's update.
@@ -69,15 +71,52 @@ double MultigridSolver::coarsest_factorization_flops() const {
 }
 
 void MultigridSolver::set_matrix(const BrcMatrix& a) {
-  if (observer_) observer_->on_event(SolverEvent::Update);
-  timed(SolverPart::Galerkin, [&] { hierarchy_.update(a, params_.galerkin); });
-  update_levels();
+  update_from(a, [&] { hierarchy_.set_fine(a); });
 }
 
 void MultigridSolver::take_matrix(BrcMatrix& a) {
+  update_from(a, [&] { hierarchy_.take_fine(a); });
+}
+
+template <class F>
+void MultigridSolver::update_from(const BrcMatrix& a, const F& fine) {
   if (observer_) observer_->on_event(SolverEvent::Update);
-  timed(SolverPart::Galerkin, [&] { hierarchy_.take_update(a, params_.galerkin); });
+  timed(SolverPart::Galerkin, [&] {
+    // Probed before `fine` may take a's values.
+    coarse_pending_ = hierarchy_.num_levels() == 1 || fine_moved(a);
+    if (coarse_pending_ && params_.galerkin_refresh_change > 0)
+      stiffness_probe(a, refreshed_probe_);
+    fine();
+    if (!coarse_pending_) return;
+    ++galerkin_refreshes_;
+    hierarchy_.update_coarse(params_.galerkin);
+  });
   update_levels();
+}
+
+void MultigridSolver::stiffness_probe(const BrcMatrix& a, std::vector<double>& probe) const {
+  // The off-diagonal entries of each diagonal block (the lumped mass touches only the diagonal).
+  const int n = a.block_rows;
+  probe.resize(6 * static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double* b = a.values.data() + 9 * static_cast<std::size_t>(fine_diagonal_[i]);
+    const double off[6] = {b[1], b[2], b[3], b[5], b[6], b[7]};
+    std::copy(off, off + 6, probe.begin() + 6 * static_cast<std::ptrdiff_t>(i));
+  }
+}
+
+bool MultigridSolver::fine_moved(const BrcMatrix& a) const {
+  if (refreshed_probe_.empty() || params_.galerkin_refresh_change <= 0) return true;
+  std::vector<double> now;
+  stiffness_probe(a, now);
+  double change = 0, size = 0;
+  for (std::size_t k = 0; k < now.size(); ++k) {
+    const double d = now[k] - refreshed_probe_[k];
+    change += d * d;
+    size += refreshed_probe_[k] * refreshed_probe_[k];
+  }
+  const double limit = params_.galerkin_refresh_change;
+  return !(change < limit * limit * size);  // a NaN refreshes
 }
 
 void MultigridSolver::update_levels() {
@@ -90,7 +129,7 @@ void MultigridSolver::update_levels() {
   ++updates_;
   check_ms_ = wall_ms([&] {
     in_section(sections_, kSolverParts.name(SolverPart::Coarsest),
-               [&] { refactor_pending_ = coarsest_moved(); });
+               [&] { refactor_pending_ = coarse_pending_ && coarsest_moved(); });
   });
   update_pending_ = true;
   if (!(defers_update() && refactor_pending_ && coarsest_->converter)) complete_update();
@@ -138,7 +177,9 @@ void MultigridSolver::complete_update(const std::function<void()>& beside) {
   SectionObserver* sections = side_by_side ? nullptr : sections_;
   auto set_up_smoothers = [&] {
     in_section(sections, kSolverParts.name(SolverPart::Smoothers), [&] {
-      for (int h = 0; h < last; ++h) smoothers_[h]->set_matrix(hierarchy_.matrix(h));
+      // The coarse levels' smoothers again only where their operators were recomputed.
+      for (int h = 0; h < (coarse_pending_ ? last : std::min(last, 1)); ++h)
+        smoothers_[h]->set_matrix(hierarchy_.matrix(h));
     });
   };
   auto factorize = [&] {

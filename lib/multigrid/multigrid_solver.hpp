@@ -51,6 +51,13 @@ struct MultigridParams {
   /// lib/docs/multigrid-update-notes.md, "The coarsest factor kept while the operator barely
   /// moves".
   double coarsest_refactor_change = 0.03;
+  /// The coarse operators E = R A R^T are recomputed when the fine operator's stiffness moved by
+  /// this much, relative, since they were last (0: at every update, the paper's). What moves is
+  /// measured on the off-diagonal entries of A's diagonal blocks: stiffness alone (the lumped mass
+  /// is diagonal), and turned by the rotations as every block is. Between refreshes the V-cycle
+  /// runs on the fine level's new operator and the coarse levels' last ones: still an SPD
+  /// preconditioner, so MG-PCG meets its tolerance and only its rate can suffer.
+  double galerkin_refresh_change = 0;
 };
 
 class MultigridSolver : public LinearSolver {
@@ -98,6 +105,9 @@ class MultigridSolver : public LinearSolver {
   /// kept its factor: params().coarsest_refactor_change).
   int updates() const { return updates_; }
   int coarsest_factorizations() const { return coarsest_factorizations_; }
+  /// How many updates recomputed the coarse operators (the others kept them:
+  /// params().galerkin_refresh_change).
+  int galerkin_refreshes() const { return galerkin_refreshes_; }
   /// Where each coarse level came from (level h + 1 at h).
   const std::vector<CoarseLevelOrigin>& level_origins() const { return level_origins_; }
   /// Why the hierarchy has fewer levels than its params ask for (BuiltHierarchy::ended_early).
@@ -109,6 +119,15 @@ class MultigridSolver : public LinearSolver {
   /// thread, the coarsest factorization on another, then CG.
   SolveStats run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   void update_levels();  ///< after the Galerkin products: the smoothers and the coarsest factor
+  /// An update: the fine values by `fine` (a copy or a swap), and the coarse operators where the
+  /// fine stiffness moved enough (galerkin_refresh_change).
+  template <class F>
+  void update_from(const BrcMatrix& a, const F& fine);
+  /// Whether the fine operator's stiffness moved from that of the last refresh by
+  /// params_.galerkin_refresh_change or more (always before the first, and with 0).
+  bool fine_moved(const BrcMatrix& a) const;
+  /// The fine operator's stiffness probe (galerkin_refresh_change's measure), into `probe`.
+  void stiffness_probe(const BrcMatrix& a, std::vector<double>& probe) const;
   /// Runs a pending update: the coarsest factorization on one thread, and on another the
   /// smoothers' set-up, then `beside` (work that does not need the factor).
   void complete_update(const std::function<void()>& beside = {});
@@ -143,8 +162,11 @@ class MultigridSolver : public LinearSolver {
   bool update_pending_ = false;
   bool refactor_pending_ = false;  ///< the pending update factorizes the coarsest level
   double check_ms_ = 0;            ///< coarsest_moved's time in the pending update
-  int coarsest_shifts_ = 0, coarsest_factorizations_ = 0, updates_ = 0;
+  int coarsest_shifts_ = 0, coarsest_factorizations_ = 0, updates_ = 0, galerkin_refreshes_ = 0;
   std::vector<double> factored_values_;  ///< the coarsest level's values when last factorized
+  std::vector<double> refreshed_probe_;  ///< the fine stiffness probe at the last refresh
+  std::vector<int> fine_diagonal_;       ///< the fine pattern's diagonal block of each row
+  bool coarse_pending_ = false;          ///< the pending update recomputed the coarse operators
   std::vector<CoarseLevelOrigin> level_origins_;
   std::string ended_early_;
 };

@@ -33,6 +33,7 @@ MultigridSummary summarize(const MultigridSolver& solver, const MultigridLog& lo
   s.coarsest_shifts = solver.coarsest_shifts();
   s.updates = solver.updates();
   s.coarsest_factorizations = solver.coarsest_factorizations();
+  s.galerkin_refreshes = solver.galerkin_refreshes();
   s.deferred_updates = log.deferred_updates();
   s.ended_early = solver.ended_early();
   return s;

@@ -29,7 +29,7 @@ struct MultigridSummary {
   int coarsest_shifts = 0, deferred_updates = 0;
   /// Updates of the matrix, and those that factorized the coarsest level (the rest kept its
   /// factor).
-  int updates = 0, coarsest_factorizations = 0;
+  int updates = 0, coarsest_factorizations = 0, galerkin_refreshes = 0;
   std::string ended_early;  ///< MultigridSolver::ended_early
 };
 

@@ -17,6 +17,7 @@ nlohmann::json to_json(const AnalysisVariant& v) {
   if (v.smoothing) j["smoothing"] = *v.smoothing;
   if (v.setup_reuse) j["setup_reuse"] = *v.setup_reuse;
   if (v.coarsening) j["coarsening"] = *v.coarsening;
+  if (v.galerkin_refresh) j["galerkin_refresh"] = *v.galerkin_refresh;
   return j;
 }
 

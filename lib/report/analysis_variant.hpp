@@ -24,6 +24,7 @@ struct AnalysisVariant {
   std::optional<int> levels{}, vcycles{}, smoothing{};
   std::optional<bool> setup_reuse{};
   std::optional<double> coarsening{};
+  std::optional<double> galerkin_refresh{};  ///< MultigridParams::galerkin_refresh_change
 };
 
 /// The set fields as analysis keys and values (names from the name tables).

@@ -220,6 +220,8 @@ void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
     if (name == a.multigrid.smoother) a.multigrid.smoother_parameters = given;
   }
   a.multigrid.cycle = one_of(f, "cycle", a.multigrid.cycle, kCycleShapes);
+  a.multigrid.galerkin_refresh_change =
+      number_in(f, "galerkin_refresh", a.multigrid.galerkin_refresh_change, 0, 1);
   a.multigrid.coarsest_refactor_change =
       number_in(f, "coarsest_refactor", a.multigrid.coarsest_refactor_change, 0, 1);
   if (a.solver == SolverKind::PetscMg)
@@ -354,13 +356,14 @@ std::vector<std::string> multigrid_analysis_keys() {
   std::vector<std::string> keys = {
       "levels",     "vcycles",  "smoothing",         "galerkin",
       "hierarchy",  "smoother", "coarsest_vertices", "coarsest_max_vertices",
-      "coarsening", "cycle",    "coarsest_refactor"};
+      "coarsening", "cycle",    "coarsest_refactor", "galerkin_refresh"};
   for (const ParameterSpec& spec : smoother_parameters()) keys.push_back(spec.key);
   return keys;
 }
 
 std::vector<std::string> keys_petsc_mg_cannot_honour() {
-  std::vector<std::string> keys = {"vcycles", "galerkin", "smoother", "cycle", "coarsest_refactor"};
+  std::vector<std::string> keys = {"vcycles", "galerkin",          "smoother",
+                                   "cycle",   "coarsest_refactor", "galerkin_refresh"};
   for (const ParameterSpec& spec : smoother_parameters()) keys.push_back(spec.key);
   return keys;
 }
