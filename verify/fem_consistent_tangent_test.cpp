@@ -56,11 +56,11 @@ struct Measured {
 
 Measured measure(const std::string& name) {
   FeProblem p = bent_box_problem();
-  RotationParams params;  // the iterative methods converged well below the differences' size
-  params.newton_tolerance = 1e-15;
-  params.newton_max_iterations = 100;
-  params.mueller_tolerance = 1e-15;
-  params.mueller_iterations = 200;
+  Parameters params;  // the iterative methods converged well below the differences' size
+  params.set("newton_tolerance", 1e-15);
+  params.set("newton_max_iterations", 100LL);
+  params.set("mueller_tolerance", 1e-15);
+  params.set("mueller_iterations", 200LL);
   auto method = make_rotation_extractor(rotation_method_named(name), p.mesh, params);
   const Eigen::VectorXd u = large_displacement(p);
   std::vector<Mat3> r(p.mesh.tets.size(), Mat3::Identity());

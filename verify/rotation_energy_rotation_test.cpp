@@ -273,8 +273,8 @@ TEST(RotationEnergy, ExtractorMatchesTheExactMinimizerInBothKernelForms) {
       frames[f].push_back((f + 1) * 0.5 * spin *
                               Vec3(1.4 * x.x(), x.y() + 0.5 * x.x() * x.x(), 0.8 * x.z()) +
                           (1 - (f + 1) * 0.5) * x + Vec3(u(rng), u(rng), u(rng)));
-  RotationParams params;
-  params.newton_tolerance = 1e-13;
+  Parameters params;
+  params.set("newton_tolerance", 1e-13);
   auto exact = make_rotation_extractor(RotationMethod::EnergyExact, mesh);
   const bool had_vector = set_vector_block_kernels(false);
   std::vector<std::vector<Mat3>> forms;

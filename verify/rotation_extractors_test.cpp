@@ -26,10 +26,10 @@ class EachExtractor : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EachExtractor, RecoversRigidMotions) {
   TetMesh mesh = make_box_mesh({1, 0.6, 0.4}, {3, 2, 2});
-  RotationParams params;
-  params.mueller_iterations = 200;  // cold start from identity to an arbitrary rotation
-  params.mueller_tolerance = 1e-15;
-  params.newton_tolerance = 1e-14;
+  Parameters params;
+  params.set("mueller_iterations", 200LL);  // cold start from identity to an arbitrary rotation
+  params.set("mueller_tolerance", 1e-15);
+  params.set("newton_tolerance", 1e-14);
   auto extractor = make_rotation_extractor(rotation_method_named(GetParam()), mesh, params);
   std::mt19937 rng(13);
   std::normal_distribution<double> n;

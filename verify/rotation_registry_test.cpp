@@ -67,13 +67,12 @@ class TurnedPolar : public RotationExtractor {
 void register_and_use_a_method_of_ones_own() {
   const RotationMethod turned = register_rotation_method(
       {.name = "turned-polar",
-       .make = [](const TetMesh& mesh,
-                  const RotationParams&) -> std::unique_ptr<RotationExtractor> {
+       .make = [](const TetMesh& mesh, const Parameters&) -> std::unique_ptr<RotationExtractor> {
          return std::make_unique<TurnedPolar>(mesh, rotation_method_named("turned-polar"));
        },
        .tangent = TangentFamily::PolarOfF,
        .tangent_exact = false,
-       .halo_rings = [](const RotationParams&) { return 2; },
+       .halo_rings = [](const Parameters&) { return 2; },
        .looser = {{"mueller_iterations", {4}}}});
   EXPECT_EQ(rotation_method_named("turned-polar"), turned);
   EXPECT_THROW(register_rotation_method({.name = "turned-polar", .make = turned.traits().make}),

@@ -36,21 +36,31 @@ TEST(Scene, AStaticRunFindsIterativeRotationsBelowItsTolerance) {
   // unless the scene says; a dynamic run keeps the extractors' defaults.
   auto j = minimal();
   j["analysis"] = {{"rotation", "energy-newton"}, {"tolerance", 1e-6}};
-  RotationParams p = parse_scene(j, "/base", "s.json").analysis.rotation_params;
-  EXPECT_DOUBLE_EQ(p.newton_tolerance, 1e-11);
-  EXPECT_DOUBLE_EQ(p.mueller_tolerance, 1e-11);
+  // The method's own settings only: energy-newton's, mueller2016's under its own name.
+  Parameters p = parse_scene(j, "/base", "s.json").analysis.rotation_params;
+  EXPECT_DOUBLE_EQ(p.number("newton_tolerance"), 1e-11);
+  EXPECT_FALSE(p.has("mueller_tolerance"));
+  j["analysis"]["rotation"] = "mueller2016";
+  EXPECT_DOUBLE_EQ(
+      parse_scene(j, "/base", "s.json").analysis.rotation_params.number("mueller_tolerance"),
+      1e-11);
+  j["analysis"]["rotation"] = "energy-newton";
   j["analysis"]["tolerance"] = 1e-12;  // never below what the scene allows any tolerance
-  EXPECT_DOUBLE_EQ(parse_scene(j, "/base", "s.json").analysis.rotation_params.newton_tolerance,
-                   1e-15);
-  j["analysis"]["rotation_params"] = {{"newton_tolerance", 1e-7}};
+  EXPECT_DOUBLE_EQ(
+      parse_scene(j, "/base", "s.json").analysis.rotation_params.number("newton_tolerance"), 1e-15);
+  // A setting the scene gives is the scene's; another method's is checked and left unused.
+  j["analysis"]["rotation_params"] = {{"newton_tolerance", 1e-7}, {"mueller_iterations", 5}};
   p = parse_scene(j, "/base", "s.json").analysis.rotation_params;
-  EXPECT_DOUBLE_EQ(p.newton_tolerance, 1e-7);
-  EXPECT_DOUBLE_EQ(p.mueller_tolerance, 1e-15);
-  j["analysis"] = {{"type", "dynamic"}, {"tolerance", 1e-6}};
+  EXPECT_DOUBLE_EQ(p.number("newton_tolerance"), 1e-7);
+  EXPECT_FALSE(p.has("mueller_iterations"));
+  j["analysis"]["rotation_params"] = {{"mueller_iterations", 0}};
+  EXPECT_THROW(parse_scene(j, "/base", "s.json"), InputError);  // out of mueller2016's range
+  j["analysis"]["rotation_params"] = {{"newton_speed", 1}};
+  EXPECT_THROW(parse_scene(j, "/base", "s.json"), InputError);  // no method declares it
+  j["analysis"] = {{"type", "dynamic"}, {"tolerance", 1e-6}, {"rotation", "energy-newton"}};
   j["material"]["density"] = 1000;
   p = parse_scene(j, "/base", "s.json").analysis.rotation_params;
-  EXPECT_EQ(p.newton_tolerance, RotationParams{}.newton_tolerance);
-  EXPECT_EQ(p.mueller_tolerance, RotationParams{}.mueller_tolerance);
+  EXPECT_EQ(p.number("newton_tolerance"), 1e-9);  // its declared default
 }
 
 TEST(Scene, SmootherNamesAnOrderingOrChebyshev) {

@@ -14,7 +14,7 @@ constexpr int kIterations = 3;
 
 class EnergyMueller : public corofem::RotationExtractor {
  public:
-  EnergyMueller(const corofem::TetMesh& mesh, const corofem::RotationParams&)
+  EnergyMueller(const corofem::TetMesh& mesh, const corofem::Parameters&)
       : RotationExtractor(corofem::rotation_method_named(kEnergyMueller)),
         mesh_(mesh),
         rest_(corofem::rest_moment_arms(mesh)) {}

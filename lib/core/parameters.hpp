@@ -13,6 +13,9 @@
 
 namespace corofem {
 
+/// The least relative tolerance a setting may ask for: below it no double residual gets.
+inline constexpr double kMinTolerance = 1e-15;
+
 /// A setting's value: a flag, an integer, a number, a text, or a list of numbers (a record's
 /// interval).
 using ParameterValue = std::variant<bool, long long, double, std::string, std::vector<double>>;

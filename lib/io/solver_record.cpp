@@ -5,14 +5,6 @@
 
 namespace corofem {
 
-nlohmann::json to_json(const RotationParams& p) {
-  return {{"newton_tolerance", p.newton_tolerance},
-          {"newton_max_iterations", p.newton_max_iterations},
-          {"mueller_iterations", p.mueller_iterations},
-          {"mueller_tolerance", p.mueller_tolerance},
-          {"smoothing_passes", p.smoothing_passes}};
-}
-
 nlohmann::json to_json(const HierarchyParams& p) {
   nlohmann::json j = {{"kind", kHierarchyKinds.name(p.kind)}, {"levels", p.levels}};
   j["first_cell_factor"] = p.first_cell_factor;  // meshes: of a lattice level that replaces one

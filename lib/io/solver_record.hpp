@@ -15,7 +15,6 @@ nlohmann::json to_json(const std::optional<double>& value);
 /// A component's settings or its description (core/parameters.hpp): an object by key.
 nlohmann::json to_json(const Parameters& parameters);
 
-nlohmann::json to_json(const RotationParams& params);
 nlohmann::json to_json(const HierarchyParams& params);
 /// The hierarchy, transfer, Galerkin method, smoother and cycle.
 nlohmann::json to_json(const MultigridParams& params);

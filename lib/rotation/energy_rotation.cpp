@@ -179,10 +179,11 @@ NewtonOutcome energy_newton_rotation(const Mat3& s, double a, const Mat3& warm, 
   return out;
 }
 
-EnergyNewtonExtractor::EnergyNewtonExtractor(const TetMesh& mesh, const RotationParams& params)
+EnergyNewtonExtractor::EnergyNewtonExtractor(const TetMesh& mesh, const Parameters& params)
     : RotationExtractor(RotationMethod::EnergyNewton),
       mesh_(mesh),
-      params_(params),
+      tolerance_(params.number("newton_tolerance")),
+      max_iterations_(static_cast<int>(params.integer("newton_max_iterations"))),
       rest_(rest_moment_arms(mesh)) {}
 
 void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
@@ -192,8 +193,8 @@ void EnergyNewtonExtractor::extract(const std::vector<Vec3>& positions,
   const int batches =
       (tets + kNewtonLanes - 1) / kNewtonLanes;  // fixed by the mesh, not the threads
   int fallbacks = 0, inverted = 0;
-  const NewtonBatchInput in{mesh_.tets.data(), rest_.data(), positions.data(),
-                            params_.newton_tolerance, params_.newton_max_iterations};
+  const NewtonBatchInput in{mesh_.tets.data(), rest_.data(), positions.data(), tolerance_,
+                            max_iterations_};
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks, inverted) num_threads(threads_for(tets))
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kNewtonLanes;
@@ -226,6 +227,18 @@ void EnergyExactExtractor::extract(const std::vector<Vec3>& positions,
 RotationMethodTraits energy_newton_traits() {
   return {.name = "energy-newton",
           .make = extractor_maker<EnergyNewtonExtractor>(),
+          .parameters = {{.key = "newton_tolerance",
+                          .fallback = 1e-9,
+                          .min = kMinTolerance,
+                          .max = 0.5,
+                          .meaning = "|grad_q E| / (4 a) + |q.q - 1| at which Newton stops"},
+                         {.key = "newton_max_iterations",
+                          .kind = ParameterSpec::Kind::Integer,
+                          .fallback = 20LL,
+                          .min = 1,
+                          .max = 100,
+                          .meaning = "Newton iterations per element before the fallback"}},
+          .static_tolerances = {"newton_tolerance"},
           .tangent = TangentFamily::MomentFactor,
           .looser = {{"newton_tolerance", {1e-6, 1e-3}}},
           .in_smoke = true};

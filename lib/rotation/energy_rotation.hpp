@@ -121,12 +121,14 @@ Mat3 energy_exact_rotation(const Mat3& s);
 
 class EnergyNewtonExtractor : public RotationExtractor {
  public:
-  EnergyNewtonExtractor(const TetMesh& mesh, const RotationParams& params);
+  /// `params`: newton_tolerance, newton_max_iterations (energy_newton_traits declares them).
+  EnergyNewtonExtractor(const TetMesh& mesh, const Parameters& params);
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
   const TetMesh& mesh_;
-  RotationParams params_;
+  double tolerance_;
+  int max_iterations_;
   std::vector<MomentArms> rest_;
 };
 

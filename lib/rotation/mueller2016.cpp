@@ -28,10 +28,11 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, d
   return q.toRotationMatrix();
 }
 
-Mueller2016Extractor::Mueller2016Extractor(const TetMesh& mesh, const RotationParams& params)
+Mueller2016Extractor::Mueller2016Extractor(const TetMesh& mesh, const Parameters& params)
     : RotationExtractor(RotationMethod::Mueller2016),
       mesh_(mesh),
-      params_(params),
+      iterations_(static_cast<int>(params.integer("mueller_iterations"))),
+      tolerance_(params.number("mueller_tolerance")),
       rest_edge_inverse_(rest_edge_inverses(mesh)) {}
 
 void Mueller2016Extractor::extract(const std::vector<Vec3>& positions,
@@ -40,9 +41,9 @@ void Mueller2016Extractor::extract(const std::vector<Vec3>& positions,
 #pragma omp parallel for schedule(static) num_threads(threads_for(mesh_.num_tets()))
   for (int e = 0; e < mesh_.num_tets(); ++e) {
     int iterations = 0;
-    rotations[e] = mueller2016_rotation(
-        deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e],
-        params_.mueller_iterations, params_.mueller_tolerance, iterations);
+    rotations[e] =
+        mueller2016_rotation(deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]),
+                             rotations[e], iterations_, tolerance_, iterations);
     stats_.iterations[e] = static_cast<std::uint8_t>(iterations);
   }
 }
@@ -50,6 +51,18 @@ void Mueller2016Extractor::extract(const std::vector<Vec3>& positions,
 RotationMethodTraits mueller2016_traits() {
   return {.name = "mueller2016",
           .make = extractor_maker<Mueller2016Extractor>(),
+          .parameters = {{.key = "mueller_iterations",
+                          .kind = ParameterSpec::Kind::Integer,
+                          .fallback = 10LL,
+                          .min = 1,
+                          .max = 200,
+                          .meaning = "iterations per element and step (warm-started)"},
+                         {.key = "mueller_tolerance",
+                          .fallback = 1e-9,
+                          .min = kMinTolerance,
+                          .max = 0.5,
+                          .meaning = "stop at |omega| below this (rad), as Mueller 2016"}},
+          .static_tolerances = {"mueller_tolerance"},
           .tangent = TangentFamily::PolarOfF,  // that of the limit it iterates to
           .looser = {{"mueller_iterations", {3, 1}}}};
 }

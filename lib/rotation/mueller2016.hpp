@@ -13,12 +13,14 @@ Mat3 mueller2016_rotation(const Mat3& a, const Mat3& warm, int max_iterations, d
 
 class Mueller2016Extractor : public RotationExtractor {
  public:
-  Mueller2016Extractor(const TetMesh& mesh, const RotationParams& params);
+  /// `params`: mueller_iterations, mueller_tolerance (mueller2016_traits declares them).
+  Mueller2016Extractor(const TetMesh& mesh, const Parameters& params);
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
   const TetMesh& mesh_;
-  RotationParams params_;
+  int iterations_;
+  double tolerance_;
   std::vector<Mat3> rest_edge_inverse_;
 };
 

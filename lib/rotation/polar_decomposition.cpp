@@ -71,7 +71,7 @@ RotationMethodTraits polar_traits() {
 
 RotationMethodTraits identity_traits() {
   return {.name = "none",
-          .make = [](const TetMesh&, const RotationParams&) -> std::unique_ptr<RotationExtractor> {
+          .make = [](const TetMesh&, const Parameters&) -> std::unique_ptr<RotationExtractor> {
             return std::make_unique<IdentityExtractor>();
           },
           .tangent = TangentFamily::Identity,

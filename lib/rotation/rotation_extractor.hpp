@@ -6,21 +6,11 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/parameters.hpp"
 #include "element/element_rest.hpp"
 #include "rotation/rotation_method.hpp"
 
 namespace corofem {
-
-/// Tunables of the iterative extractors; written into every record that uses them
-/// (io/multigrid_record.hpp).
-struct RotationParams {
-  double newton_tolerance =
-      1e-9;  ///< energy-newton: |grad_q E| / (4 a) + |q.q - 1| (a ~ element size^2 V)
-  int newton_max_iterations = 20;
-  int mueller_iterations = 10;      ///< mueller2016: iteration cap
-  double mueller_tolerance = 1e-9;  ///< mueller2016: stop at |omega| < this (rad), as Mueller 2016
-  int smoothing_passes = 1;         ///< polar-smoothed: passes of 1-ring averaging
-};
 
 /// What the last extract() did, per element.
 struct ExtractionStats {
@@ -52,21 +42,21 @@ class RotationExtractor {
 };
 
 /// Builds the extractor of `method` for `mesh` (rest data precomputed once; the mesh must outlive
-/// it): the method's registered make.
+/// it) with `params` (its declared settings that `params` lacks at their defaults, others
+/// ignored): the method's registered make.
 std::unique_ptr<RotationExtractor> make_rotation_extractor(RotationMethod method,
                                                            const TetMesh& mesh,
-                                                           const RotationParams& params = {});
+                                                           const Parameters& params = {});
 
 /// A traits record's make for an extractor built from (mesh, params) or from (mesh) alone.
 template <class Extractor>
 auto extractor_maker() {
-  return
-      [](const TetMesh& mesh, const RotationParams& params) -> std::unique_ptr<RotationExtractor> {
-        if constexpr (std::is_constructible_v<Extractor, const TetMesh&, const RotationParams&>)
-          return std::make_unique<Extractor>(mesh, params);
-        else
-          return std::make_unique<Extractor>(mesh);
-      };
+  return [](const TetMesh& mesh, const Parameters& params) -> std::unique_ptr<RotationExtractor> {
+    if constexpr (std::is_constructible_v<Extractor, const TetMesh&, const Parameters&>)
+      return std::make_unique<Extractor>(mesh, params);
+    else
+      return std::make_unique<Extractor>(mesh);
+  };
 }
 
 }  // namespace corofem

@@ -12,10 +12,11 @@
 #include <string_view>
 #include <vector>
 
+#include "core/parameters.hpp"
+
 namespace corofem {
 
 class RotationExtractor;
-struct RotationParams;
 struct TetMesh;
 struct RotationMethodTraits;
 
@@ -57,7 +58,7 @@ enum class TangentFamily { PolarOfF, MomentFactor, GramSchmidt, Identity };
 
 /// A rotation parameter the tuner also tries at these looser values (the method stopped earlier).
 struct LooserSetting {
-  std::string param{};  ///< a key of analysis.rotation_params
+  std::string param{};  ///< a key of analysis.rotation_params (one of the method's parameters)
   std::vector<double> values{};
 };
 
@@ -65,7 +66,15 @@ struct RotationMethodTraits {
   std::string name{};  ///< the scene's analysis.rotation
   /// Builds the extractor for a mesh (which outlives it); its constructor passes this method to
   /// RotationExtractor's.
-  std::function<std::unique_ptr<RotationExtractor>(const TetMesh&, const RotationParams&)> make{};
+  std::function<std::unique_ptr<RotationExtractor>(const TetMesh&, const Parameters&)> make{};
+  /// Its own settings (core/parameters.hpp), scene keys of analysis.rotation_params: the scene
+  /// reader reads them by this declaration alone, make_rotation_extractor fills what a scene
+  /// leaves at their defaults, and the record writes them.
+  std::vector<ParameterSpec> parameters{};
+  /// Those of its settings that are stopping tolerances: a static run tightens them to below its
+  /// own tolerance (scene/scene.cpp: its residual is the user's criterion) unless the scene sets
+  /// them.
+  std::vector<std::string> static_tolerances{};
   TangentFamily tangent = TangentFamily::PolarOfF;
   /// Whether the family's dQ is the derivative of this method's own rotation (or of the limit it
   /// iterates to); false where it leaves out a coupling (polar-smoothed's neighbours): Newton then
@@ -76,7 +85,7 @@ struct RotationMethodTraits {
   bool force_has_potential = false;
   /// Rings of neighbouring tets a rank's part must hold for this method (an averaging method: one
   /// per pass); none if unset.
-  std::function<int(const RotationParams&)> halo_rings{};
+  std::function<int(const Parameters&)> halo_rings{};
   /// What `tune` also tries besides the method's defaults.
   std::vector<LooserSetting> looser{};
   /// Whether the comparisons run it (speed-accuracy, model accuracy, stability, tune): all but the

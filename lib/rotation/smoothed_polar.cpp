@@ -7,10 +7,10 @@
 
 namespace corofem {
 
-SmoothedPolarExtractor::SmoothedPolarExtractor(const TetMesh& mesh, const RotationParams& params)
+SmoothedPolarExtractor::SmoothedPolarExtractor(const TetMesh& mesh, const Parameters& params)
     : RotationExtractor(RotationMethod::PolarSmoothed),
       mesh_(mesh),
-      params_(params),
+      passes_(static_cast<int>(params.integer("smoothing_passes"))),
       rest_edge_inverse_(rest_edge_inverses(mesh)),
       rings_(element_one_rings(mesh)) {
   volume_.reserve(mesh.tets.size());
@@ -30,7 +30,7 @@ void SmoothedPolarExtractor::extract(const std::vector<Vec3>& positions,
         deformation_gradient(rest_edge_inverse_[e], positions, mesh_.tets[e]), rotations[e]);
     q[e] = to_quaternion(r).coeffs();  // (x, y, z, w)
   }
-  for (int pass = 0; pass < params_.smoothing_passes; ++pass) {
+  for (int pass = 0; pass < passes_; ++pass) {
 #pragma omp parallel for schedule(static) num_threads(threads_for(nt))
     for (int e = 0; e < nt; ++e) {
       Eigen::Vector4d sum = Eigen::Vector4d::Zero();
@@ -49,9 +49,17 @@ void SmoothedPolarExtractor::extract(const std::vector<Vec3>& positions,
 RotationMethodTraits polar_smoothed_traits() {
   return {.name = "polar-smoothed",
           .make = extractor_maker<SmoothedPolarExtractor>(),
+          .parameters = {{.key = "smoothing_passes",
+                          .kind = ParameterSpec::Kind::Integer,
+                          .fallback = 1LL,
+                          .min = 0,
+                          .max = 100,
+                          .meaning = "passes of volume-weighted 1-ring quaternion averaging"}},
           .tangent = TangentFamily::PolarOfF,
           .tangent_exact = false,  // the neighbours' coupling is left out
-          .halo_rings = [](const RotationParams& params) { return params.smoothing_passes; }};
+          .halo_rings = [](const Parameters& params) {
+            return static_cast<int>(params.integer("smoothing_passes"));
+          }};
 }
 
 }  // namespace corofem

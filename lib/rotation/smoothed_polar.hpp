@@ -12,12 +12,13 @@ namespace corofem {
 
 class SmoothedPolarExtractor : public RotationExtractor {
  public:
-  SmoothedPolarExtractor(const TetMesh& mesh, const RotationParams& params);
+  /// `params`: smoothing_passes (polar_smoothed_traits declares it).
+  SmoothedPolarExtractor(const TetMesh& mesh, const Parameters& params);
   void extract(const std::vector<Vec3>& positions, std::vector<Mat3>& rotations) override;
 
  private:
   const TetMesh& mesh_;
-  RotationParams params_;
+  int passes_;
   std::vector<Mat3> rest_edge_inverse_;
   std::vector<double> volume_;
   ElementRings rings_;

@@ -32,8 +32,7 @@ constexpr double kMaxDensity = 1e9;
 constexpr double kMaxAcceleration = 1e9;  // gravity components
 constexpr double kMaxForce = 1e18;        // forces[].total components
 constexpr double kMinDt = 1e-9, kMaxDt = 1e6;
-constexpr double kMaxDamping = 1e9;      // rayleigh alpha (1/s) and beta (s)
-constexpr double kMinTolerance = 1e-15;  // below this no double residual gets
+constexpr double kMaxDamping = 1e9;  // rayleigh alpha (1/s) and beta (s)
 /// A static run's iterative rotation methods find their rotations this much tighter than the
 /// run's tolerance, unless `rotation_params` says otherwise (read_analysis).
 constexpr double kStaticRotationMargin = 1e-5;
@@ -261,27 +260,32 @@ void read_solver_parameters(JsonFields& f, AnalysisSpec& a) {
             << " belong to other solvers; ignored with solver '" << a.solver.name() << "'\n";
 }
 
-/// rotation_params, after the tolerance (a static run tightens the iterative methods' own).
+/// rotation_params: the run's method's own settings, by its declarations (after the tolerance:
+/// a static run tightens the method's stopping tolerances). Every registered method's settings
+/// are known keys there (a scene that sweeps methods), checked by their declarations.
 void read_rotation_params(JsonFields& f, AnalysisSpec& a) {
-  RotationParams& p = a.rotation_params;
+  const RotationMethodTraits& method = a.rotation.traits();
+  Parameters p(method.parameters);
   if (a.type == AnalysisType::Static) {
     // A static residual is the user's criterion: the iterative methods' rotations, found to their
     // dynamic default 1e-9, left a floor in it (3e-9 on the bunny under gravity, 8e-8 to 1e-7 on
     // the dragon, which then never reached 1e-8); found kStaticRotationMargin x tighter than the
     // tolerance they no longer set it (the bunny 3e-11 to 1e-13, as energy-exact's closed form).
     const double tight = std::max(kMinTolerance, kStaticRotationMargin * a.tolerance);
-    p.newton_tolerance = std::min(p.newton_tolerance, tight);
-    p.mueller_tolerance = std::min(p.mueller_tolerance, tight);
+    for (const std::string& key : method.static_tolerances)
+      p.set(key, std::min(p.number(key), tight));
   }
-  const nlohmann::json* params = f.get("rotation_params");
-  if (!params) return;
-  JsonFields r(*params, f.path_of("rotation_params"), f.file());
-  p.newton_tolerance = number_in(r, "newton_tolerance", p.newton_tolerance, kMinTolerance, 0.5);
-  p.newton_max_iterations = integer_in(r, "newton_max_iterations", p.newton_max_iterations, 1, 100);
-  p.mueller_iterations = integer_in(r, "mueller_iterations", p.mueller_iterations, 1, 200);
-  p.mueller_tolerance = number_in(r, "mueller_tolerance", p.mueller_tolerance, kMinTolerance, 0.5);
-  p.smoothing_passes = integer_in(r, "smoothing_passes", p.smoothing_passes, 0, 100);
-  r.reject_unknown_keys();
+  if (const nlohmann::json* params = f.get("rotation_params")) {
+    JsonFields r(*params, f.path_of("rotation_params"), f.file());
+    for (const RotationMethod other : rotation_methods()) {
+      const Parameters given = read_parameters(r, other.traits().parameters);
+      if (other != a.rotation) continue;
+      for (const ParameterSpec& spec : method.parameters)
+        if (r.has(spec.key)) p.set(spec.key, given.values().find(spec.key)->second);
+    }
+    r.reject_unknown_keys();
+  }
+  a.rotation_params = std::move(p);
 }
 
 void read_analysis(JsonFields f, AnalysisSpec& a) {

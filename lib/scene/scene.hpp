@@ -84,7 +84,9 @@ struct AnalysisSpec {
   /// as the lagged iterations stall short of tight tolerances for the energy methods.
   Integrator integrator = Integrator::Newton;
   RotationMethod rotation = RotationMethod::Polar;
-  RotationParams rotation_params;
+  /// The rotation method's own settings, as its registration declares them
+  /// (RotationMethodTraits::parameters), under analysis.rotation_params.
+  Parameters rotation_params;
   SolverKind solver = SolverKind::Cholmod;
   /// The multigrid's settings, held as its own parameters (one place for each): the hierarchy's
   /// (kind: meshes, the default where the mesh can be re-meshed or `mesh.levels` gives them, or
