@@ -3,7 +3,7 @@
 for papers every table as LaTeX (tables/*.tex, booktabs; tables/all.tex compiles them) and every
 chart as PDF and SVG (charts/vector/).
 
-Usage: render_report.py DIR [--blank-times]
+Usage: render_report.py DIR [--blank-times] [--age]
        render_report.py --units        (the units and the records each reads, as JSON)
 
 Each part of REPORT.md is a unit: a module of reports/sections/ (and of every folder in
@@ -14,7 +14,9 @@ $COROFEM_REPORT_SECTIONS, separated by ':', for a user's own sections) that defi
   render(records, folder, md)  which appends its Markdown to md and saves its charts.
 Modules whose names start with '_' are helpers, not units.
 --blank-times prints every time, rate and date as "t" (the golden test of the report's format
-compares text that does not depend on the machine's speed).
+compares text that does not depend on the machine's speed). --age adds how many commits the
+records' commit is behind this checkout's HEAD (git's answer, not the records': off by default,
+so that a report redrawn from its JSON is the same text).
 """
 import importlib
 import importlib.util
@@ -98,7 +100,7 @@ def main(argv):
                            "records": list(u.RECORDS), "report_section": getattr(u, "REPORT_SECTION", False)}
                           for u in all_units], indent=1))
         return 0
-    args = [a for a in argv[1:] if a != "--blank-times"]
+    args = [a for a in argv[1:] if a not in ("--blank-times", "--age")]
     render_common.set_blank("--blank-times" in argv)
     if len(args) != 1:
         print(__doc__, file=sys.stderr)
@@ -114,7 +116,8 @@ def main(argv):
           "number below is in them, with the commit, flags and machine that produced it.\n\n"]
     if not HAVE_MPL:
         md.append("(matplotlib was not available: no charts drawn.)\n\n")
-    md.append(age_line(records))
+    if "--age" in argv:
+        md.append(age_line(records))
     for unit in all_units:
         unit.render(records, folder, md)
     text = "".join(md)

@@ -46,8 +46,10 @@ def render_since_snapshot(verdict, md):
     base = verdict.get("base_context") or {}
     counts = ", ".join(f"{n} {v}" for v, n in sorted(verdict.get("verdicts", {}).items()))
     options = verdict.get("options", {})
+    behind = verdict.get("base_commits_behind")
+    age = f", {behind} commits before this report's" if isinstance(behind, int) and behind else ""
     md.append(f"`corofem compare` of this report against the snapshot of commit "
-              f"`{str(base.get('commit', '?'))[:9]}` ({base.get('date', '?')}): "
+              f"`{str(base.get('commit', '?'))[:9]}` ({base.get('date', '?')}{age}): "
               f"**{headline(verdict)}** ({counts}). "
               f"A timing is slower or faster only with p < {options.get('alpha')} (Mann-Whitney U) "
               f"and a ratio beyond {100 * options.get('threshold', 0):g}%; the full table is "
