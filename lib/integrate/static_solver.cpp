@@ -33,9 +33,9 @@ constexpr int kMaxIncrementCuts = 8;
 constexpr double kMaxEdgeStretch = 2.0;
 
 /// Iterations without halving the residual, within 1e4 x the tolerance, after which a Newton
-/// increment has stalled at the internal forces' own error. The dragon under gravity with
-/// energy-newton's rotations to 1e-9 reached 5.6e-8 against 1e-8 in 53 iterations, then stayed at
-/// 8e-8 to 1e-7 for the 47 more its cap allowed and for each of its increment's cuts.
+/// increment has stalled at the internal forces' own error (an iterative rotation method's
+/// tolerance leaves a floor in the residual that more iterations and cuts do not go below:
+/// lib/docs/newton.md).
 constexpr int kStallIterations = 10;
 
 /// How a load increment's iterations ended.

@@ -6,12 +6,12 @@
 namespace corofem {
 
 /// CHOLMOD's numeric factorization.
-/// - Supernodal: dense blocks by BLAS, the faster on its own (the multigrid's coarsest operator:
-///   its update took 1.85 against 2.82 ms a step on quadruped-11k). Its BLAS calls take turns
+/// - Supernodal: dense blocks by BLAS, the faster on its own (the multigrid's coarsest operator,
+///   denser than a mesh's). Its BLAS calls take turns
 ///   across threads (linalg/blas_turn.hpp), and Debian's CHOLMOD opens OpenMP regions for each
 ///   supernode, a system call each even when serial.
 /// - Simplicial: row by row, no BLAS and no OpenMP: factorizations in threads side by side never
-///   wait on each other (the stability study's runs: 339 -> 259 s at two threads).
+///   wait on each other (the stability study's: lib/docs/report.md).
 enum class Factorization { Supernodal, Simplicial };
 inline constexpr NameTable<Factorization, 2> kFactorizations{{{
     {Factorization::Supernodal, "supernodal"},

@@ -282,8 +282,7 @@ void BlockGaussSeidel::sweep_hybrid(const BrcMatrix& a, const Eigen::VectorXd& b
   // the domains it then sweeps, and the domains go to the threads in contiguous runs, as the
   // rows of every other pass over x do (schedule(static)): a copy on one thread, or domains
   // dealt out one by one, left a thread's rows in the other core's cache, and the sweep waited
-  // on the transfers (BM_SmootherSweep, the dragon at 2 threads: 0.42 -> 0.26 ms a sweep,
-  // against 0.48 at one).
+  // on the transfers (lib/docs/threads.md).
   const int domains = num_domains();
   if (domains > 1) frozen_.resize(x.size());
 #pragma omp parallel num_threads(std::min(domains, threads_for(a.num_blocks(), LoopItems::Blocks)))

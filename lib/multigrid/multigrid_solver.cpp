@@ -150,12 +150,10 @@ bool MultigridSolver::coarsest_moved() const {
 }
 
 bool MultigridSolver::overlaps_update() const {
-  // Measured (lib/docs/multigrid-update-notes.md, "The update beside the solve"): with two levels
-  // the work beside the factorization is the fine level's pre-smoothing alone, which then runs on
-  // one thread instead of two; that costs what the overlap saves or more (update + solve 0.533
-  // against 0.472 ms at 425 vertices, 8.49 against 8.26 ms at 2954). From three levels the descent
-  // through the levels between pays (0.232 against 0.263 ms at 425 vertices, 5.37 against 5.75 at
-  // 2954).
+  // With two levels the work beside the factorization is the fine level's pre-smoothing alone,
+  // which then runs on one thread instead of two: that costs what the overlap saves or more. From
+  // three levels the descent through the levels between pays (lib/docs/multigrid-update-notes.md,
+  // "The update beside the solve").
   return params_.overlap_factorization && thread_count() > 1 && hierarchy_.num_levels() >= 3;
 }
 

@@ -98,7 +98,7 @@ json run_model_accuracy(const ReportConfig& config) {
       for (SceneSize size : sizes) cases.emplace_back(id, size);
   const int count = static_cast<int>(cases.size());
   SectionProgress progress(config.progress, "model accuracy", count);
-  // The cases side by side (their CalculiX runs too), the quadruped first: 36 -> 22 s on 2 cores.
+  // The cases side by side (their CalculiX runs too), the quadruped, the longest, first.
   std::vector<json> results(cases.size());
   run_units_side_by_side(count, thread_count(), config.progress, [&](int k, std::ostream* lines) {
     const auto& [id, size] = cases[static_cast<std::size_t>(k)];
