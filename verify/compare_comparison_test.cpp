@@ -631,13 +631,14 @@ TEST(Compare, WorkCountsBeyondTheirThresholdsAreFoundAndAStaleBaselineSaid) {
                 "solve instructions")
                 .verdict,
             "more");
-  // Misses have their own threshold (2%): 1.5% more is within it, 3% more is more.
+  // Misses have their own threshold (5%: the heap's layout moves them by up to 2.7%): 3% more is
+  // within it, 6% more is more.
   EXPECT_EQ(
-      row(compare_records(base, runs_of({counted_record(1e9, 2.03e6)}), {}), "assemble D1 misses")
+      row(compare_records(base, runs_of({counted_record(1e9, 2.06e6)}), {}), "assemble D1 misses")
           .verdict,
       "within threshold");
   EXPECT_EQ(
-      row(compare_records(base, runs_of({counted_record(1e9, 2.06e6)}), {}), "assemble D1 misses")
+      row(compare_records(base, runs_of({counted_record(1e9, 2.12e6)}), {}), "assemble D1 misses")
           .verdict,
       "more");
   // 10% fewer misses: an improvement, and the baseline is stale.

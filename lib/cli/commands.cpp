@@ -246,7 +246,7 @@ refused. Warns where machine, compiler or flags differ.
                  way is suspect (slower: a regression), not passed; the headline is inconclusive
                  where rows went untested, with the runs a side that would test them
   --min-ms M     default 0.05       --count-threshold C  default 0.005
-  --miss-threshold D  default 0.02  --min-count N        default 20000
+  --miss-threshold D  default 0.05  --min-count N        default 20000
   --out DIR      also writes DIR/compare.md, compare.json (the verdict) and compare.svg (the
                  ratios with their intervals)
 The Markdown table goes to stdout.

@@ -38,7 +38,7 @@ struct CompareOptions {
   /// one binary's counts are equal; what they move by when unrelated code shifts the heap's
   /// layout sets these (lib/docs/comparing.md, "Counted phases").
   double count_threshold = 0.005;
-  double miss_threshold = 0.02;
+  double miss_threshold = 0.05;
   double min_count = 20000;  ///< count rows whose BASE is smaller are shown, not gated
 };
 
