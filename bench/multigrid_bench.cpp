@@ -530,7 +530,7 @@ void BM_MultigridQuality(benchmark::State& state, const std::string& model, Hier
       o.ms.push_back(time_ms([&] { o.mg = o.pcg->solve(system.rhs, x); }));
     }
   }
-  const MultigridSummary d = summarize(pcg, MultigridLog{});  // its levels: no log needed
+  const MultigridSummary d = summarize(pcg, EventLog{});  // its levels: no log needed
   state.counters["rho"] = rho.convergence_factor;
   state.counters["mgpcg_iterations"] = mg.iterations;
   state.counters["jacobi_iterations"] = jc.iterations;

@@ -88,9 +88,9 @@ TEST(CliCountPhases, CallgrindCountsEveryPartTheSameTwiceAndLeavesTheNumericsAlo
   // The same binary, scene and layout: the same counts, to the instruction and the miss.
   EXPECT_EQ(sections, b["phase_counts"]["sections"]);
   EXPECT_EQ(a["phase_counts"]["source"], "callgrind");
-  for (const char* part :
-       {"rotate", "assemble", "forces", "system", "checks", "update", "update/galerkin",
-        "update/smoothers", "update/coarsest", "solve", "solve/fine_smooth", "solve/coarsest"})
+  for (const char* part : {"rotate", "assemble", "forces", "system", "checks", "update",
+                           "update/galerkin", "update/smoothers", "update/coarsest", "solve",
+                           "solve/fine_smooth", "solve/coarsest_solve"})
     EXPECT_TRUE(sections.contains(part)) << part;
   for (const char* event : {"instructions", "d1_misses", "ll_misses"}) {
     const double parts = sections["update/galerkin"][event].get<double>() +

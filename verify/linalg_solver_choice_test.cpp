@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "core/event_log.hpp"
 #include "linalg/solver_choice.hpp"
 
 namespace corofem {
@@ -43,7 +44,9 @@ struct FakeCandidate : LinearSolver {
     clock_ += ms;
     if (solves == fails_at_) throw NotConverged(name_ + ": did not converge");
     x = b / divisor_;
-    return {static_cast<int>(10 * divisor_), 0, 0};
+    const SolveStats stats{static_cast<int>(10 * divisor_), 0, 0};
+    report_solved(stats);
+    return stats;
   }
 
   int matrices = 0, taken = 0, solves = 0;
@@ -110,6 +113,19 @@ TEST(SolverChoice, KeepsTheLeastCostAfterTheWarmupCountingItsMatrixUpdates) {
   EXPECT_EQ(t.step(), 0.5);
   EXPECT_EQ(kept->solves, 5);
   EXPECT_EQ(kept->matrices, 5);
+}
+
+TEST(SolverChoice, AnObserverHearsEveryCandidatesSolves) {
+  // observe() reaches each candidate: in the trial both report their solves, after it the chosen
+  // one alone (core/event_observer.hpp). The second wins clearly at the second solve.
+  Trial t({50}, {1});
+  EventLog log;
+  t.solver->observe(&log);
+  for (int s = 0; s < 3; ++s) t.step();
+  ASSERT_EQ(t.solver->choice()->chosen, "second");
+  std::vector<std::string> solvers;
+  for (const LoggedSolve& s : log.solves()) solvers.push_back(s.solver);
+  EXPECT_EQ(solvers, (std::vector<std::string>{"first", "second", "second", "first", "second"}));
 }
 
 TEST(SolverChoice, TheWarmupDoesNotDecide) {

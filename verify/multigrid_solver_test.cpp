@@ -585,7 +585,8 @@ TEST(MultigridSolver, TheCoarsestFactorIsKeptWhileItsOperatorBarelyMoves) {
     const ScopedThreadCount count(threads);
     AnalysisSpec a = analysis("mgpcg", 1e-10, "lattice");
     a.multigrid.coarsest_refactor_change = refactor_change;
-    auto mg = make_multigrid_solver(a, p, {}, true);
+    EventLog log;
+    auto mg = make_multigrid_solver(a, p, {}, true, &log);
     std::vector<int> factorizations;
     std::vector<Eigen::VectorXd> solutions;
     for (const double factor : {1.0, 1.01, 1.029, 1.04, 1.04}) {
@@ -595,10 +596,10 @@ TEST(MultigridSolver, TheCoarsestFactorIsKeptWhileItsOperatorBarelyMoves) {
       EXPECT_LE(mg->solve(b, x).residual, 1e-10) << factor;
       const Eigen::VectorXd oracle = reference::cholmod_solve(to_eigen(m), b);
       EXPECT_LT((x - oracle).norm(), 1e-7 * oracle.norm()) << factor << ", " << threads;
-      factorizations.push_back(mg->coarsest_factorizations());
+      factorizations.push_back(log.count("coarsest factorization"));
       solutions.push_back(x);
     }
-    EXPECT_EQ(mg->updates(), 5);
+    EXPECT_EQ(log.count("update"), 5);
     return std::pair{factorizations, solutions};
   };
   // Kept at 1% and 2.9% from the first; refactored at 4% (3.96% from 1.0 is the last
@@ -616,14 +617,15 @@ TEST(MultigridSolver, TheCoarsestFactorIsKeptWhileItsOperatorBarelyMoves) {
   // (and fails again), never solved with the failed factor. One thread: set_matrix factorizes.
   const ScopedThreadCount one_thread(1);
   AnalysisSpec a = analysis("mgpcg", 1e-10, "lattice");
-  auto mg = make_multigrid_solver(a, p, {}, true);
+  EventLog log;
+  auto mg = make_multigrid_solver(a, p, {}, true, &log);
   mg->set_matrix(system);
   EXPECT_THROW(mg->set_matrix(scaled(-1)), NumericalFault);
   EXPECT_THROW(mg->set_matrix(scaled(-1.001)), NumericalFault);
   mg->set_matrix(system);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
   EXPECT_LE(mg->solve(b, x).residual, 1e-10);
-  EXPECT_EQ(mg->coarsest_factorizations(), 2);
+  EXPECT_EQ(log.count("coarsest factorization"), 2);
   set_items_per_thread(2048);
 }
 
@@ -643,7 +645,8 @@ TEST(MultigridSolver, CoarseOperatorsAreKeptWhileTheFineStiffnessBarelyMoves) {
   };
   AnalysisSpec a = analysis("mgpcg", 1e-10, "lattice");
   a.multigrid.galerkin_refresh_change = 0.05;
-  auto mg = make_multigrid_solver(a, p, {}, true);
+  EventLog log;
+  auto mg = make_multigrid_solver(a, p, {}, true, &log);
   std::vector<int> refreshes;
   std::vector<std::vector<double>> coarse;
   for (const double factor : {1.0, 1.02, 1.049, 1.06, 1.06}) {
@@ -653,7 +656,7 @@ TEST(MultigridSolver, CoarseOperatorsAreKeptWhileTheFineStiffnessBarelyMoves) {
     EXPECT_LE(mg->solve(b, x).residual, 1e-10) << factor;
     const Eigen::VectorXd oracle = reference::cholmod_solve(to_eigen(m), b);
     EXPECT_LT((x - oracle).norm(), 1e-7 * oracle.norm()) << factor;
-    refreshes.push_back(mg->galerkin_refreshes());
+    refreshes.push_back(log.count("galerkin refresh"));
     coarse.push_back(mg->hierarchy().matrix(1).values);
   }
   EXPECT_EQ(refreshes, (std::vector<int>{1, 1, 1, 2, 2}));
@@ -666,16 +669,17 @@ TEST(MultigridSolver, CoarseOperatorsAreKeptWhileTheFineStiffnessBarelyMoves) {
   EXPECT_LT(std::sqrt(diff / size), 1e-13);  // recomputed: the Galerkin product of 1.06 A
   // 0, the default: every update recomputes them.
   a.multigrid.galerkin_refresh_change = 0;
-  auto every = make_multigrid_solver(a, p, {}, true);
+  EventLog every_log;
+  auto every = make_multigrid_solver(a, p, {}, true, &every_log);
   for (const double factor : {1.0, 1.02}) every->set_matrix(scaled(factor));
-  EXPECT_EQ(every->galerkin_refreshes(), 2);
+  EXPECT_EQ(every_log.count("galerkin refresh"), 2);
 }
 
 TEST(MultigridSolver, AnObserverHearsEverySolveAndPartAndChangesNoBit) {
   // The solver keeps no times or logs: what a record reports comes from the observer a run
-  // attaches (multigrid/multigrid_log.hpp). With and without one, the same bits; the observer hears
-  // each update and solve once, each solve with the statistics the solve returned, and parts whose
-  // times add up to no more than the wall time they were measured in.
+  // attaches (core/event_log.hpp). With and without one, the same bits; the observer hears each
+  // update and solve once, each solve with the statistics the solve returned, and parts whose
+  // times add up to no more than the wall time they were measured in, from the set-up on.
   BoxSystem box;
   FeProblem& p = box.problem;
   const Eigen::VectorXd& b = box.b;
@@ -684,7 +688,7 @@ TEST(MultigridSolver, AnObserverHearsEverySolveAndPartAndChangesNoBit) {
   for (double& v : stiffer.values) v *= 1.5;
   for (const int threads : {1, 2}) {
     const ScopedThreadCount count(threads);
-    MultigridLog log;
+    EventLog log;
     auto watched = make_multigrid_solver(analysis("mgpcg", 1e-10, "lattice"), p, {}, true, &log);
     auto unwatched = make_multigrid_solver(analysis("mgpcg", 1e-10, "lattice"), p, {}, true);
     std::vector<SolveStats> returned;
@@ -701,23 +705,27 @@ TEST(MultigridSolver, AnObserverHearsEverySolveAndPartAndChangesNoBit) {
       unwatched->solve(b, y);
       EXPECT_TRUE(x == y) << threads << " threads: the observer changed the bits";
     }
-    ASSERT_EQ(log.solve_log().size(), returned.size());
+    ASSERT_EQ(log.solves().size(), returned.size());
     for (std::size_t k = 0; k < returned.size(); ++k) {
-      EXPECT_EQ(log.solve_log()[k].iterations, returned[k].iterations);
-      EXPECT_EQ(log.solve_log()[k].residual, returned[k].residual);
+      EXPECT_EQ(log.solves()[k].solver, "mgpcg");
+      EXPECT_EQ(log.solves()[k].iterations, returned[k].iterations);
+      EXPECT_EQ(log.solves()[k].residual, returned[k].residual);
+      EXPECT_EQ(log.solves()[k].rate, returned[k].convergence_factor);
     }
+    EXPECT_EQ(log.count("update"), 3);
     // The first update analyses and is never deferred; at two threads the other two are.
-    EXPECT_EQ(log.deferred_updates(), threads > 1 ? 2 : 0);
-    const MultigridSolveParts solve = log.solve_parts_ms();
+    EXPECT_EQ(log.count("deferred update"), threads > 1 ? 2 : 0);
+    const MultigridSolveParts solve = solve_parts_ms(log);
     const double parts = solve.fine_smooth + solve.fine_residual + solve.fine_transfer +
                          solve.coarse_levels + solve.coarsest;
     EXPECT_GT(solve.fine_smooth, 0);
     EXPECT_GT(solve.coarsest, 0);
     EXPECT_LE(parts * static_cast<double>(returned.size()), solve_wall_ms);
-    const MultigridUpdateParts update = log.update_parts_ms();
+    const MultigridUpdateParts update = update_parts_ms(log);
     EXPECT_GT(update.galerkin, 0);
     EXPECT_GT(update.coarsest, 0);
-    EXPECT_GT(log.setup_ms().galerkin_streams, 0);
+    EXPECT_GT(setup_parts_ms(log).galerkin_streams, 0);
+    EXPECT_GT(setup_parts_ms(log).transfers, 0);  // marked by the factory that built them
     const MultigridSummary summary = summarize(*watched, log);
     EXPECT_EQ(summary.solves, 3);
     std::vector<int> iterations;

@@ -74,8 +74,9 @@ TEST(StepRoofline, BytesFollowFromTheMeshAndTheHierarchy) {
   EXPECT_GT(solver.coarsest_factorization_flops(), 0);
   // One update, which factorized the coarsest level, after the check of how far its values
   // moved (3 flops a value, 9 values a block).
-  ASSERT_EQ(solver.updates(), 1);
-  ASSERT_EQ(solver.coarsest_factorizations(), 1);
+  const MultigridSummary summary = *sim.multigrid_summary(sim.solver());
+  ASSERT_EQ(summary.updates, 1);
+  ASSERT_EQ(summary.coarsest_factorizations, 1);
   EXPECT_DOUBLE_EQ(t.at("update").flops, 18.0 * static_cast<double>(h.gather(0).num_pairs()) +
                                              50 * v + solver.coarsest_factorization_flops() +
                                              27 * coarse_blocks);
@@ -144,11 +145,12 @@ TEST(StepRoofline, TheCoarsestPartCountsOnlyTheUpdatesThatRefactor) {
     sim.run();
     const auto& solver = dynamic_cast<const MultigridSolver&>(sim.solver());
     const MultigridHierarchy& h = solver.hierarchy();
-    ASSERT_EQ(solver.updates(), 4) << refactor;
+    const MultigridSummary summary = *sim.multigrid_summary(sim.solver());
+    ASSERT_EQ(summary.updates, 4) << refactor;
     const int factorizations = refactor == 0 ? 4 : 1;
-    ASSERT_EQ(solver.coarsest_factorizations(), factorizations) << refactor;
+    ASSERT_EQ(summary.coarsest_factorizations, factorizations) << refactor;
     const double values = static_cast<double>(h.matrix(h.num_levels() - 1).values.size());
-    EXPECT_DOUBLE_EQ(update_traffic(solver).at("coarsest").flops,
+    EXPECT_DOUBLE_EQ(update_traffic(solver, summary.refactor_share()).at("coarsest").flops,
                      factorizations / 4.0 * solver.coarsest_factorization_flops() + 3 * values)
         << refactor;
   }

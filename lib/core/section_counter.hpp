@@ -1,5 +1,5 @@
 #pragma once
-// Counts the work of every section a run marks (core/section_observer.hpp): instructions, D1 and
+// Counts the work of every section a run marks (core/event_observer.hpp): instructions, D1 and
 // last-level misses per phase of a step and per part of a solver. The work between two
 // consecutive marks belongs to the innermost open section, named by its path ("update/galerkin";
 // "" outside every section), so each count is exclusive of the sections nested in it;
@@ -23,8 +23,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/event_observer.hpp"
 #include "core/name_table.hpp"
-#include "core/section_observer.hpp"
 #include "core/work_counts.hpp"
 
 namespace corofem {
@@ -35,7 +35,7 @@ inline constexpr NameTable<CountSource, 3> kCountSources{{{{CountSource::Perf, "
                                                            {CountSource::Callgrind, "callgrind"},
                                                            {CountSource::Reader, "reader"}}}};
 
-class SectionCounter : public SectionObserver {
+class SectionCounter : public EventObserver {
  public:
   /// Starts counting from `source`; nothing (and `why_not` says why) where it cannot: no hardware
   /// counters, or callgrind asked for outside valgrind. `callgrind_file`: the output file given to

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/section_observer.hpp"
+#include "core/event_observer.hpp"
 #include "element/element_stiffness.hpp"
 
 namespace corofem {
@@ -43,7 +43,7 @@ struct SimulationResult {
 /// section for `sections` (counted runs: core/section_counter.hpp).
 class PhaseClock {
  public:
-  explicit PhaseClock(std::map<std::string, double>& totals, SectionObserver* sections = nullptr)
+  explicit PhaseClock(std::map<std::string, double>& totals, EventObserver* sections = nullptr)
       : totals_(totals), sections_(sections) {}
   template <class F>
   auto time(const std::string& phase, F&& f) {
@@ -63,7 +63,7 @@ class PhaseClock {
 
  private:
   std::map<std::string, double>& totals_;
-  SectionObserver* sections_;
+  EventObserver* sections_;
 };
 
 }  // namespace corofem

@@ -53,7 +53,7 @@ struct DynamicOptions {
   /// count and the final residual are the whole body's (the solver distributed to match).
   RankView ranks{};
   /// Marks each step's phases (rotate, assemble, update, solve, ...) as sections for it.
-  SectionObserver* sections = nullptr;
+  EventObserver* sections = nullptr;
 };
 
 /// State after each step, for records that follow a run (flutter, energy, VTU frames, timings).

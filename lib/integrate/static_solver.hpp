@@ -55,7 +55,7 @@ struct StaticOptions {
   /// Newton, TangentSolve::Factored: the Cholesky factorizations of its tangent (SparseLuSolve).
   Factorization factorization = Factorization::Supernodal;
   /// Marks each iteration's phases as sections for it.
-  SectionObserver* sections = nullptr;
+  EventObserver* sections = nullptr;
 };
 
 /// Never throws for non-convergence: result.converged says it (NumericalFault for NaN/inf).

@@ -25,6 +25,7 @@ class CholmodLinearSolver : public LinearSolver {
       throw NumericalFault(std::string(e.what()) +
                            " (system matrix lost definiteness: inverted elements or no supports?)");
     }
+    mark_event(events_, "factorization");
   }
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     x = solver_.solve(b);
@@ -32,6 +33,7 @@ class CholmodLinearSolver : public LinearSolver {
     stats.iterations = 1;
     const double bn = b.norm();
     stats.residual = bn > 0 ? (b - converter_->matrix() * x).norm() / bn : 0.0;
+    report_solved(stats);
     return stats;
   }
 

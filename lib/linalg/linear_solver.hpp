@@ -5,13 +5,13 @@
 #include <string>
 #include <vector>
 
+#include "core/event_observer.hpp"
 #include "linalg/factorization_kind.hpp"
 #include "sparse/brc_matrix.hpp"
 
 namespace corofem {
 
 class MultigridSolver;
-class SectionObserver;
 struct SolverChoice;
 
 struct SolveStats {
@@ -49,10 +49,20 @@ class LinearSolver {
   /// What a solver that chooses among others (linalg/solver_choice.hpp) measured and kept; null
   /// for every other solver.
   virtual const SolverChoice* choice() const { return nullptr; }
-  /// Marks the solver's parts (a multigrid's Galerkin products, smoothers, coarsest level, its
-  /// cycle's levels) as sections for `sections` (kept; null stops the marks). A solver without
-  /// parts marks none: its work counts in the phase that called it.
-  virtual void mark_sections(SectionObserver* /*sections*/) {}
+  /// Marks its work for `events` (kept; null stops the marks; core/event_observer.hpp): the
+  /// sections of its parts (a multigrid's Galerkin products, smoothers, coarsest level, its
+  /// cycle's levels), its counted events (a multigrid's updates and factorizations, CHOLMOD's
+  /// "factorization") and every solve's statistics (report_solved). A solver without parts marks no
+  /// sections: its work counts in the phase that called it.
+  virtual void observe(EventObserver* events) { events_ = events; }
+
+ protected:
+  /// Tells the observer, where there is one, that a solve ended with `stats`.
+  void report_solved(const SolveStats& stats) const {
+    if (events_)
+      events_->solved(name(), stats.iterations, stats.residual, stats.convergence_factor);
+  }
+  EventObserver* events_ = nullptr;
 };
 
 /// CHOLMOD: symbolic analysis at the first matrix, numeric refactorization at every later one.

@@ -98,10 +98,12 @@ class JacobiPcgSolver : public LinearSolver {
     diagonal_.set_matrix(a_);
   }
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
-    return preconditioned_cg(
+    const SolveStats stats = preconditioned_cg(
         a_, b, x,
         [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { diagonal_.block_jacobi(r, z); },
         tolerance_, max_iterations_, "jacobi-pcg");
+    report_solved(stats);
+    return stats;
   }
 
  private:

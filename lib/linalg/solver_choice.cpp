@@ -53,6 +53,10 @@ class TrialSolver : public LinearSolver {
 
   const MultigridSolver* multigrid() const override { return used()->multigrid(); }
   const SolverChoice* choice() const override { return &choice_; }
+  /// Each candidate marks its own work, its solves in the trial too.
+  void observe(EventObserver* events) override {
+    for (const auto& c : candidates_) c->observe(events);
+  }
 
   void set_matrix(const BrcMatrix& a) override {
     if (chosen_) return chosen_->set_matrix(a);

@@ -1,7 +1,6 @@
 #include "multigrid/hierarchy_builder.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -37,7 +36,6 @@ int coarsest_vertex_limit(const HierarchyParams& params, int fine_vertices) {
 BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fixed,
                                const HierarchyParams& params,
                                const std::vector<TetMesh>& coarse_meshes) {
-  const auto start = std::chrono::steady_clock::now();
   BuiltHierarchy built;
   std::vector<Vec3> points = fine.rest;
   std::vector<char> level_fixed = fixed;
@@ -96,8 +94,6 @@ BuiltHierarchy build_hierarchy(const TetMesh& fine, const std::vector<char>& fix
     built.transfers.push_back(std::move(coarse.transfer));
     points = std::move(coarse.points);
   }
-  built.transfers_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return built;
 }
 

@@ -80,7 +80,6 @@ struct CoarseLevelOrigin {
 struct BuiltHierarchy {
   std::vector<Transfer> transfers;        ///< level h to h + 1
   std::vector<CoarseLevelOrigin> levels;  ///< per coarse level
-  double transfers_ms = 0;                ///< what building the transfers cost
   /// Why it has fewer levels than asked for (empty when it has them all, or a lattice ran out of
   /// vertices to coarsen).
   std::string ended_early;

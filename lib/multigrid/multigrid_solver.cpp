@@ -13,25 +13,9 @@
 
 namespace corofem {
 
-namespace {
-
-/// Runs f; returns its wall time in ms.
 template <class F>
-double wall_ms(const F& f) {
-  const auto start = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
-}  // namespace
-
-template <class F>
-void MultigridSolver::timed(SolverPart part, const F& f) {
-  in_section(sections_, kSolverParts.name(part), [&] {
-    if (!observer_) return f();
-    observer_->on_part(part, wall_ms(f));
-  });
+void MultigridSolver::part(SolverPart part, const F& f) {
+  in_section(events_, kSolverParts.name(part), f);
 }
 
 struct MultigridSolver::Coarsest {
@@ -41,7 +25,7 @@ struct MultigridSolver::Coarsest {
 
 MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
                                  const MultigridParams& params, bool as_preconditioner,
-                                 SolverObserver* observer)
+                                 EventObserver* events)
     : params_(params),
       preconditioner_(as_preconditioner),
       hierarchy_(pattern, std::move(built.transfers)),
@@ -49,16 +33,15 @@ MultigridSolver::MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built,
       residual_(hierarchy_.num_levels()),
       coarse_b_(hierarchy_.num_levels()),
       coarse_x_(hierarchy_.num_levels()),
-      observer_(observer),
       level_origins_(std::move(built.levels)),
       ended_early_(std::move(built.ended_early)) {
-  if (observer_) observer_->on_part(SolverPart::Transfers, built.transfers_ms);
+  events_ = events;
   fine_diagonal_.resize(pattern.block_rows);
   for (int i = 0; i < pattern.block_rows; ++i) fine_diagonal_[i] = pattern.find(i, i);
   for (int h = 0; h + 1 < hierarchy_.num_levels(); ++h)
     smoothers_.push_back(make_smoother(params_.smoother, params_.smoother_parameters));
   // The method's streams now, in the set-up, not in the first step's update.
-  timed(SolverPart::GalerkinStreams, [&] { hierarchy_.prepare(params_.galerkin); });
+  part(SolverPart::GalerkinStreams, [&] { hierarchy_.prepare(params_.galerkin); });
 }
 
 MultigridSolver::~MultigridSolver() = default;
@@ -80,15 +63,15 @@ void MultigridSolver::take_matrix(BrcMatrix& a) {
 
 template <class F>
 void MultigridSolver::update_from(const BrcMatrix& a, const F& fine) {
-  if (observer_) observer_->on_event(SolverEvent::Update);
-  timed(SolverPart::Galerkin, [&] {
+  mark_event(events_, "update");
+  part(SolverPart::Galerkin, [&] {
     // Probed before `fine` may take a's values.
     coarse_pending_ = hierarchy_.num_levels() == 1 || fine_moved(a);
     if (coarse_pending_ && params_.galerkin_refresh_change > 0)
       stiffness_probe(a, refreshed_probe_);
     fine();
     if (!coarse_pending_) return;
-    ++galerkin_refreshes_;
+    mark_event(events_, "galerkin refresh");
     hierarchy_.update_coarse(params_.galerkin);
   });
   update_levels();
@@ -126,11 +109,7 @@ void MultigridSolver::update_levels() {
   // next solve runs the factorization on one thread beside those on another
   // (run_overlapped_pcg). The first update, which analyses the pattern, runs in full here, and so
   // does one that keeps the coarsest factor (the smoothers' set-up then has both threads).
-  ++updates_;
-  check_ms_ = wall_ms([&] {
-    in_section(sections_, kSolverParts.name(SolverPart::Coarsest),
-               [&] { refactor_pending_ = coarse_pending_ && coarsest_moved(); });
-  });
+  part(SolverPart::Coarsest, [&] { refactor_pending_ = coarse_pending_ && coarsest_moved(); });
   update_pending_ = true;
   if (!(defers_update() && refactor_pending_ && coarsest_->converter)) complete_update();
 }
@@ -164,41 +143,26 @@ bool MultigridSolver::defers_update() const {
 void MultigridSolver::complete_update(const std::function<void()>& beside) {
   if (!update_pending_) return;
   update_pending_ = false;
-  // Each part keeps its own time; where the update overlaps (overlaps_update) they run side by
-  // side. The observer hears of them after both, so that it is never called from two threads at
-  // once (`beside` calls it).
+  // Where the update overlaps (overlaps_update) the parts run side by side, each marking its own
+  // sections on its own thread (the observers key them by thread: core/event_observer.hpp).
   const int last = hierarchy_.num_levels() - 1;
-  double smoothers_ms = 0, coarsest_ms = 0;
-  // Side by side, the parts run on two threads at once: no sections then (counted runs take one
-  // thread, where they run one after the other).
-  const bool side_by_side = overlaps_update() && refactor_pending_;
-  SectionObserver* sections = side_by_side ? nullptr : sections_;
-  auto set_up_smoothers = [&] {
-    in_section(sections, kSolverParts.name(SolverPart::Smoothers), [&] {
+  auto factorize = [&] {
+    if (refactor_pending_) part(SolverPart::Coarsest, [&] { update_coarsest(); });
+  };
+  auto rest = [&] {
+    part(SolverPart::Smoothers, [&] {
       // The coarse levels' smoothers again only where their operators were recomputed.
       for (int h = 0; h < (coarse_pending_ ? last : std::min(last, 1)); ++h)
         smoothers_[h]->set_matrix(hierarchy_.matrix(h));
     });
-  };
-  auto factorize = [&] {
-    if (refactor_pending_)
-      coarsest_ms = wall_ms([&] {
-        in_section(sections, kSolverParts.name(SolverPart::Coarsest), [&] { update_coarsest(); });
-      });
-  };
-  auto rest = [&] {
-    smoothers_ms = wall_ms(set_up_smoothers);
     if (beside) beside();
   };
-  if (side_by_side) {
+  if (overlaps_update() && refactor_pending_) {
     run_side_by_side(factorize, rest);
   } else {  // the same operations, one after the other: the same bits
     factorize();
     rest();
   }
-  if (!observer_) return;
-  observer_->on_part(SolverPart::Smoothers, smoothers_ms);
-  observer_->on_part(SolverPart::Coarsest, check_ms_ + coarsest_ms);
 }
 
 void MultigridSolver::update_coarsest() {
@@ -206,7 +170,7 @@ void MultigridSolver::update_coarsest() {
   // which a Newton caller then replaces) leaves none, so the next update refactors.
   factored_values_.clear();
   factorize_coarsest();
-  ++coarsest_factorizations_;
+  mark_event(events_, "coarsest factorization");
   factored_values_ = hierarchy_.matrix(hierarchy_.num_levels() - 1).values;
 }
 
@@ -223,7 +187,7 @@ void MultigridSolver::factorize_coarsest() {
   // there and R^T annihilates whatever the solve puts there, so a tiny diagonal shift changes
   // the coarse correction only at the shift's relative size. Once needed, it is kept (the
   // pattern of dependence does not change with the values).
-  if (coarsest_shifts_ == 0) {
+  if (!coarsest_shifted_) {
     try {
       coarsest_->cholmod.factorize(coarsest_->converter->matrix());
       return;
@@ -235,7 +199,8 @@ void MultigridSolver::factorize_coarsest() {
   for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
   try {
     coarsest_->cholmod.factorize(shifted);
-    ++coarsest_shifts_;
+    coarsest_shifted_ = true;
+    mark_event(events_, "coarsest shift");
   } catch (const std::runtime_error& e) {
     throw NumericalFault(std::string("multigrid coarsest level: ") + e.what());
   }
@@ -248,7 +213,7 @@ void MultigridSolver::vcycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x
 
 void MultigridSolver::cycle(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool zero_guess) {
   if (h == hierarchy_.num_levels() - 1) {
-    timed(SolverPart::CoarsestSolve, [&] { x = coarsest_->cholmod.solve(b); });
+    part(SolverPart::CoarsestSolve, [&] { x = coarsest_->cholmod.solve(b); });
     return;
   }
   descend(h, b, x, zero_guess);
@@ -268,22 +233,22 @@ void MultigridSolver::descend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& 
   const BrcMatrix& a = hierarchy_.matrix(h);
   const bool fine = h == 0;
   bool formed = false;  // the smoother formed the residual in passing: it counts in the smoothing
-  timed(fine ? SolverPart::FineSmooth : SolverPart::CoarseLevels, [&] {
+  part(fine ? SolverPart::FineSmooth : SolverPart::CoarseLevels, [&] {
     formed = smoothers_[h]->pre_smooth(a, b, x, params_.pre_smoothing, zero_guess, residual_[h]);
   });
   if (!formed)
-    timed(fine ? SolverPart::FineResidual : SolverPart::CoarseLevels,
-          [&] { a.residual(b, x, residual_[h]); });
-  timed(fine ? SolverPart::FineTransfer : SolverPart::CoarseLevels,
-        [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
+    part(fine ? SolverPart::FineResidual : SolverPart::CoarseLevels,
+         [&] { a.residual(b, x, residual_[h]); });
+  part(fine ? SolverPart::FineTransfer : SolverPart::CoarseLevels,
+       [&] { hierarchy_.transfer(h).restrict_to(residual_[h], coarse_b_[h + 1]); });
 }
 
 void MultigridSolver::ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const bool fine = h == 0;
-  timed(fine ? SolverPart::FineTransfer : SolverPart::CoarseLevels,
-        [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
-  timed(fine ? SolverPart::FineSmooth : SolverPart::CoarseLevels,
-        [&] { smoothers_[h]->post_smooth(hierarchy_.matrix(h), b, x, params_.post_smoothing); });
+  part(fine ? SolverPart::FineTransfer : SolverPart::CoarseLevels,
+       [&] { hierarchy_.transfer(h).prolongate_add(coarse_x_[h + 1], x); });
+  part(fine ? SolverPart::FineSmooth : SolverPart::CoarseLevels,
+       [&] { smoothers_[h]->post_smooth(hierarchy_.matrix(h), b, x, params_.post_smoothing); });
 }
 
 void MultigridSolver::finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -299,7 +264,7 @@ void MultigridSolver::finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x)
 
 SolveStats MultigridSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const SolveStats stats = run_solve(b, x);
-  if (observer_) observer_->on_solve(stats);
+  report_solved(stats);
   return stats;
 }
 
@@ -310,7 +275,7 @@ SolveStats MultigridSolver::run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::
   const BrcMatrix& a = hierarchy_.matrix(0);
   const int last = hierarchy_.num_levels() - 1;
   Eigen::VectorXd r0, z0;
-  if (observer_) observer_->on_event(SolverEvent::DeferredUpdate);
+  mark_event(events_, "deferred update");
   complete_update([&] {
     start_iterative_solve(b, x);  // x sized as CG sizes it
     a.residual(b, x, r0);

@@ -8,12 +8,12 @@
 #include <optional>
 #include <utility>
 
-#include "core/section_observer.hpp"
+#include "core/event_observer.hpp"
 #include "linalg/linear_solver.hpp"
 #include "linalg/smoother.hpp"
-#include "linalg/solver_observer.hpp"
 #include "multigrid/hierarchy.hpp"
 #include "multigrid/hierarchy_builder.hpp"
+#include "multigrid/solver_part.hpp"
 
 namespace corofem {
 
@@ -63,10 +63,12 @@ struct MultigridParams {
 class MultigridSolver : public LinearSolver {
  public:
   /// `built`: the transfers from hierarchy_builder.hpp (fixed fine vertices, whose rows are
-  /// identity in A, take no part in them). `observer` (kept, may be null): receives the time of
-  /// each part, from the set-up on, the counts and every solve's statistics.
+  /// identity in A, take no part in them). `events` (kept, may be null; observe() changes it):
+  /// hears every part as a section from the set-up on (kSolverParts), the events it counts
+  /// ("update", "deferred update", "galerkin refresh", "coarsest factorization", "coarsest
+  /// shift") and every solve's statistics.
   MultigridSolver(const BrcMatrix& pattern, BuiltHierarchy built, const MultigridParams& params,
-                  bool as_preconditioner, SolverObserver* observer = nullptr);
+                  bool as_preconditioner, EventObserver* events = nullptr);
   ~MultigridSolver() override;
 
   std::string name() const override { return preconditioner_ ? "mgpcg" : "multigrid"; }
@@ -74,7 +76,6 @@ class MultigridSolver : public LinearSolver {
   void take_matrix(BrcMatrix& a) override;  ///< the fine values swapped in, not copied
   SolveStats solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
   const MultigridSolver* multigrid() const override { return this; }
-  void mark_sections(SectionObserver* sections) override { sections_ = sections; }
 
   /// One V-cycle from level h for A_h x = b, x the initial guess on entry; `zero_guess`: x starts
   /// at 0 whatever it holds (a correction: every coarse level, and the preconditioner), so the
@@ -99,15 +100,6 @@ class MultigridSolver : public LinearSolver {
   /// analysis; 0 before the first set_matrix).
   double coarsest_factor_nonzeros() const;
   double coarsest_factorization_flops() const;
-  /// How many coarsest-level factorizations needed the semidefinite shift (see update_coarsest).
-  int coarsest_shifts() const { return coarsest_shifts_; }
-  /// How many updates there were, and how many of them factorized the coarsest level (the others
-  /// kept its factor: params().coarsest_refactor_change).
-  int updates() const { return updates_; }
-  int coarsest_factorizations() const { return coarsest_factorizations_; }
-  /// How many updates recomputed the coarse operators (the others kept them:
-  /// params().galerkin_refresh_change).
-  int galerkin_refreshes() const { return galerkin_refreshes_; }
   /// Where each coarse level came from (level h + 1 at h).
   const std::vector<CoarseLevelOrigin>& level_origins() const { return level_origins_; }
   /// Why the hierarchy has fewer levels than its params ask for (BuiltHierarchy::ended_early).
@@ -147,9 +139,9 @@ class MultigridSolver : public LinearSolver {
   void ascend(int h, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   /// The rest of a V-cycle from level 0 whose descent has run: the coarsest solve, the ascents.
   void finish_cycle(const Eigen::VectorXd& b, Eigen::VectorXd& x);
-  /// Runs f as the section `part`; with an observer, tells it f's wall time.
+  /// Runs f as the section `part` for the observer.
   template <class F>
-  void timed(SolverPart part, const F& f);
+  void part(SolverPart part, const F& f);
   MultigridParams params_;
   bool preconditioner_;
   MultigridHierarchy hierarchy_;
@@ -157,12 +149,11 @@ class MultigridSolver : public LinearSolver {
   struct Coarsest;
   std::unique_ptr<Coarsest> coarsest_;
   std::vector<Eigen::VectorXd> residual_, coarse_b_, coarse_x_;  // scratch per level
-  SolverObserver* observer_;
-  SectionObserver* sections_ = nullptr;
   bool update_pending_ = false;
   bool refactor_pending_ = false;  ///< the pending update factorizes the coarsest level
-  double check_ms_ = 0;            ///< coarsest_moved's time in the pending update
-  int coarsest_shifts_ = 0, coarsest_factorizations_ = 0, updates_ = 0, galerkin_refreshes_ = 0;
+  /// Once a coarsest factorization needed the semidefinite shift, every later one has it (the
+  /// pattern of dependence does not change with the values: factorize_coarsest).
+  bool coarsest_shifted_ = false;
   std::vector<double> factored_values_;  ///< the coarsest level's values when last factorized
   std::vector<double> refreshed_probe_;  ///< the fine stiffness probe at the last refresh
   std::vector<int> fine_diagonal_;       ///< the fine pattern's diagonal block of each row

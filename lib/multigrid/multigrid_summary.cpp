@@ -4,7 +4,7 @@
 
 namespace corofem {
 
-MultigridSummary summarize(const MultigridSolver& solver, const MultigridLog& log) {
+MultigridSummary summarize(const MultigridSolver& solver, const EventLog& log) {
   MultigridSummary s;
   s.params = solver.params();
   const MultigridHierarchy& hierarchy = solver.hierarchy();
@@ -16,25 +16,26 @@ MultigridSummary summarize(const MultigridSolver& solver, const MultigridLog& lo
   }
   s.origins = solver.level_origins();
   s.operator_complexity = blocks / static_cast<double>(hierarchy.matrix(0).col_index.size());
-  s.setup = log.setup_ms();
-  s.update = log.update_parts_ms();
-  s.solve = log.solve_parts_ms();
+  s.setup = setup_parts_ms(log);
+  s.update = update_parts_ms(log);
+  s.solve = solve_parts_ms(log);
   std::vector<double> rho, iterations;
-  for (const SolveStats& stats : log.solve_log()) {
-    if (stats.iterations == 0) continue;  // a zero right-hand side: nothing was solved
-    rho.push_back(stats.convergence_factor);
-    iterations.push_back(stats.iterations);
+  for (const LoggedSolve& solve : log.solves()) {
+    // A zero right-hand side: nothing was solved. Another solver's: an auto trial's candidate.
+    if (solve.iterations == 0 || !is_multigrid_solve(solve)) continue;
+    rho.push_back(solve.rate);
+    iterations.push_back(solve.iterations);
   }
   s.solves = static_cast<int>(rho.size());
   if (!rho.empty()) {
     s.rho = median(rho);
     s.iterations = median(iterations);
   }
-  s.coarsest_shifts = solver.coarsest_shifts();
-  s.updates = solver.updates();
-  s.coarsest_factorizations = solver.coarsest_factorizations();
-  s.galerkin_refreshes = solver.galerkin_refreshes();
-  s.deferred_updates = log.deferred_updates();
+  s.coarsest_shifts = log.count("coarsest shift");
+  s.updates = log.count("update");
+  s.coarsest_factorizations = log.count("coarsest factorization");
+  s.galerkin_refreshes = log.count("galerkin refresh");
+  s.deferred_updates = log.count("deferred update");
   s.ended_early = solver.ended_early();
   return s;
 }

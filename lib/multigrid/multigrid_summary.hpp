@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "multigrid/multigrid_log.hpp"
+#include "multigrid/multigrid_parts.hpp"
 #include "multigrid/multigrid_solver.hpp"
 
 namespace corofem {
@@ -31,9 +31,14 @@ struct MultigridSummary {
   /// factor).
   int updates = 0, coarsest_factorizations = 0, galerkin_refreshes = 0;
   std::string ended_early;  ///< MultigridSolver::ended_early
+  /// The share of the updates that factorized the coarsest level (1 before any update).
+  double refactor_share() const {
+    return updates > 0 ? static_cast<double>(coarsest_factorizations) / updates : 1.0;
+  }
 };
 
-/// What `solver` is (its levels, params, origins) and what `log`, its observer, heard.
-MultigridSummary summarize(const MultigridSolver& solver, const MultigridLog& log);
+/// What `solver` is (its levels, params, origins) and what `log`, its observer from its set-up
+/// on, heard.
+MultigridSummary summarize(const MultigridSolver& solver, const EventLog& log);
 
 }  // namespace corofem

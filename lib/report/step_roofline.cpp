@@ -38,13 +38,6 @@ Traffic vcycle(const MultigridSolver& solver, int h) {
   return out;
 }
 
-/// The share of the updates that factorized the coarsest level (the others kept its factor).
-double refactor_share(const MultigridSolver& solver) {
-  return solver.updates() > 0
-             ? static_cast<double>(solver.coarsest_factorizations()) / solver.updates()
-             : 1.0;
-}
-
 /// One factorization of the coarsest level: its values converted to CHOLMOD's lower-triangular
 /// CSC (about half the blocks, 12 B an entry) and factorized: L written, and the flops CHOLMOD's
 /// analysis counted.
@@ -64,7 +57,8 @@ Traffic coarsest_check(const MultigridSolver& solver) {
 
 }  // namespace
 
-std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
+std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver,
+                                              double refactor_share) {
   // Galerkin: per coarse level the stream (control and data, or the gather's pairs and block
   // lists) and A_{h-1} read once, E_h written (18 flops per pair: a 3x3 block scaled and added),
   // its mirror pairs. The step hands the fine values over (take_matrix): no copy.
@@ -97,13 +91,14 @@ std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver) {
   parts["smoothers"] = smoothers;
   // The coarsest level: its factorization in the updates that refactor it, in every update the
   // check of how far its values moved.
-  parts["coarsest"] = refactor_share(solver) * coarsest_factorization(solver);
+  parts["coarsest"] = refactor_share * coarsest_factorization(solver);
   parts["coarsest"] += coarsest_check(solver);
   return parts;
 }
 
 std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const MultigridSolver& solver,
-                                            double newton_iterations, double solve_iterations) {
+                                            double newton_iterations, double solve_iterations,
+                                            double refactor_share) {
   const double e = problem.mesh.num_tets(), v = problem.mesh.num_vertices(), n = 3 * v;
   const BrcMatrix& k = problem.stiffness;
   const double blocks = static_cast<double>(k.col_index.size());
@@ -144,8 +139,8 @@ std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const Mult
   // when the solver defers them to it (MultigridSolver::defers_update), which it does in the
   // updates that refactor; the check that decides it runs in every update.
   Traffic update, deferred;
-  const double share = solver.defers_update() ? refactor_share(solver) : 0;
-  for (const auto& [part, traffic] : update_traffic(solver)) {
+  const double share = solver.defers_update() ? refactor_share : 0;
+  for (const auto& [part, traffic] : update_traffic(solver, refactor_share)) {
     if (part == "smoothers") {
       deferred += share * traffic;
       update += (1 - share) * traffic;

@@ -21,15 +21,19 @@ namespace corofem {
 
 class MultigridSolver;
 
-/// The update phase's parts (MultigridSolver::update_parts_ms): galerkin, smoothers, coarsest.
-std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver);
+/// The update phase's parts (multigrid/multigrid_parts.hpp): galerkin, smoothers, coarsest.
+/// `refactor_share`: the share of the updates that factorized the coarsest level (the others kept
+/// its factor: MultigridSummary::refactor_share).
+std::map<std::string, Traffic> update_traffic(const MultigridSolver& solver,
+                                              double refactor_share = 1);
 
 /// Per step, the phases checks, rotate, assemble, forces, system, update and solve.
 /// `newton_iterations`: mean energy-newton iterations per element; `solve_iterations`: MG-PCG
 /// iterations of the step. The coarsest level's factorization and substitutions are counted
-/// from CHOLMOD's own analysis (entries of L, flops).
+/// from CHOLMOD's own analysis (entries of L, flops); `refactor_share` as for update_traffic.
 std::map<std::string, Traffic> step_traffic(const FeProblem& problem, const MultigridSolver& solver,
-                                            double newton_iterations, double solve_iterations);
+                                            double newton_iterations, double solve_iterations,
+                                            double refactor_share = 1);
 
 /// The machine's measured roofs (core/machine_roofs.hpp).
 struct MachineRoofs {

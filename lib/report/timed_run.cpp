@@ -223,9 +223,10 @@ TimedRun timed_run(const nlohmann::json& scene_json, const std::string& name,
     const int warmup = std::min<int>(options.warmup_steps, static_cast<int>(out.solves.size()) - 1);
     const std::vector<double> after(out.rotation_iterations.begin() + std::max(warmup, 0),
                                     out.rotation_iterations.end());
-    out.traffic =
-        step_traffic(problem, *mg, median(after), out.median_iterations(std::max(warmup, 0)));
-    out.update_traffic = update_traffic(*mg);
+    const double refactor_share = out.multigrid ? out.multigrid->refactor_share() : 1.0;
+    out.traffic = step_traffic(problem, *mg, median(after),
+                               out.median_iterations(std::max(warmup, 0)), refactor_share);
+    out.update_traffic = update_traffic(*mg, refactor_share);
     const MultigridHierarchy& h = mg->hierarchy();
     out.working_set_bytes = static_cast<double>(sizeof(ElementRest) * problem.elements.size()) +
                             static_cast<double>(h.stream_bytes(mg->params().galerkin));

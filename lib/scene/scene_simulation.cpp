@@ -170,10 +170,15 @@ TangentSolve SceneSimulation::tangent_solve() const {
   return is_petsc_solver(a.solver) ? TangentSolve::BySolver : TangentSolve::PreconditionedBySolver;
 }
 
-void SceneSimulation::mark_sections(SectionObserver* sections) {
+void SceneSimulation::mark_sections(EventObserver* sections) {
   sections_ = sections;
   if (dynamic_) dynamic_->sections = sections;
-  solver_->mark_sections(sections);
+  solver_fanout_ =
+      sections
+          ? std::make_unique<EventFanout>(std::vector<EventObserver*>{solver_log_.get(), sections})
+          : nullptr;
+  solver_->observe(sections ? static_cast<EventObserver*>(solver_fanout_.get())
+                            : solver_log_.get());
 }
 
 SimulationResult SceneSimulation::run(

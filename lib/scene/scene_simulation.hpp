@@ -64,7 +64,7 @@ class SceneSimulation {
 
   /// Marks the run's phases and the solver's parts as sections for `sections` (kept; counted
   /// runs: core/section_counter.hpp).
-  void mark_sections(SectionObserver* sections);
+  void mark_sections(EventObserver* sections);
 
   /// Static or dynamic, as the scene says; `on_step` follows every dynamic step, `on_iteration`
   /// every static iteration. Phase times include "setup" (building) and "total".
@@ -87,11 +87,13 @@ class SceneSimulation {
   FeProblem problem_;
   std::unique_ptr<RotationExtractor> extractor_;
   std::optional<DynamicOptions> dynamic_;
-  /// The observer this run attaches to its multigrid solver (the solver keeps no times or logs):
+  /// The observer this run attaches to its solver (the solver keeps no times or logs):
   /// multigrid_summary reads it. Held by pointer, so that it stays where the solver points.
-  std::unique_ptr<MultigridLog> solver_log_ = std::make_unique<MultigridLog>();
+  std::unique_ptr<EventLog> solver_log_ = std::make_unique<EventLog>();
   std::unique_ptr<LinearSolver> solver_;
-  SectionObserver* sections_ = nullptr;
+  EventObserver* sections_ = nullptr;
+  /// The solver's marks to the log and to sections_, while there is one.
+  std::unique_ptr<EventFanout> solver_fanout_;
   double setup_ms_ = 0;
   double coarse_meshing_ms_ = 0;
 };

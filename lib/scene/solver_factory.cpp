@@ -26,13 +26,14 @@ std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& a,
                                                        const FeProblem& problem,
                                                        const std::vector<TetMesh>& coarse_meshes,
                                                        bool as_preconditioner,
-                                                       SolverObserver* observer) {
+                                                       EventObserver* observer) {
   const MultigridParams params = multigrid_params(a);
-  return std::make_unique<MultigridSolver>(
-      problem.stiffness,
-      build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy,
-                      coarse_meshes),
-      params, as_preconditioner, observer);
+  BuiltHierarchy built = in_section(observer, kSolverParts.name(SolverPart::Transfers), [&] {
+    return build_hierarchy(problem.mesh, fixed_vertices(problem.dirichlet), params.hierarchy,
+                           coarse_meshes);
+  });
+  return std::make_unique<MultigridSolver>(problem.stiffness, std::move(built), params,
+                                           as_preconditioner, observer);
 }
 
 PetscSolveSettings petsc_solve_settings(const AnalysisSpec& a) {
@@ -47,8 +48,11 @@ bool reuses_setup(const AnalysisSpec& a) {
 
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& a, const FeProblem& problem,
                                                  const std::vector<TetMesh>& coarse_meshes,
-                                                 SolverObserver* observer) {
-  return a.solver.traits().make({a, problem, coarse_meshes, observer});
+                                                 EventObserver* observer) {
+  std::unique_ptr<LinearSolver> solver =
+      a.solver.traits().make({a, problem, coarse_meshes, observer});
+  solver->observe(observer);
+  return solver;
 }
 
 namespace {

@@ -25,19 +25,19 @@ bool reuses_setup(const AnalysisSpec& analysis);
 
 /// The analysis's solver, made by its registration (scene/solver_kind.hpp), for the problem's
 /// pattern, rest positions and supports. Multigrid on the meshes hierarchy takes its levels from
-/// `coarse_meshes` (scene/coarse_meshes.hpp); `observer` (linalg/solver_observer.hpp) hears what
-/// the multigrid solver marks.
+/// `coarse_meshes` (scene/coarse_meshes.hpp); `observer` (core/event_observer.hpp) hears what
+/// the solver marks, from its set-up on.
 std::unique_ptr<LinearSolver> make_linear_solver(const AnalysisSpec& analysis,
                                                  const FeProblem& problem,
                                                  const std::vector<TetMesh>& coarse_meshes = {},
-                                                 SolverObserver* observer = nullptr);
+                                                 EventObserver* observer = nullptr);
 
 /// Multigrid (V-cycles, or the preconditioner of CG) on the analysis's hierarchy.
 std::unique_ptr<MultigridSolver> make_multigrid_solver(const AnalysisSpec& analysis,
                                                        const FeProblem& problem,
                                                        const std::vector<TetMesh>& coarse_meshes,
                                                        bool as_preconditioner,
-                                                       SolverObserver* observer = nullptr);
+                                                       EventObserver* observer = nullptr);
 
 /// The built-in solvers' traits, in the order of the SolverKind constants (scene/solver_kind.hpp).
 std::vector<SolverTraits> builtin_solvers();

@@ -20,7 +20,7 @@ namespace corofem {
 struct AnalysisSpec;
 struct FeProblem;
 struct TetMesh;
-class SolverObserver;
+class EventObserver;
 struct SolverTraits;
 
 /// A registered solver: its place in the registry. The built-ins have fixed places.
@@ -56,12 +56,13 @@ inline constexpr SolverKind SolverKind::Auto{7};
 
 /// What a solver is made from: the scene's analysis (its tolerance, its multigrid's parameters,
 /// the solver's own settings), the problem (its pattern, rest positions and supports), the
-/// coarse meshes of a meshes hierarchy, and the observer that hears a multigrid's marks.
+/// coarse meshes of a meshes hierarchy, and the observer that hears the solver's marks (the factory
+/// hands it to the solver made: LinearSolver::observe).
 struct SolverRequest {
   const AnalysisSpec& analysis;
   const FeProblem& problem;
   const std::vector<TetMesh>& coarse_meshes;
-  SolverObserver* observer = nullptr;
+  EventObserver* observer = nullptr;
 };
 
 struct SolverTraits {

@@ -1,13 +1,12 @@
 #pragma once
-// The observer a timed run attaches to its multigrid solver (linalg/solver_observer.hpp): the
-// time of each part, the counts and every solve's statistics, which the run's record reads
-// (multigrid/multigrid_summary.hpp).
+// Where a multigrid solver's time went, by part, read from the event log a timed run attaches to
+// it (core/event_log.hpp): the sections it marks (multigrid/solver_part.hpp) and its events.
+// The run's record writes them (multigrid/multigrid_summary.hpp).
 #include <array>
 #include <optional>
 #include <utility>
-#include <vector>
 
-#include "linalg/solver_observer.hpp"
+#include "core/event_log.hpp"
 
 namespace corofem {
 
@@ -35,25 +34,13 @@ struct MultigridSolveParts {
   double fine_smooth = 0, fine_residual = 0, fine_transfer = 0, coarse_levels = 0, coarsest = 0;
 };
 
-class MultigridLog : public SolverObserver {
- public:
-  void on_part(SolverPart part, double ms) override;
-  void on_event(SolverEvent event) override;
-  void on_solve(const SolveStats& stats) override;
-
-  const MultigridSetupParts& setup_ms() const { return setup_; }
-  MultigridUpdateParts update_parts_ms() const;  ///< means per update
-  MultigridSolveParts solve_parts_ms() const;    ///< means per solve
-  int deferred_updates() const { return deferred_updates_; }
-  /// Every solve's statistics, in order.
-  const std::vector<SolveStats>& solve_log() const { return solves_; }
-
- private:
-  MultigridSetupParts setup_;
-  MultigridUpdateParts update_;  ///< totals over the updates
-  MultigridSolveParts solve_;    ///< totals over the solves
-  int updates_ = 0, deferred_updates_ = 0;
-  std::vector<SolveStats> solves_;
-};
+/// The set-up's parts, totals.
+MultigridSetupParts setup_parts_ms(const EventLog& log);
+/// The update's parts, means per "update" event.
+MultigridUpdateParts update_parts_ms(const EventLog& log);
+/// A solve's parts, means per solve of a multigrid solver ("mgpcg" or "multigrid").
+MultigridSolveParts solve_parts_ms(const EventLog& log);
+/// Whether a logged solve is a multigrid solver's (the log may hold a trial's other candidate's).
+bool is_multigrid_solve(const LoggedSolve& solve);
 
 }  // namespace corofem
