@@ -3,6 +3,7 @@
 
 Usage: bench/gate/count_calibration.py [REF] [--trials 20] [--out out/count-calibration]
                                        [--assembly-work 6] [--scenes SCENE.json ...]
+                                       [--first-trial N]
 
 Builds REF twice (two builds of one commit, in two folders: gate_builds) and once with each
 planted fault (bench/gate/plant.py: assembly-work ITERATIONS, extra-pass, scattered-order), then
@@ -10,7 +11,8 @@ counts the gate suite (bench/count_phases.py) with the first build as the baseli
 trial with the second build and with every planted one, each time with the heap's and the
 stack's layout moved as a change to unrelated code would move them (--layout-shift: a longer
 working folder, more environment; trial t uses seed t). Each trial is `corofem compare`d with the
-baseline at compare's default thresholds:
+baseline at compare's default thresholds (--first-trial N: a stopped calibration goes on at trial
+N, adding to OUT/summary.json; the baseline is counted again, the same counts):
 - A against A: a trial that alarms (compare exits 1, or a count fell beyond its threshold) is a
   false alarm;
 - a planted fault is found when the trial alarms with its phase among the moved rows (assemble,
@@ -84,6 +86,7 @@ def main(argv):
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "count-calibration"))
     parser.add_argument("--assembly-work", type=int, default=6)
     parser.add_argument("--scenes", nargs="*", default=[])
+    parser.add_argument("--first-trial", type=int, default=1)
     args = parser.parse_args(argv)
     sha = git("rev-parse", "--verify", f"{args.ref}^{{commit}}")
     os.makedirs(args.out, exist_ok=True)
@@ -101,7 +104,14 @@ def main(argv):
     count(builds["base"], base, args.scenes, None)
     summary = {"ref": sha, "trials": args.trials, "assembly_work": args.assembly_work,
                "conditions": {}, "aa_largest_moves": {}}
-    for trial in range(1, args.trials + 1):
+    summary_file = os.path.join(args.out, "summary.json")
+    if args.first_trial > 1:
+        with open(summary_file) as f:
+            summary = json.load(f)
+        for name in summary["conditions"]:
+            summary["conditions"][name] = [t for t in summary["conditions"][name]
+                                           if t["trial"] < args.first_trial]
+    for trial in range(args.first_trial, args.trials + 1):
         names = ["aa", *PLANTS]
         count_pairwise([(builds[name], os.path.join(args.out, f"{name}-{trial}")) for name in names],
                        args.scenes, trial)
@@ -124,7 +134,7 @@ def main(argv):
                         summary["aa_largest_moves"][key] = [max(largest[0], move), r["base"]]
             say(f"trial {trial}/{args.trials} {name}: "
                 f"{'alarm' if alarmed else 'quiet'}{' ' + ','.join(phases) if phases else ''}")
-        with open(os.path.join(args.out, "summary.json"), "w") as f:
+        with open(summary_file, "w") as f:
             json.dump(summary, f, indent=1)
     for name, trials in summary["conditions"].items():
         if name == "aa":
