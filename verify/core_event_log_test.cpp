@@ -56,6 +56,26 @@ TEST(EventLog, EventsAreCountedAndSolvesKeptInOrder) {
   EXPECT_EQ(log.solves()[1].rate, 0.9);
 }
 
+TEST(EventLog, EachSolveKeepsItsOwnSolversIterations) {
+  // An auto trial's candidates iterate in turn into one log: each solve takes the iterations its
+  // own solver reported since that solver's last solve, and a direct solve none.
+  EventLog log;
+  log.iterated("mgpcg", 1, 0.1);
+  log.iterated("jacobi-pcg", 1, 0.5);
+  log.iterated("mgpcg", 2, 0.01);
+  log.solved("mgpcg", 2, 0.01, 0.1);
+  log.iterated("jacobi-pcg", 2, 0.25);
+  log.solved("jacobi-pcg", 2, 0.25, 0.5);
+  log.solved("cholmod", 1, 1e-15, 0);
+  log.iterated("mgpcg", 1, 0.2);
+  log.solved("mgpcg", 1, 0.2, 0.2);
+  ASSERT_EQ(log.solves().size(), 4u);
+  EXPECT_EQ(log.solves()[0].residuals, (std::vector<double>{0.1, 0.01}));
+  EXPECT_EQ(log.solves()[1].residuals, (std::vector<double>{0.5, 0.25}));
+  EXPECT_TRUE(log.solves()[2].residuals.empty());
+  EXPECT_EQ(log.solves()[3].residuals, (std::vector<double>{0.2}));
+}
+
 TEST(EventLog, TheMultigridsPartsAreMeansOverItsOwnSolvesAndUpdates) {
   // An auto trial's log holds both candidates' solves (linalg_solver_choice_test.cpp): the
   // multigrid's parts (multigrid/multigrid_parts.hpp) are means over its own, and the update's

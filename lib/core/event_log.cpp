@@ -30,9 +30,20 @@ void EventLog::event(std::string_view name) {
     ++it->second;
 }
 
+void EventLog::iterated(std::string_view solver, int /*iteration*/, double residual) {
+  const std::lock_guard lock(mutex_);
+  const auto it = history_.find(solver);
+  if (it == history_.end())
+    history_.emplace(std::string(solver), std::vector<double>{residual});
+  else
+    it->second.push_back(residual);
+}
+
 void EventLog::solved(std::string_view solver, int iterations, double residual, double rate) {
   const std::lock_guard lock(mutex_);
-  solves_.push_back({std::string(solver), iterations, residual, rate});
+  std::vector<double> residuals;
+  if (const auto it = history_.find(solver); it != history_.end()) residuals.swap(it->second);
+  solves_.push_back({std::string(solver), iterations, residual, rate, std::move(residuals)});
 }
 
 double EventLog::ms(std::string_view name) const {

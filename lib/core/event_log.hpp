@@ -1,6 +1,7 @@
 #pragma once
 // An observer (core/event_observer.hpp) that keeps what it hears: each section's wall time and
-// how often it ran, by name, each event's count, and every solve's statistics. A timed run
+// how often it ran, by name, each event's count, and every solve's statistics with its
+// convergence history. A timed run
 // attaches one to its solver; the multigrid's parts (multigrid/multigrid_parts.hpp) and the
 // record's counts are read from it.
 #include <chrono>
@@ -20,6 +21,9 @@ struct LoggedSolve {
   std::string solver;
   int iterations = 0;
   double residual = 0, rate = 0;
+  /// The relative residual after each iteration, as the solver reported them (empty for a
+  /// direct solve, or a solver that reports no iterations).
+  std::vector<double> residuals;
 };
 
 class EventLog : public EventObserver {
@@ -27,6 +31,7 @@ class EventLog : public EventObserver {
   void begin(std::string_view section) override;
   void end(std::string_view section) override;
   void event(std::string_view name) override;
+  void iterated(std::string_view solver, int iteration, double residual) override;
   void solved(std::string_view solver, int iterations, double residual, double rate) override;
 
   /// The wall time of every run of the section `name`, in ms, summed (a section nested in one of
@@ -49,6 +54,8 @@ class EventLog : public EventObserver {
   std::map<std::string, double, std::less<>> ms_;
   std::map<std::string, int, std::less<>> counts_;
   std::vector<LoggedSolve> solves_;
+  std::map<std::string, std::vector<double>, std::less<>>
+      history_;  // each solver's iterations since its last solve ended
 };
 
 }  // namespace corofem

@@ -25,6 +25,9 @@ class EventObserver {
   /// A counted event: a multigrid's "update", "deferred update", "coarsest factorization",
   /// "coarsest shift", "galerkin refresh"; CHOLMOD's "factorization".
   virtual void event(std::string_view /*name*/) {}
+  /// An iterative solve's iteration `iteration` (1, 2, ...) ended with the relative residual
+  /// `residual` (|b - A x| / |b|): the convergence history, as the solve goes.
+  virtual void iterated(std::string_view /*solver*/, int /*iteration*/, double /*residual*/) {}
   /// A solve ended: `solver` ("mgpcg", "jacobi-pcg", ...), its iterations (1 for a direct solve),
   /// the relative residual it reached and its convergence factor (0 where it has none).
   virtual void solved(std::string_view /*solver*/, int /*iterations*/, double /*residual*/,
@@ -61,6 +64,9 @@ class EventFanout : public EventObserver {
   }
   void event(std::string_view name) override {
     for (EventObserver* o : observers_) o->event(name);
+  }
+  void iterated(std::string_view solver, int iteration, double residual) override {
+    for (EventObserver* o : observers_) o->iterated(solver, iteration, residual);
   }
   void solved(std::string_view solver, int iterations, double residual, double rate) override {
     for (EventObserver* o : observers_) o->solved(solver, iterations, residual, rate);

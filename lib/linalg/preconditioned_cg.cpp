@@ -43,7 +43,7 @@ double dot(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
 SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                              const Preconditioner& precondition, double tolerance,
                              int max_iterations, const char* name,
-                             const Eigen::VectorXd* initial_residual) {
+                             const Eigen::VectorXd* initial_residual, EventObserver* events) {
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
   if (b_norm == 0) return stats;
@@ -69,6 +69,7 @@ SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen
         return r.segment(lo, hi - lo).squaredNorm();
       }));
       ++stats.iterations;
+      if (events) events->iterated(name, stats.iterations, rk / b_norm);
       if (!std::isfinite(rk))
         throw NumericalFault(std::string(name) + ": residual became non-finite");
       if (rk <= tolerance * b_norm) break;
@@ -101,7 +102,7 @@ class JacobiPcgSolver : public LinearSolver {
     const SolveStats stats = preconditioned_cg(
         a_, b, x,
         [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { diagonal_.block_jacobi(r, z); },
-        tolerance_, max_iterations_, "jacobi-pcg");
+        tolerance_, max_iterations_, "jacobi-pcg", nullptr, events_);
     report_solved(stats);
     return stats;
   }

@@ -17,10 +17,12 @@ using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::Vecto
 /// at max_iterations above the tolerance. Returns the relative residual and the convergence factor.
 /// `initial_residual`, if given, is b - A x for the x given (sized as b), computed by the caller
 /// (MG-PCG computes it beside its coarsest factorization): used instead of a product of its own.
+/// `events`, if given, hears every iteration's relative residual (EventObserver::iterated).
 SolveStats preconditioned_cg(const BrcMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                              const Preconditioner& precondition, double tolerance,
                              int max_iterations, const char* name,
-                             const Eigen::VectorXd* initial_residual = nullptr);
+                             const Eigen::VectorXd* initial_residual = nullptr,
+                             EventObserver* events = nullptr);
 
 /// CG with the inverse 3x3 diagonal blocks as preconditioner ("jacobi-pcg"): the baseline a
 /// multigrid preconditioner has to beat.

@@ -291,7 +291,7 @@ SolveStats MultigridSolver::run_overlapped_pcg(const Eigen::VectorXd& b, Eigen::
         z.swap(z0);
         finish_cycle(r, z);
       },
-      params_.tolerance, params_.max_iterations, "mgpcg", &r0);
+      params_.tolerance, params_.max_iterations, "mgpcg", &r0, events_);
 }
 
 SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -301,7 +301,7 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
   if (preconditioner_)
     return preconditioned_cg(
         a, b, x, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { cycle(0, r, z, true); },
-        params_.tolerance, params_.max_iterations, "mgpcg");
+        params_.tolerance, params_.max_iterations, "mgpcg", nullptr, events_);
   SolveStats stats;
   const double b_norm = start_iterative_solve(b, x);
   if (b_norm == 0) return stats;
@@ -316,6 +316,7 @@ SolveStats MultigridSolver::run_solve(const Eigen::VectorXd& b, Eigen::VectorXd&
     a.residual(b, x, r);
     rk = r.norm();
     ++stats.iterations;
+    if (events_) events_->iterated("multigrid", stats.iterations, rk / b_norm);
     if (!std::isfinite(rk)) throw NumericalFault("multigrid: residual became non-finite");
   }
   stats.residual = rk / b_norm;
