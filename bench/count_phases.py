@@ -10,8 +10,8 @@ Duo: I1 and D1 32 KiB 8-way, LL 4 MiB 16-way, 64-byte lines), and writes DIR/<sc
 record with its `phase_counts` (each phase and solver part, inclusive of its parts) and without
 its fields (rest, displacement, rotations); or, with --bundle, one file of them all (producer
 "bench/count_phases.py", its "records"): small enough to commit as a baseline (ci/count-gate's
-bench/gate/counts.json), and what the report keeps (phase_counts.json). Either is what `corofem
-compare` reads. The records' timings are valgrind's, 50-150x the machine's: compare reads none of
+bench/gate/baseline/counts.json), and what the report keeps (phase_counts.json). Either is what
+`corofem compare` reads. The records' timings are valgrind's, 50-150x the machine's: compare reads none of
 a callgrind-counted record's times.
 
 Counts are exact, and the same from run to run and from host to host, when what the process sees

@@ -5,9 +5,13 @@
 //   outer:         a spin of 1e5 of its own and the section inner, a spin of 3e5
 //   stream:        reads one double per 64-byte line of a 64 MiB array that no cache holds:
 //                  one D1 and one LL miss per line, 1,048,576 of each
+//   allocate:      a spin of 1e6 and 1,000 malloc and free pairs of 16 B-64 KiB; under callgrind
+//                  the allocator's calls are left out of the section and counted apart
+//                  ("allocator_left_out")
 // Usage: corofem_count_probe perf|callgrind[:FILE]   (prints the exclusive counts as JSON)
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -26,6 +30,16 @@ void spin(std::uint64_t n) {
       :
       : "r"(n)
       : "rcx", "cc");
+}
+
+/// 1,000 malloc and free pairs, through a pointer the compiler cannot see through (it may remove
+/// a pair it sees), of sizes 16 B to 64 KiB.
+void allocate() {
+  static void* (*volatile allocate_bytes)(std::size_t) = std::malloc;
+  static void (*volatile release)(void*) = std::free;
+  std::vector<void*> held(1000);
+  for (std::size_t i = 0; i < held.size(); ++i) held[i] = allocate_bytes(16u << (i % 13));
+  for (void* p : held) release(p);
 }
 
 /// One read per 64-byte line of `data`.
@@ -62,11 +76,18 @@ int main(int argc, char** argv) {
   });
   double sum = 0;
   in_section(counter.get(), "stream", [&] { sum = stream(data); });
+  in_section(counter.get(), "allocate", [] {
+    spin(1000000);
+    allocate();
+  });
   counter->finish();
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [path, c] : counter->exclusive())
     out[path.empty() ? "-" : path] = {
         {"instructions", c.instructions}, {"d1_misses", c.d1_misses}, {"ll_misses", c.ll_misses}};
+  const WorkCounts& a = counter->allocator_left_out();
+  out["allocator_left_out"] = {{"instructions", a.instructions}};
+  out["events"] = counter->event_definitions()["instructions"];
   std::cout << out.dump() << "\n" << (sum > 0 ? "" : "empty\n");
   return 0;
 }

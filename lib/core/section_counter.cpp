@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/allocator_calls.hpp"
+
 #if __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>
 #define COROFEM_HAVE_CALLGRIND 1
@@ -166,11 +168,14 @@ void SectionCounter::read_callgrind_output() {
                              ": callgrind's output cannot be read (valgrind must write it "
                              "there: --callgrind-out-file, and --combine-dumps=yes)");
   // Each dump is a part: "desc: Trigger: Client Request: LABEL", the events, then "totals:".
+  // The allocator's calls in it are left out (core/allocator_calls.hpp).
   std::string line, label;
   CallgrindColumns columns;
+  AllocatorCalls allocator;
   std::size_t dump = 0;
   const std::string trigger = "desc: Trigger: Client Request: ";
   while (std::getline(in, line)) {
+    allocator.read(line);
     if (line.rfind("creator: ", 0) == 0) {
       tool_ = line.substr(9);
     } else if (line.rfind("desc: ", 0) == 0 && line.find(" cache: ") != std::string::npos) {
@@ -187,7 +192,9 @@ void SectionCounter::read_callgrind_output() {
                                  " is labelled '" + label +
                                  "', not this run's mark (another "
                                  "run's output, or one without --combine-dumps=yes)");
-      exclusive_[path] += totals_of(line, columns);
+      const WorkCounts left_out = allocator.take();
+      exclusive_[path] += totals_of(line, columns) - left_out;
+      allocator_ += left_out;
       ++dump;
       label.clear();
     }
@@ -195,6 +202,7 @@ void SectionCounter::read_callgrind_output() {
   if (columns.ir < 0 || columns.d1mr < 0 || columns.dlmr < 0)
     throw std::runtime_error(callgrind_file_ +
                              ": callgrind counted no cache misses (run it with --cache-sim=yes)");
+  allocator_left_out_ = allocator.seen();
   if (dump != labels_.size())
     throw std::runtime_error(callgrind_file_ + ": " + std::to_string(dump) + " dumps for " +
                              std::to_string(labels_.size()) + " marks (--combine-dumps=yes?)");
@@ -207,9 +215,10 @@ std::map<std::string, std::string> SectionCounter::event_definitions() const {
     return {{"instructions", "instructions (user space)"},
             {"d1_misses", "L1-dcache-load-misses"},
             {"ll_misses", "LLC-load-misses"}};
-  return {{"instructions", "Ir"},
-          {"d1_misses", "D1mr + D1mw (simulated)"},
-          {"ll_misses", "DLmr + DLmw (simulated)"}};
+  const std::string outside = allocator_left_out_ ? ", outside the C library's allocator" : "";
+  return {{"instructions", "Ir" + outside},
+          {"d1_misses", "D1mr + D1mw (simulated)" + outside},
+          {"ll_misses", "DLmr + DLmw (simulated)" + outside}};
 }
 
 std::map<std::string, WorkCounts> inclusive(const std::map<std::string, WorkCounts>& exclusive) {

@@ -66,6 +66,9 @@ class SectionCounter : public EventObserver {
   /// After finish(): each section path's own counts ("" outside every section).
   const std::map<std::string, WorkCounts>& exclusive() const { return exclusive_; }
   int marks() const { return marks_; }
+  /// callgrind: the C library's allocator's counts, left out of every section's
+  /// (core/allocator_calls.hpp); zero where its functions were not found by name.
+  const WorkCounts& allocator_left_out() const { return allocator_; }
 
  private:
   explicit SectionCounter(CountSource source);
@@ -83,6 +86,8 @@ class SectionCounter : public EventObserver {
   std::map<std::string, int> path_indices_;
   std::vector<int> labels_;  ///< callgrind: each dump's path, in order
   std::map<std::string, WorkCounts> exclusive_;
+  WorkCounts allocator_{};
+  bool allocator_left_out_ = false;
   std::map<std::string, std::string> caches_;
   std::string callgrind_file_;
   std::string tool_ = "perf_event_open";

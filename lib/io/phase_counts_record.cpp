@@ -24,8 +24,10 @@ nlohmann::json to_json(const SectionCounter& counter, int threads) {
       {"marks", counter.marks()},
       {"sections", std::move(sections)},
       {"outside", to_json(outside != counter.exclusive().end() ? outside->second : WorkCounts{})}};
-  if (counter.source() == CountSource::Callgrind)
+  if (counter.source() == CountSource::Callgrind) {
     r["simulated_caches"] = counter.simulated_caches();
+    r["allocator_left_out"] = to_json(counter.allocator_left_out());
+  }
   if (counter.source() == CountSource::Perf && threads > 1)
     r["note"] = "perf counts the calling thread alone: the other threads' work is not in them";
   return r;

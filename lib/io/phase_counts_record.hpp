@@ -12,7 +12,8 @@ namespace corofem {
 /// `outside`: the stretches between the sections (the step loop, the progress lines); `source`,
 /// the events' definitions, callgrind's simulated caches, the processor the code saw (under
 /// valgrind its synthetic one), the marks made; `threads`: the run's
-/// (perf counts the calling thread alone).
+/// (perf counts the calling thread alone); callgrind's `allocator_left_out`: the C library's
+/// allocator's counts, in no section (core/allocator_calls.hpp).
 nlohmann::json to_json(const SectionCounter& counter, int threads);
 
 /// A counted run that could not count: the source asked for, and why (the record then holds
