@@ -1,7 +1,8 @@
 // `corofem run --count-phases` and bench/count_phases.py end to end: a counted run has every phase
 // and solver part, parents hold their parts, the same counts twice, the numerics untouched; perf
 // falls back with a reason where the machine has no counters; ci/count-gate passes against its
-// own counts and fails, naming the phase, against a baseline that cost less.
+// own counts and fails, naming the phase, against a baseline that cost less; ci/bench-gate times a
+// tiny suite alternated and compares it.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -138,6 +139,36 @@ TEST(CliCountPhases, TheGatePassesOnItsOwnCountsAndNamesAPhaseThatGrew) {
   const auto fell = run_command(gate);
   EXPECT_EQ(fell.exit_code, 1) << fell.err;
   EXPECT_NE(fell.err.find("the baseline is stale"), std::string::npos) << fell.err;
+}
+
+TEST(CliCountPhases, BenchGateTimesATinySuiteAndSaysWhatItCouldNotTest) {
+  // ci/bench-gate with binaries built already (--base-bin, --new-bin: nothing is built): each
+  // scene's runs, a record each, into OUT/base and OUT/new, then compare's verdict on them. Three
+  // runs a side cannot reach compare's alpha (2 / C(6, 3) = 0.1 > 0.01), so the headline is
+  // inconclusive, never "no regression".
+  TempDir dir;
+  std::filesystem::create_directories(dir / "suite");
+  std::filesystem::copy_file(gate_scene(), dir / "suite" / "cantilever_small.json");
+  const std::string gate = words({"python3", quoted(test::source_dir() / "ci/bench-gate"), "HEAD",
+                                  "--suite", quoted(dir / "suite"), "--out", quoted(dir / "out"),
+                                  "--runs 3 --threads 1 --no-counts"});
+  const auto r =
+      run_command(words({gate, "--base-bin", quoted(bin_dir()), "--new-bin", quoted(bin_dir())}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* side : {"base", "new"}) {
+    int records = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir / "out" / side))
+      records += entry.path().extension() == ".json";
+    EXPECT_EQ(records, 3) << side;
+  }
+  const json verdict = json::parse(test::read_text(dir / "out" / "compare" / "compare.json"));
+  EXPECT_EQ(verdict["headline"], "inconclusive") << verdict["headline"];
+  EXPECT_FALSE(verdict["regression"].get<bool>());
+  EXPECT_GT(verdict["untested"].get<int>(), 0);
+  // One side built already and not the other: refused before anything runs.
+  const auto half = run_command(words({gate, "--base-bin", quoted(bin_dir())}));
+  EXPECT_EQ(half.exit_code, 2) << half.err;
+  EXPECT_NE(half.err.find("--base-bin and --new-bin go together"), std::string::npos) << half.err;
 }
 
 }  // namespace
