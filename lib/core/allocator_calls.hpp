@@ -35,12 +35,12 @@ class AllocatorCalls {
   void add_call_cost(const std::string& line);
 
   std::map<std::string, bool, std::less<>> files_, functions_;  ///< by compressed id
-  bool in_allocator_file_ = false;  ///< the current fl=
-  bool in_allocator_ = false;       ///< the current fn=
-  int callee_file_ = -1;            ///< the cfi=/cfl= before the next cfn=: -1 none, 0, 1
+  bool in_allocator_file_ = false;                              ///< the current fl=
+  bool in_allocator_ = false;                                   ///< the current fn=
+  int callee_file_ = -1;  ///< the cfi=/cfl= before the next cfn=: -1 none, 0, 1
   bool callee_is_allocator_ = false;
-  bool call_cost_next_ = false;  ///< the line after calls=: the call's inclusive cost
-  int positions_ = 1;            ///< the columns before the events ("positions: line")
+  bool call_cost_next_ = false;         ///< the line after calls=: the call's inclusive cost
+  int positions_ = 1;                   ///< the columns before the events ("positions: line")
   std::map<std::string, int> columns_;  ///< "events:" names to their column
   WorkCounts part_{};
   bool seen_ = false;

@@ -47,8 +47,9 @@ struct MultigridParams {
   /// The coarsest factorization is kept while the coarsest operator's values differ from those it
   /// factored by less than this, relative, in the Frobenius norm (0: refactored at every update).
   /// The factor of a nearby SPD operator is still an SPD coarse solve, so the V-cycle stays an SPD
-  /// preconditioner and MG-PCG meets its tolerance; only its rate can suffer. Measured in
-  /// lib/docs/multigrid-update-notes.md, "The coarsest factor kept while the operator barely
+  /// preconditioner and MG-PCG meets its tolerance; only its rate can suffer. A scene's stationary
+  /// multigrid defaults to 0: without CG, a stale coarse solve can make its cycle diverge. Measured
+  /// in lib/docs/multigrid-update-notes.md, "The coarsest factor kept while the operator barely
   /// moves".
   double coarsest_refactor_change = 0.03;
   /// The coarse operators E = R A R^T are recomputed when the fine operator's stiffness moved by

@@ -221,8 +221,11 @@ void read_multigrid_settings(JsonFields& f, AnalysisSpec& a) {
   a.multigrid.cycle = one_of(f, "cycle", a.multigrid.cycle, kCycleShapes);
   a.multigrid.galerkin_refresh_change =
       number_in(f, "galerkin_refresh", a.multigrid.galerkin_refresh_change, 0, 1);
-  a.multigrid.coarsest_refactor_change =
-      number_in(f, "coarsest_refactor", a.multigrid.coarsest_refactor_change, 0, 1);
+  // The stationary multigrid refactors at every update unless told otherwise: without CG around
+  // it, a kept factor's stale coarse solve can make the cycle diverge (multigrid-update-notes.md).
+  a.multigrid.coarsest_refactor_change = number_in(
+      f, "coarsest_refactor",
+      a.solver == SolverKind::Multigrid ? 0.0 : a.multigrid.coarsest_refactor_change, 0, 1);
   if (a.solver == SolverKind::PetscMg)
     // PETSc's PCMG on our transfers: its own V-cycle of Chebyshev-Jacobi smoothing (as many steps
     // as `smoothing`) and its coarse operators by MatPtAP. A setting it cannot honour is refused,
