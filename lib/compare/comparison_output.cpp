@@ -138,9 +138,10 @@ std::string work_counts_markdown(const Comparison& c) {
   std::ostringstream md;
   md << "\nWork counts (more or fewer: instructions moved by more than "
      << general_number(100 * o.count_threshold) << "%, D1 or LL misses by more than "
-     << general_number(100 * o.miss_threshold) << "%; BASE under " << general_number(o.min_count)
-     << " shown, not gated): " << quiet["equal"] << " equal, " << quiet["within threshold"]
-     << " within threshold";
+     << general_number(100 * o.miss_threshold)
+     << "%, a phase's (a solver part's shown, not gated); BASE under "
+     << general_number(o.min_count) << " shown, not gated): " << quiet["equal"] << " equal, "
+     << quiet["within threshold"] << " within threshold";
   if (moved.str().empty()) return md.str() + ".\n";
   md << ", and these:\n\n| case | quantity | BASE | NEW | change | verdict |\n"
      << "|---|---|---|---|---|---|\n"
