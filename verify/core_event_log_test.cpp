@@ -38,7 +38,6 @@ TEST(EventLog, ASectionEndsThroughAnException) {
                std::runtime_error);
   in_section(&log, "after", [] { std::this_thread::sleep_for(1ms); });
   EXPECT_GE(log.ms("after"), 1.0);  // closed by itself: "failing" left nothing open
-  EXPECT_GE(log.ms("failing"), 0.0);
 }
 
 TEST(EventLog, EventsAreCountedAndSolvesKeptInOrder) {

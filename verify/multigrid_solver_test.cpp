@@ -362,6 +362,18 @@ TEST(MultigridSolver, CoarsestMaxVerticesAddsLatticeLevelsBelowTheMeshes) {
   EXPECT_GT(built.transfers.back().coarse, params.coarsest_max_vertices / 8);
 }
 
+/// The iterative solver `name` ("multigrid", "mgpcg" on lattice levels, or "jacobi-pcg") for p, to
+/// `tolerance` in at most `max_iterations`.
+std::unique_ptr<LinearSolver> iterative_solver(const std::string& name, const FeProblem& p,
+                                               double tolerance, int max_iterations) {
+  if (name == "jacobi-pcg") return make_jacobi_pcg_solver(tolerance, max_iterations);
+  MultigridParams params = multigrid_params(analysis(name, tolerance, "lattice"));
+  params.max_iterations = max_iterations;
+  return std::make_unique<MultigridSolver>(
+      p.stiffness, build_hierarchy(p.mesh, fixed_vertices(p.dirichlet), params.hierarchy, {}),
+      params, name == "mgpcg");
+}
+
 TEST(MultigridSolver, IterationCapAboveToleranceIsNotConverged) {
   // Two iterations cannot reach 1e-14: every iterative solver says so, naming itself.
   const std::vector<MeshCase> cases = meshes();
@@ -369,16 +381,7 @@ TEST(MultigridSolver, IterationCapAboveToleranceIsNotConverged) {
   Eigen::VectorXd b;
   const BrcMatrix system = small_strain_system(p, b);
   for (const char* name : {"multigrid", "mgpcg", "jacobi-pcg"}) {
-    std::unique_ptr<LinearSolver> solver;
-    if (name == std::string("jacobi-pcg")) {
-      solver = make_jacobi_pcg_solver(1e-14, 2);
-    } else {
-      MultigridParams params = multigrid_params(analysis(name, 1e-14, "lattice"));
-      params.max_iterations = 2;
-      solver = std::make_unique<MultigridSolver>(
-          p.stiffness, build_hierarchy(p.mesh, fixed_vertices(p.dirichlet), params.hierarchy, {}),
-          params, name == std::string("mgpcg"));
-    }
+    const std::unique_ptr<LinearSolver> solver = iterative_solver(name, p, 1e-14, 2);
     solver->set_matrix(system);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
     try {
@@ -403,11 +406,7 @@ TEST(MultigridSolver, EveryIterativeSolverReportsItsConvergenceHistory) {
   const BrcMatrix system = small_strain_system(p, b);
   for (const char* name : {"multigrid", "mgpcg", "jacobi-pcg"}) {
     EventLog log;
-    std::unique_ptr<LinearSolver> solver;
-    if (name == std::string("jacobi-pcg"))
-      solver = make_jacobi_pcg_solver(1e-8, 5000);
-    else
-      solver = make_multigrid_solver(analysis(name, 1e-8, "lattice"), p, {}, true);
+    const std::unique_ptr<LinearSolver> solver = iterative_solver(name, p, 1e-8, 5000);
     solver->observe(&log);
     solver->set_matrix(system);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), r;

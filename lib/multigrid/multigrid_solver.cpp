@@ -1,7 +1,6 @@
 #include "multigrid/multigrid_solver.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 
@@ -12,6 +11,23 @@
 #include "sparse/brc_to_eigen.hpp"
 
 namespace corofem {
+
+namespace {
+
+/// Whether `now` differs from `then` by `limit` or more, relative, in the Frobenius norm (a NaN
+/// counts as moved). Serial, in one order: the decision, and so the bits, are the same at every
+/// thread count.
+bool moved_beyond(const std::vector<double>& now, const std::vector<double>& then, double limit) {
+  double change = 0, size = 0;
+  for (std::size_t k = 0; k < now.size(); ++k) {
+    const double d = now[k] - then[k];
+    change += d * d;
+    size += then[k] * then[k];
+  }
+  return !(change < limit * limit * size);
+}
+
+}  // namespace
 
 template <class F>
 void MultigridSolver::part(SolverPart part, const F& f) {
@@ -92,14 +108,7 @@ bool MultigridSolver::fine_moved(const BrcMatrix& a) const {
   if (refreshed_probe_.empty() || params_.galerkin_refresh_change <= 0) return true;
   std::vector<double> now;
   stiffness_probe(a, now);
-  double change = 0, size = 0;
-  for (std::size_t k = 0; k < now.size(); ++k) {
-    const double d = now[k] - refreshed_probe_[k];
-    change += d * d;
-    size += refreshed_probe_[k] * refreshed_probe_[k];
-  }
-  const double limit = params_.galerkin_refresh_change;
-  return !(change < limit * limit * size);  // a NaN refreshes
+  return moved_beyond(now, refreshed_probe_, params_.galerkin_refresh_change);
 }
 
 void MultigridSolver::update_levels() {
@@ -116,16 +125,9 @@ void MultigridSolver::update_levels() {
 
 bool MultigridSolver::coarsest_moved() const {
   if (factored_values_.empty() || params_.coarsest_refactor_change <= 0) return true;
-  // Serial, in one order: the decision, and so the bits, are the same at every thread count.
-  const std::vector<double>& now = hierarchy_.matrix(hierarchy_.num_levels() - 1).values;
-  double change = 0, size = 0;
-  for (std::size_t k = 0; k < now.size(); ++k) {
-    const double d = now[k] - factored_values_[k];
-    change += d * d;
-    size += factored_values_[k] * factored_values_[k];
-  }
-  const double limit = params_.coarsest_refactor_change;
-  return !(change < limit * limit * size);  // a NaN refactors (and the factorization reports it)
+  // A NaN refactors (and the factorization reports it).
+  return moved_beyond(hierarchy_.matrix(hierarchy_.num_levels() - 1).values, factored_values_,
+                      params_.coarsest_refactor_change);
 }
 
 bool MultigridSolver::overlaps_update() const {
